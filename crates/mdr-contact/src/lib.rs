@@ -1,1 +1,57 @@
-//! placeholder
+//! # mdr-contact
+//!
+//! The MDR (method of dimensionality reduction) elasto-plastic normal contact law with nonlocal
+//! plasticity and linear strain hardening of Lyashenko & Popov (2018), packaged as per-contact
+//! history models with no engine dependency. Equation numbers in the docs are the paper's; the
+//! derivations are in `docs/theory.md`.
+//!
+//! - [`material`]: materials and pair quantities (`E*`, eq. 3; `G*`; effective radius; reduced mass).
+//! - [`normal`]: normal laws — [`normal::Hertz`], the MDR closed form
+//!   [`normal::MdrElastoPlastic`], [`normal::Thornton`].
+//! - [`tangential`]: the O(1) Mindlin law with a Coulomb cap.
+//! - [`damping`]: optional viscous damping.
+//! - [`model`]: composition of the sub-models into one contact model.
+//!
+//! ```
+//! use mdr_contact::prelude::*;
+//! let pair = ContactPair::paper_fig2();
+//! let law = MdrElastoPlastic::paper().bind(&pair).unwrap();
+//! let mut state = MdrState::default();
+//! let loaded = law.update(&mut state, 5e-6);
+//! let unloaded = law.update(&mut state, 4e-6);
+//! assert!(unloaded.force < loaded.force);
+//! assert!(law.residual_overlap(&state) > 0.0);
+//! ```
+#![warn(missing_docs)]
+
+pub mod damping;
+pub mod error;
+pub mod material;
+pub mod model;
+pub mod normal;
+pub mod tangential;
+
+pub use error::{ContactError, Result};
+pub use material::{ContactPair, Counterpart, Material};
+
+/// The names most programs need.
+pub mod prelude {
+    pub use crate::damping::{
+        DampingLaw, DampingModel, HertzianViscous, NoDamping, StiffnessViscous,
+    };
+    pub use crate::error::{ContactError, Result};
+    pub use crate::material::{
+        effective_modulus, effective_shear_modulus, ContactPair, Counterpart, Material,
+    };
+    pub use crate::model::{
+        ContactInput, ContactLaw, ContactModel, ContactOutput, ContactReport, ContactState,
+    };
+    pub use crate::normal::{
+        Hertz, HertzLaw, MdrElastoPlastic, MdrLaw, MdrState, NormalLaw, NormalModel,
+        NormalResponse, Thornton, ThorntonLaw, ThorntonState,
+    };
+    pub use crate::tangential::{
+        Frictionless, Mindlin, MindlinLaw, MindlinState, TangentialInput, TangentialLaw,
+        TangentialModel, TangentialResponse,
+    };
+}

@@ -1,0 +1,234 @@
+//! Composition: a contact model is a normal law + a tangential law + a damping law, each with
+//! its own parameters and its own history, as LAMMPS `pair granular` composes sub-models.
+
+use crate::damping::{DampingLaw, DampingModel, NoDamping};
+use crate::error::Result;
+use crate::material::ContactPair;
+use crate::normal::{NormalLaw, NormalModel, NormalResponse};
+use crate::tangential::{
+    Frictionless, TangentialInput, TangentialLaw, TangentialModel, TangentialResponse,
+};
+use nalgebra::Vector3;
+
+/// Material-level description of a contact: normal, tangential and damping sub-models.
+///
+/// ```
+/// use mdr_contact::prelude::*;
+/// let model = ContactModel::new(MdrElastoPlastic::paper())
+///     .with_tangential(Mindlin::new(0.3).unwrap());
+/// let law = model.bind(&ContactPair::paper_fig2()).unwrap();
+/// let mut state = law.new_state();
+/// let out = law.update(&mut state, &ContactInput::normal_only(1e-6, -0.1, 1e-7));
+/// assert!(out.normal_force > 0.0);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactModel<N, T = Frictionless, D = NoDamping> {
+    /// Normal sub-model.
+    pub normal: N,
+    /// Tangential sub-model.
+    pub tangential: T,
+    /// Damping sub-model.
+    pub damping: D,
+}
+
+impl<N: NormalModel> ContactModel<N> {
+    /// A frictionless, undamped model with the given normal law.
+    pub fn new(normal: N) -> Self {
+        Self {
+            normal,
+            tangential: Frictionless,
+            damping: NoDamping,
+        }
+    }
+}
+
+impl<N: NormalModel, T: TangentialModel, D: DampingModel> ContactModel<N, T, D> {
+    /// Replace the tangential sub-model (the normal one is untouched).
+    pub fn with_tangential<T2: TangentialModel>(self, tangential: T2) -> ContactModel<N, T2, D> {
+        ContactModel {
+            normal: self.normal,
+            tangential,
+            damping: self.damping,
+        }
+    }
+
+    /// Replace the damping sub-model.
+    pub fn with_damping<D2: DampingModel>(self, damping: D2) -> ContactModel<N, T, D2> {
+        ContactModel {
+            normal: self.normal,
+            tangential: self.tangential,
+            damping,
+        }
+    }
+
+    /// Replace the normal sub-model (the tangential one is untouched).
+    pub fn with_normal<N2: NormalModel>(self, normal: N2) -> ContactModel<N2, T, D> {
+        ContactModel {
+            normal,
+            tangential: self.tangential,
+            damping: self.damping,
+        }
+    }
+
+    /// Bind every sub-model to one pair.
+    pub fn bind(&self, pair: &ContactPair) -> Result<ContactLaw<N::Law, T::Law, D::Law>> {
+        Ok(ContactLaw {
+            normal: self.normal.bind(pair)?,
+            tangential: self.tangential.bind(pair)?,
+            damping: self.damping.bind(pair)?,
+        })
+    }
+}
+
+/// Per-contact history of a composed model, plus the work books of this contact.
+#[derive(Debug, Clone, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ContactState<NS, TS> {
+    /// Normal law history.
+    pub normal: NS,
+    /// Tangential law history.
+    pub tangential: TS,
+    /// Work dissipated by friction so far (J).
+    pub friction_work: f64,
+    /// Work dissipated by damping so far (J).
+    pub damping_work: f64,
+}
+
+/// Kinematics of one contact at one step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactInput {
+    /// Overlap `δ` (m), positive when the bodies interpenetrate.
+    pub overlap: f64,
+    /// Unit normal from body 2 towards body 1.
+    pub normal: Vector3<f64>,
+    /// Velocity of body 1 relative to body 2 at the contact point (m/s).
+    pub relative_velocity: Vector3<f64>,
+    /// Time step (m/s × dt gives the tangential displacement increment), s.
+    pub dt: f64,
+}
+
+impl ContactInput {
+    /// A head-on contact along `z`: overlap `δ`, normal relative velocity `v_n` (negative while
+    /// approaching), step `dt`.
+    pub fn normal_only(overlap: f64, normal_velocity: f64, dt: f64) -> Self {
+        Self {
+            overlap,
+            normal: Vector3::z(),
+            relative_velocity: Vector3::new(0.0, 0.0, normal_velocity),
+            dt,
+        }
+    }
+}
+
+/// Result of one contact update.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ContactOutput {
+    /// Total force on body 1 (N); body 2 receives the opposite.
+    pub force: Vector3<f64>,
+    /// Normal force including damping (N, ≥ 0: no tension).
+    pub normal_force: f64,
+    /// The normal law's own response (elastic–plastic part).
+    pub normal: NormalResponse,
+    /// The tangential law's response.
+    pub tangential: TangentialResponse,
+}
+
+/// What one contact looks like, for reports and output files.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ContactReport {
+    /// Current overlap (m).
+    pub overlap: f64,
+    /// Largest overlap so far (m).
+    pub max_overlap: f64,
+    /// Residual (plastic) indentation (m).
+    pub residual_overlap: f64,
+    /// Work dissipated by plasticity (J).
+    pub plastic_work: f64,
+    /// Work dissipated by friction (J).
+    pub friction_work: f64,
+    /// Work dissipated by damping (J).
+    pub damping_work: f64,
+    /// Elastic energy stored in the normal direction (J).
+    pub normal_elastic_energy: f64,
+}
+
+/// A composed contact law bound to one pair.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactLaw<NL, TL, DL> {
+    /// Normal law.
+    pub normal: NL,
+    /// Tangential law.
+    pub tangential: TL,
+    /// Damping law.
+    pub damping: DL,
+}
+
+/// The state type of a composed law.
+pub type StateOf<NL, TL> = ContactState<<NL as NormalLaw>::State, <TL as TangentialLaw>::State>;
+
+impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
+    /// A fresh history (no contact yet).
+    pub fn new_state(&self) -> StateOf<NL, TL> {
+        ContactState::default()
+    }
+
+    /// Advance one contact by one step.
+    #[inline]
+    pub fn update(&self, state: &mut StateOf<NL, TL>, input: &ContactInput) -> ContactOutput {
+        let normal = self.normal.update(&mut state.normal, input.overlap);
+        if normal.force <= 0.0 && normal.contact_radius <= 0.0 {
+            // Apart (or touching only the residual crater's rim): no force; the tangential
+            // springs forget their displacement.
+            let _ = self.tangential.update(
+                &mut state.tangential,
+                &TangentialInput {
+                    normal: input.normal,
+                    displacement_increment: Vector3::zeros(),
+                    normal_response: normal,
+                },
+            );
+            return ContactOutput::default();
+        }
+        let normal_speed = input.relative_velocity.dot(&input.normal);
+        let approach_rate = -normal_speed;
+        let damping = self
+            .damping
+            .normal_force(&normal, input.overlap, approach_rate);
+        // No tension: damping may not pull the bodies together.
+        let normal_force = (normal.force + damping).max(0.0);
+        let applied_damping = normal_force - normal.force;
+        state.damping_work += applied_damping * approach_rate * input.dt;
+        let tangential = self.tangential.update(
+            &mut state.tangential,
+            &TangentialInput {
+                normal: input.normal,
+                displacement_increment: input.relative_velocity * input.dt,
+                // The Coulomb cap uses the total normal force, damping included.
+                normal_response: NormalResponse {
+                    force: normal_force,
+                    ..normal
+                },
+            },
+        );
+        state.friction_work += tangential.dissipated;
+        ContactOutput {
+            force: input.normal * normal_force + tangential.force,
+            normal_force,
+            normal,
+            tangential,
+        }
+    }
+
+    /// The per-contact quantities users look at.
+    pub fn report(&self, state: &StateOf<NL, TL>, overlap: f64) -> ContactReport {
+        ContactReport {
+            overlap,
+            max_overlap: self.normal.max_overlap(&state.normal),
+            residual_overlap: self.normal.residual_overlap(&state.normal),
+            plastic_work: self.normal.dissipated_work(&state.normal),
+            friction_work: state.friction_work,
+            damping_work: state.damping_work,
+            normal_elastic_energy: self.normal.elastic_energy(&state.normal, overlap),
+        }
+    }
+}

@@ -1,0 +1,127 @@
+//! The O(1) incremental Mindlin law with a Coulomb cap (model.md §5; LAMMPS `tangential
+//! mindlin/rescale`): one 3D tangential displacement per contact, kept in the contact plane.
+
+use super::{TangentialInput, TangentialLaw, TangentialModel, TangentialResponse};
+use crate::error::{non_negative, Result};
+use crate::material::ContactPair;
+use nalgebra::Vector3;
+
+/// Parameters: the Coulomb friction coefficient `μ`, and whether the stored displacement is
+/// rescaled by `a/a_prev` when the contact radius shrinks.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Mindlin {
+    friction_coefficient: f64,
+    rescale_on_unloading: bool,
+}
+
+impl Mindlin {
+    /// `μ` (finite, ≥ 0). The displacement is rescaled when the contact shrinks (as LAMMPS
+    /// `mindlin/rescale`); turn it off with [`Mindlin::rescale_on_unloading`].
+    pub fn new(friction_coefficient: f64) -> Result<Self> {
+        Ok(Self {
+            friction_coefficient: non_negative("mu", friction_coefficient)?,
+            rescale_on_unloading: true,
+        })
+    }
+
+    /// Whether to rescale the stored displacement by `a/a_prev` when the contact shrinks, so that
+    /// unloading cannot release more tangential energy than was stored.
+    pub fn rescale_on_unloading(mut self, yes: bool) -> Self {
+        self.rescale_on_unloading = yes;
+        self
+    }
+
+    /// `μ`.
+    pub fn friction_coefficient(&self) -> f64 {
+        self.friction_coefficient
+    }
+}
+
+impl TangentialModel for Mindlin {
+    type Law = MindlinLaw;
+    fn bind(&self, pair: &ContactPair) -> Result<MindlinLaw> {
+        Ok(MindlinLaw {
+            effective_shear_modulus: pair.effective_shear_modulus(),
+            friction_coefficient: self.friction_coefficient,
+            rescale_on_unloading: self.rescale_on_unloading,
+        })
+    }
+}
+
+/// History: the elastic tangential displacement `ξ` (m, in the contact plane) and the contact
+/// radius at the previous step.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct MindlinState {
+    /// Stored elastic tangential displacement `ξ` (m).
+    pub displacement: Vector3<f64>,
+    /// Contact radius at the previous update (m).
+    pub contact_radius: f64,
+}
+
+/// The Mindlin law of one pair: `F_t = −k_t ξ`, `k_t = 2 G* a`, `|F_t| ≤ μ F_N`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MindlinLaw {
+    effective_shear_modulus: f64,
+    friction_coefficient: f64,
+    rescale_on_unloading: bool,
+}
+
+impl MindlinLaw {
+    /// Tangential stiffness `k_t = 2 G* a` (N/m) at contact radius `a`.
+    #[inline]
+    pub fn stiffness(&self, contact_radius: f64) -> f64 {
+        2.0 * self.effective_shear_modulus * contact_radius
+    }
+}
+
+impl TangentialLaw for MindlinLaw {
+    type State = MindlinState;
+
+    #[inline]
+    fn update(&self, state: &mut MindlinState, input: &TangentialInput) -> TangentialResponse {
+        let n = input.normal;
+        let a = input.normal_response.contact_radius;
+        let normal_force = input.normal_response.force;
+        if a <= 0.0 || normal_force <= 0.0 {
+            // Out of contact: springs leaving the contact forget their displacement.
+            *state = MindlinState::default();
+            return TangentialResponse::default();
+        }
+        // Keep ξ in the current contact plane: drop its normal part, keep its length (the
+        // contact frame rotated, the springs did not stretch).
+        let mut xi = state.displacement;
+        let old_len2 = xi.norm_squared();
+        if old_len2 > 0.0 {
+            xi -= n * n.dot(&xi);
+            let new_len2 = xi.norm_squared();
+            if new_len2 > 0.0 {
+                xi *= (old_len2 / new_len2).sqrt();
+            }
+        }
+        if self.rescale_on_unloading && a < state.contact_radius {
+            xi *= a / state.contact_radius;
+        }
+        let du = input.displacement_increment - n * n.dot(&input.displacement_increment);
+        xi += du;
+        let k = self.stiffness(a);
+        let cap = self.friction_coefficient * normal_force;
+        let trial = k * xi.norm();
+        let mut response = TangentialResponse::default();
+        if trial > cap {
+            // Gross slip: the spring is reset to the Coulomb limit; μ F_N times the slip length
+            // is dissipated.
+            let keep = if trial > 0.0 { cap / trial } else { 0.0 };
+            let slip = xi.norm() * (1.0 - keep);
+            xi *= keep;
+            response.sliding = true;
+            response.dissipated = cap * slip;
+        }
+        state.displacement = xi;
+        state.contact_radius = a;
+        response.force = -k * xi;
+        response.elastic_energy = 0.5 * k * xi.norm_squared();
+        response
+    }
+}
