@@ -1,1 +1,40 @@
-fn main() {}
+//! The `mdr-dem` command-line program. With no arguments it runs the main job: the paper's
+//! Fig. 2 (`mdr-dem impact fig2`).
+
+use clap::{Parser, Subcommand};
+
+mod cli;
+
+/// MDR elasto-plastic contact law for DEM: single-impact validator, rapier coupling, granular runs.
+#[derive(Debug, Parser)]
+#[command(name = "mdr-dem", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Single-impact validator: e_n(v0) curves, traces, fits, oblique impacts.
+    #[command(subcommand)]
+    Impact(cli::impact::ImpactCommand),
+    /// Simulations in rapier: single drops, pairs, scenes, rings.
+    #[command(subcommand)]
+    Sim(cli::sim::SimCommand),
+}
+
+fn main() -> std::process::ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        None => cli::impact::run_default(),
+        Some(Command::Impact(cmd)) => cli::impact::run(cmd),
+        Some(Command::Sim(cmd)) => cli::sim::run(cmd),
+    };
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(err) => {
+            eprintln!("error: {err:#}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}

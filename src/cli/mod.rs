@@ -1,0 +1,4 @@
+//! Subcommands of the `mdr-dem` program, one module per command group.
+
+pub mod impact;
+pub mod sim;
