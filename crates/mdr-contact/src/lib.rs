@@ -6,6 +6,7 @@
 //! derivations are in `docs/theory.md`.
 //!
 //! - [`material`]: materials and pair quantities (`E*`, eq. 3; `G*`; effective radius; reduced mass).
+//! - [`profile`]: axisymmetric profiles and their MDR 1D profiles (eq. 1), closed form and numerical.
 //! - [`normal`]: normal laws — [`normal::Hertz`], the MDR closed form
 //!   [`normal::MdrElastoPlastic`], [`normal::Thornton`].
 //! - [`tangential`]: the O(1) Mindlin law with a Coulomb cap.
@@ -17,8 +18,8 @@
 //! let pair = ContactPair::paper_fig2();
 //! let law = MdrElastoPlastic::paper().bind(&pair).unwrap();
 //! let mut state = MdrState::default();
-//! let loaded = law.update(&mut state, 5e-6);
-//! let unloaded = law.update(&mut state, 4e-6);
+//! let loaded = law.update(&mut state, 8e-6); // past u_c = π q_c / (2 E*) ≈ 5.5 µm
+//! let unloaded = law.update(&mut state, 7e-6);
 //! assert!(unloaded.force < loaded.force);
 //! assert!(law.residual_overlap(&state) > 0.0);
 //! ```
@@ -29,6 +30,9 @@ pub mod error;
 pub mod material;
 pub mod model;
 pub mod normal;
+pub mod profile;
+mod quadrature;
+pub mod rolling;
 pub mod tangential;
 
 pub use error::{ContactError, Result};

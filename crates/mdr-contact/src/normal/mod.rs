@@ -9,10 +9,12 @@
 
 mod hertz;
 mod mdr;
+mod spring_bed;
 mod thornton;
 
 pub use hertz::{Hertz, HertzLaw};
 pub use mdr::{EnergyRouteImpact, Hardening, MdrElastoPlastic, MdrLaw, MdrState};
+pub use spring_bed::{SphereSpringBed, SpringBed, SpringBedState};
 pub use thornton::{thornton_restitution, Thornton, ThorntonLaw, ThorntonState};
 
 use crate::error::Result;
