@@ -3,8 +3,10 @@
 //! law itself, so a normal law can be swapped without touching the tangential one.
 
 mod mindlin;
+mod spring_bed;
 
 pub use mindlin::{Mindlin, MindlinLaw, MindlinState};
+pub use spring_bed::{SpringBedTangential, SpringBedTangentialState};
 
 use crate::error::Result;
 use crate::material::ContactPair;
