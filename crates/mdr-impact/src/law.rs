@@ -1,0 +1,76 @@
+//! Which normal law an impact uses, and how it is evaluated. The laws themselves live in
+//! `mdr-contact`; this module only names them.
+
+use mdr_contact::normal::{MdrElastoPlastic, Thornton};
+
+/// The normal contact law of an impact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NormalSpec {
+    /// The MDR elasto-plastic law of Lyashenko & Popov (eqs. 7–13).
+    Mdr(MdrElastoPlastic),
+    /// Thornton's (1997) elastic–perfectly-plastic law, for comparison.
+    Thornton(Thornton),
+    /// Hertz (eq. 5), purely elastic.
+    Hertz,
+}
+
+impl NormalSpec {
+    /// The paper's MDR law (Fig. 2): `q_c = 3.8·10⁵ N/m`, `Θ = 0.37 E*`.
+    pub fn paper() -> Self {
+        Self::Mdr(MdrElastoPlastic::paper())
+    }
+
+    /// Short name used in tables, plots and on the command line: `mdr`, `thornton`, `hertz`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Mdr(_) => "mdr",
+            Self::Thornton(_) => "thornton",
+            Self::Hertz => "hertz",
+        }
+    }
+}
+
+/// How the normal law is represented.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Method {
+    /// The closed-form law (for `mdr`: the continuum closed form of model.md §4).
+    #[default]
+    Closed,
+    /// The discrete MDR spring bed (eq. 6 with eqs. 10–13) with this many springs, integrated in
+    /// time. Only for the `mdr` law.
+    Springs {
+        /// Number of springs across the bed.
+        springs: usize,
+    },
+}
+
+/// How the restitution of a normal impact is computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Route {
+    /// The energy route where it applies (closed-form MDR, head-on, no spin), time integration
+    /// otherwise.
+    #[default]
+    Auto,
+    /// Always integrate the equation of motion (eq. 15) in time.
+    TimeIntegration,
+    /// The time-free energy route `e_n² = W_unload / W_load` (model.md §4); closed-form MDR,
+    /// head-on impacts only.
+    Energy,
+}
+
+/// The tangential law of an oblique impact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TangentialSpec {
+    /// The O(1) incremental Mindlin law with a Coulomb cap (model.md §5, `k_t = 2 G* a`).
+    #[default]
+    Mindlin,
+}
+
+impl TangentialSpec {
+    /// Short name: `mindlin`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Mindlin => "mindlin",
+        }
+    }
+}
