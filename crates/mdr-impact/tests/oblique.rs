@@ -1,0 +1,108 @@
+//! Oblique impacts of a sphere on a half-space with friction and rotation (`I = (2/5) m R²`).
+//!
+//! In gross sliding the tangential force is `μ F_n` throughout, so the tangential impulse is
+//! `μ m v_n (1 + e_n)`: with the angle θ measured from the normal (`tan θ = v_t / v_n`),
+//! `e_t = 1 − μ (1 + e_n) cot θ` and `ω = (5/2) μ (1 + e_n) v_n / R`. Gross sliding holds for the
+//! whole contact when the slip velocity `v_t − R ω` never reaches zero:
+//! `tan θ > (7/2) μ (1 + e_n)`.
+
+use mdr_contact::ContactPair;
+use mdr_impact::{Impact, Sweep};
+
+const MU: f64 = 0.2;
+
+#[test]
+fn gross_sliding_matches_impulse_theory() {
+    let pair = ContactPair::paper_fig2();
+    let radius = pair.effective_radius();
+    for angle in [60.0, 70.0, 80.0, 85.0] {
+        let speed = 1.0;
+        let outcome = Impact::paper(speed)
+            .angle_degrees(angle)
+            .friction(MU)
+            .run()
+            .unwrap();
+        let theta = f64::to_radians(angle);
+        let e_n = outcome.normal_restitution;
+        assert!(
+            theta.tan() > 3.5 * MU * (1.0 + e_n),
+            "θ = {angle}° is not gross sliding"
+        );
+        let v_n = speed * theta.cos();
+        let e_t = 1.0 - MU * (1.0 + e_n) / theta.tan();
+        let omega = 2.5 * MU * (1.0 + e_n) * v_n / radius;
+        let measured_e_t = outcome.tangential_restitution.unwrap();
+        assert!(
+            (measured_e_t / e_t - 1.0).abs() < 1e-2,
+            "θ = {angle}°: e_t {measured_e_t} vs {e_t}"
+        );
+        assert!(
+            (outcome.spin / omega - 1.0).abs() < 1e-2,
+            "θ = {angle}°: ω {} vs {omega}",
+            outcome.spin
+        );
+    }
+}
+
+/// Below the gross-sliding angle the sphere ends up rolling or with its slip reversed, and
+/// `e_t` lies above the sliding formula (friction cannot take more than `μ` times the normal
+/// impulse).
+#[test]
+fn small_angles_do_not_slide_throughout() {
+    let outcome = Impact::paper(1.0)
+        .angle_degrees(10.0)
+        .friction(MU)
+        .run()
+        .unwrap();
+    let theta = f64::to_radians(10.0);
+    let sliding = 1.0 - MU * (1.0 + outcome.normal_restitution) / theta.tan();
+    assert!(outcome.tangential_restitution.unwrap() > sliding);
+}
+
+/// No angle creates energy: translational plus rotational kinetic energy after the impact never
+/// exceeds the energy before, with or without initial spin; head-on impacts match the normal
+/// validator.
+#[test]
+fn no_angle_creates_energy() {
+    let angles: Vec<f64> = (1..90).map(f64::from).collect();
+    for (speed, spin) in [
+        (0.1, 0.0),
+        (1.0, 0.0),
+        (5.0, 0.0),
+        (1.0, 300.0),
+        (1.0, -300.0),
+    ] {
+        let template = Impact::paper(speed)
+            .friction(MU)
+            .spin(spin)
+            .steps_per_contact(500);
+        for outcome in Sweep::angles(template, &angles).run().unwrap() {
+            assert!(
+                outcome.kinetic_energy_out <= outcome.kinetic_energy_in * (1.0 + 1e-6),
+                "v = {speed}, ω0 = {spin}, θ = {}: {} > {}",
+                outcome.angle_degrees,
+                outcome.kinetic_energy_out,
+                outcome.kinetic_energy_in
+            );
+        }
+    }
+    let head_on = Impact::paper(1.0).run().unwrap().normal_restitution;
+    let tiny = Impact::paper(1.0)
+        .angle_degrees(1e-9)
+        .friction(MU)
+        .run()
+        .unwrap();
+    assert!((tiny.normal_restitution - head_on).abs() < 1e-4);
+}
+
+/// Without friction the tangential velocity is untouched and no spin appears.
+#[test]
+fn frictionless_keeps_tangential_velocity() {
+    let outcome = Impact::paper(1.0)
+        .angle_degrees(45.0)
+        .friction(0.0)
+        .run()
+        .unwrap();
+    assert!((outcome.tangential_restitution.unwrap() - 1.0).abs() < 1e-12);
+    assert_eq!(outcome.spin, 0.0);
+}
