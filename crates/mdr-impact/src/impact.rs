@@ -2,10 +2,10 @@
 
 use crate::energy::energy_route;
 use crate::error::{ImpactError, Result};
-use crate::integrate::{integrate_normal, integrate_oblique, NormalRun, TracePoint};
-use crate::law::{Method, NormalSpec, Route, TangentialSpec};
-use mdr_contact::normal::{Hertz, NormalLaw, NormalModel};
-use mdr_contact::tangential::{Mindlin, TangentialModel};
+use crate::integrate::{integrate_normal, integrate_oblique, NormalRun, ObliqueRun, TracePoint};
+use crate::law::{Method, NormalSpec, Route, TangentialSpec, BED_HALF_WIDTH_MARGIN};
+use mdr_contact::normal::{Hertz, MdrElastoPlastic, MdrState, NormalLaw, NormalModel, SpringBed};
+use mdr_contact::tangential::{Mindlin, SpringBedTangential, TangentialModel};
 use mdr_contact::ContactPair;
 
 /// Default number of time steps per Hertz contact time.
@@ -213,6 +213,20 @@ impl Impact {
                 ));
             }
         }
+        if self.tangential == TangentialSpec::SpringBed
+            && !self.is_head_on()
+            && !matches!(
+                (self.normal, self.method),
+                (NormalSpec::Mdr(_), Method::Springs { .. })
+            )
+        {
+            return Err(ImpactError::invalid(
+                "tangential",
+                "springs",
+                "the spring-bed tangential law needs the MDR spring bed (method springs); \
+                 use the mindlin tangential law with other normal laws",
+            ));
+        }
         if self.route == Route::Energy
             && (!matches!(self.normal, NormalSpec::Mdr(_))
                 || self.method != Method::Closed
@@ -235,11 +249,9 @@ impl Impact {
                     .bind(&self.pair)
                     .map_err(ImpactError::parameter("theta-ratio"))?,
             ),
-            (NormalSpec::Mdr(_), Method::Springs { .. }) => Err(ImpactError::invalid(
-                "method",
-                "springs",
-                "the MDR spring bed is not available in this build of mdr-contact",
-            )),
+            (NormalSpec::Mdr(model), Method::Springs { springs }) => {
+                visitor.visit(&self.spring_bed(&model, springs)?)
+            }
             (NormalSpec::Thornton(model), _) => visitor.visit(
                 &model
                     .bind(&self.pair)
@@ -251,6 +263,27 @@ impl Impact {
                     .map_err(ImpactError::parameter("law"))?,
             ),
         }
+    }
+
+    /// The discrete bed of `springs` springs for this impact. Its half-width is
+    /// [`BED_HALF_WIDTH_MARGIN`] times the largest contact radius `sqrt(R d_max)` that the closed
+    /// form predicts, so the springs are as fine as the impact allows.
+    pub fn spring_bed(&self, model: &MdrElastoPlastic, springs: usize) -> Result<SpringBed> {
+        let closed = model
+            .bind(&self.pair)
+            .map_err(ImpactError::parameter("theta-ratio"))?;
+        let d_max = closed
+            .impact(
+                &MdrState::default(),
+                self.pair.reduced_mass(),
+                self.normal_speed(),
+            )
+            .max_overlap;
+        let radius = self.pair.effective_radius();
+        SpringBed::sphere(&self.pair, model, springs)
+            .map_err(ImpactError::parameter("springs"))?
+            .half_width(BED_HALF_WIDTH_MARGIN * (radius * d_max).sqrt())
+            .map_err(ImpactError::parameter("springs"))
     }
 
     /// Speed (m/s) below which this impact is elastic (`e_n = 1`); infinite for Hertz.
@@ -304,7 +337,60 @@ impl Impact {
             })?;
             return Ok(self.head_on_outcome(run));
         }
-        self.visit_law(ObliqueVisitor { impact: self })
+        match (self.tangential, self.normal, self.method) {
+            (TangentialSpec::Mindlin, _, _) => self.visit_law(ObliqueVisitor { impact: self }),
+            (TangentialSpec::SpringBed, NormalSpec::Mdr(model), Method::Springs { springs }) => {
+                let bed = self.spring_bed(&model, springs)?;
+                let tangential = SpringBedTangential::new(&self.pair, self.friction)
+                    .map_err(ImpactError::parameter("mu"))?;
+                let (v_n, v_t) = self.velocity_components();
+                let run = integrate_oblique(
+                    &bed,
+                    &tangential,
+                    self.pair.reduced_mass(),
+                    self.pair.effective_radius(),
+                    v_n,
+                    v_t,
+                    self.spin,
+                    self.time_step(),
+                    self.max_steps(),
+                )?;
+                Ok(self.oblique_outcome(run))
+            }
+            (TangentialSpec::SpringBed, _, _) => {
+                unreachable!("validated: spring bed needs springs")
+            }
+        }
+    }
+
+    fn velocity_components(&self) -> (f64, f64) {
+        let angle = self.angle_degrees.to_radians();
+        (self.speed * angle.cos(), self.speed * angle.sin())
+    }
+
+    fn oblique_outcome(&self, run: ObliqueRun) -> ImpactOutcome {
+        let mass = self.pair.reduced_mass();
+        let radius = self.pair.effective_radius();
+        let (v_n, v_t) = self.velocity_components();
+        let inertia = 0.4 * mass * radius * radius;
+        let v_n_out = run.normal.restitution * v_n;
+        let kinetic =
+            |vn: f64, vt: f64, w: f64| 0.5 * mass * (vn * vn + vt * vt) + 0.5 * inertia * w * w;
+        ImpactOutcome {
+            speed: self.speed,
+            angle_degrees: self.angle_degrees,
+            normal_restitution: run.normal.restitution,
+            tangential_restitution: (v_t > 0.0).then(|| run.tangential_velocity.abs() / v_t),
+            tangential_velocity: run.tangential_velocity,
+            rebound_angle_degrees: run.tangential_velocity.abs().atan2(v_n_out).to_degrees(),
+            spin: run.spin,
+            max_overlap: run.normal.max_overlap,
+            residual_overlap: run.normal.residual_overlap,
+            contact_time: run.normal.contact_time,
+            peak_force: run.normal.peak_force,
+            kinetic_energy_in: kinetic(v_n, v_t, self.spin),
+            kinetic_energy_out: kinetic(v_n_out, run.tangential_velocity, run.spin),
+        }
     }
 
     /// Integrate a head-on impact in time and return its history (one point per step).
@@ -378,47 +464,22 @@ impl LawVisitor for ObliqueVisitor<'_> {
     type Output = ImpactOutcome;
     fn visit<L: NormalLaw>(self, law: &L) -> Result<ImpactOutcome> {
         let i = self.impact;
-        let mass = i.pair.reduced_mass();
-        let radius = i.pair.effective_radius();
-        let angle = i.angle_degrees.to_radians();
-        let (v_n, v_t) = (i.speed * angle.cos(), i.speed * angle.sin());
-        let run = match i.tangential {
-            TangentialSpec::Mindlin => {
-                let tangential = Mindlin::new(i.friction)
-                    .map_err(ImpactError::parameter("mu"))?
-                    .bind(&i.pair)
-                    .map_err(ImpactError::parameter("mu"))?;
-                integrate_oblique(
-                    law,
-                    &tangential,
-                    mass,
-                    radius,
-                    v_n,
-                    v_t,
-                    i.spin,
-                    i.time_step(),
-                    i.max_steps(),
-                )?
-            }
-        };
-        let inertia = 0.4 * mass * radius * radius;
-        let v_n_out = run.normal.restitution * v_n;
-        let kinetic =
-            |vn: f64, vt: f64, w: f64| 0.5 * mass * (vn * vn + vt * vt) + 0.5 * inertia * w * w;
-        Ok(ImpactOutcome {
-            speed: i.speed,
-            angle_degrees: i.angle_degrees,
-            normal_restitution: run.normal.restitution,
-            tangential_restitution: (v_t > 0.0).then(|| run.tangential_velocity.abs() / v_t),
-            tangential_velocity: run.tangential_velocity,
-            rebound_angle_degrees: run.tangential_velocity.abs().atan2(v_n_out).to_degrees(),
-            spin: run.spin,
-            max_overlap: run.normal.max_overlap,
-            residual_overlap: run.normal.residual_overlap,
-            contact_time: run.normal.contact_time,
-            peak_force: run.normal.peak_force,
-            kinetic_energy_in: kinetic(v_n, v_t, i.spin),
-            kinetic_energy_out: kinetic(v_n_out, run.tangential_velocity, run.spin),
-        })
+        let tangential = Mindlin::new(i.friction)
+            .map_err(ImpactError::parameter("mu"))?
+            .bind(&i.pair)
+            .map_err(ImpactError::parameter("mu"))?;
+        let (v_n, v_t) = i.velocity_components();
+        let run = integrate_oblique(
+            law,
+            &tangential,
+            i.pair.reduced_mass(),
+            i.pair.effective_radius(),
+            v_n,
+            v_t,
+            i.spin,
+            i.time_step(),
+            i.max_steps(),
+        )?;
+        Ok(i.oblique_outcome(run))
     }
 }

@@ -4,8 +4,10 @@
 //! the last step), so `e_n` (eq. 14) does not carry a half-step error.
 
 use crate::error::{ImpactError, Result};
-use mdr_contact::normal::NormalLaw;
-use mdr_contact::tangential::{TangentialInput, TangentialLaw};
+use mdr_contact::normal::{NormalLaw, NormalResponse, SpringBed};
+use mdr_contact::tangential::{
+    MindlinLaw, SpringBedTangential, SpringBedTangentialState, TangentialInput, TangentialLaw,
+};
 use nalgebra::Vector3;
 
 /// One sample of an impact's time history.
@@ -127,6 +129,63 @@ pub(crate) fn integrate_normal<L: NormalLaw>(
     })
 }
 
+/// One step of a tangential law in the oblique integrator: the slip increment of the contact
+/// point along `x` in, the tangential force on the sphere along `x` out.
+pub(crate) trait TangentialStep<N: NormalLaw> {
+    /// Tangential history.
+    type State: Default;
+    /// Advance by `slip` (m); `normal_state` is already updated to this step.
+    fn step(
+        &self,
+        normal_law: &N,
+        normal_state: &N::State,
+        normal: &NormalResponse,
+        state: &mut Self::State,
+        slip: f64,
+    ) -> f64;
+}
+
+/// The O(1) Mindlin law works with any normal law (it reads the force and contact radius).
+impl<N: NormalLaw> TangentialStep<N> for MindlinLaw {
+    type State = <MindlinLaw as TangentialLaw>::State;
+    fn step(
+        &self,
+        _normal_law: &N,
+        _normal_state: &N::State,
+        normal: &NormalResponse,
+        state: &mut Self::State,
+        slip: f64,
+    ) -> f64 {
+        self.update(
+            state,
+            &TangentialInput {
+                normal: Vector3::z(),
+                displacement_increment: Vector3::new(slip, 0.0, 0.0),
+                normal_response: *normal,
+            },
+        )
+        .force
+        .x
+    }
+}
+
+/// The MDR spring-bed tangential law reads every spring's normal force from the bed.
+impl TangentialStep<SpringBed> for SpringBedTangential {
+    type State = SpringBedTangentialState;
+    fn step(
+        &self,
+        normal_law: &SpringBed,
+        normal_state: &<SpringBed as NormalLaw>::State,
+        _normal: &NormalResponse,
+        state: &mut SpringBedTangentialState,
+        slip: f64,
+    ) -> f64 {
+        // The law returns the springs' force, along their displacement; the sphere feels the
+        // opposite.
+        -self.update(normal_law, normal_state, state, slip)
+    }
+}
+
 /// What the oblique time integration yields.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct ObliqueRun {
@@ -144,7 +203,7 @@ pub(crate) struct ObliqueRun {
 /// `I = (2/5) m R²`. Normal and tangential laws are updated once per step, the tangential one with
 /// the slip increment `(v_x − R ω) dt` at mid-step velocities (leapfrog).
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn integrate_oblique<N: NormalLaw, T: TangentialLaw>(
+pub(crate) fn integrate_oblique<N: NormalLaw, T: TangentialStep<N>>(
     normal_law: &N,
     tangential_law: &T,
     mass: f64,
@@ -159,7 +218,6 @@ pub(crate) fn integrate_oblique<N: NormalLaw, T: TangentialLaw>(
     let mut tangential_state = T::State::default();
     let inverse_mass = 1.0 / mass;
     let inverse_inertia = 1.0 / (0.4 * mass * radius * radius);
-    let n = Vector3::z();
     let (mut overlap, mut rate, mut force) = (0.0_f64, normal_speed, 0.0_f64);
     // Tangential force on the sphere along x, and the state of x and ω.
     let (mut vx, mut omega, mut fx) = (tangential_speed, spin, 0.0_f64);
@@ -173,13 +231,12 @@ pub(crate) fn integrate_oblique<N: NormalLaw, T: TangentialLaw>(
         overlap += dt * half_rate;
         let normal = normal_law.update(&mut normal_state, overlap);
         let slip = (half_vx - radius * half_omega) * dt;
-        let tangential = tangential_law.update(
+        let tangential_force = tangential_law.step(
+            normal_law,
+            &normal_state,
+            &normal,
             &mut tangential_state,
-            &TangentialInput {
-                normal: n,
-                displacement_increment: Vector3::new(slip, 0.0, -half_rate * dt),
-                normal_response: normal,
-            },
+            slip,
         );
         if normal.force <= 0.0 && half_rate < 0.0 {
             let residual = normal_law.residual_overlap(&normal_state);
@@ -198,7 +255,7 @@ pub(crate) fn integrate_oblique<N: NormalLaw, T: TangentialLaw>(
             });
         }
         force = normal.force;
-        fx = tangential.force.x;
+        fx = tangential_force;
         peak_force = peak_force.max(force);
         rate = half_rate - 0.5 * dt * force * inverse_mass;
         vx = half_vx + 0.5 * dt * fx * inverse_mass;

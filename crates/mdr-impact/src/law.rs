@@ -44,6 +44,13 @@ pub enum Method {
     },
 }
 
+/// Default number of springs of the discrete bed ([`Method::Springs`]).
+pub const DEFAULT_SPRINGS: usize = 2000;
+
+/// Half-width of the spring bed relative to the largest contact radius of the impact (estimated
+/// with the closed form): the margin keeps the contact off the bed's edge.
+pub const BED_HALF_WIDTH_MARGIN: f64 = 1.25;
+
 /// How the restitution of a normal impact is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Route {
@@ -61,15 +68,20 @@ pub enum Route {
 /// The tangential law of an oblique impact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum TangentialSpec {
-    /// The O(1) incremental Mindlin law with a Coulomb cap (model.md §5, `k_t = 2 G* a`).
+    /// The MDR spring-bed tangential law with per-spring stick/slip (model.md §5); needs the
+    /// spring bed as normal law ([`Method::Springs`]).
+    SpringBed,
+    /// The O(1) incremental Mindlin law with a Coulomb cap (model.md §5, `k_t = 2 G* a`); works
+    /// with every normal law.
     #[default]
     Mindlin,
 }
 
 impl TangentialSpec {
-    /// Short name: `mindlin`.
+    /// Short name: `springs` or `mindlin`.
     pub fn name(&self) -> &'static str {
         match self {
+            Self::SpringBed => "springs",
             Self::Mindlin => "mindlin",
         }
     }

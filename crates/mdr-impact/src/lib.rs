@@ -25,7 +25,7 @@ mod sweep;
 pub use error::{ImpactError, Result};
 pub use impact::{Impact, ImpactOutcome, DEFAULT_STEPS_PER_CONTACT};
 pub use integrate::TracePoint;
-pub use law::{Method, NormalSpec, Route, TangentialSpec};
+pub use law::{Method, NormalSpec, Route, TangentialSpec, DEFAULT_SPRINGS};
 pub use sweep::{log_spaced, Progress, Sweep};
 
 /// The scale factor the paper applies to the model curve (model.md §3): the best measured

@@ -7,7 +7,14 @@
 //! `tan θ > (7/2) μ (1 + e_n)`.
 
 use mdr_contact::ContactPair;
-use mdr_impact::{Impact, Sweep};
+use mdr_impact::{Impact, Method, Sweep, TangentialSpec};
+
+/// The MDR spring bed with the spring-bed tangential law (per-spring stick/slip).
+fn spring_bed(speed: f64) -> Impact {
+    Impact::paper(speed)
+        .method(Method::Springs { springs: 400 })
+        .tangential(TangentialSpec::SpringBed)
+}
 
 const MU: f64 = 0.2;
 
@@ -105,4 +112,32 @@ fn frictionless_keeps_tangential_velocity() {
         .unwrap();
     assert!((outcome.tangential_restitution.unwrap() - 1.0).abs() < 1e-12);
     assert_eq!(outcome.spin, 0.0);
+}
+
+/// Both tangential laws agree on the partial-slip regime to within a few per cent (the Mindlin
+/// law is the incremental no-micro-slip approximation of the spring bed), and the spring bed
+/// needs the spring-bed normal law.
+#[test]
+fn spring_bed_and_mindlin_are_close_at_small_angles() {
+    let mindlin = Impact::paper(1.0)
+        .angle_degrees(20.0)
+        .friction(MU)
+        .run()
+        .unwrap();
+    let bed = spring_bed(1.0)
+        .angle_degrees(20.0)
+        .friction(MU)
+        .run()
+        .unwrap();
+    let (a, b) = (
+        mindlin.tangential_restitution.unwrap(),
+        bed.tangential_restitution.unwrap(),
+    );
+    assert!((a - b).abs() < 0.1, "mindlin {a} vs spring bed {b}");
+    let error = Impact::paper(1.0)
+        .angle_degrees(20.0)
+        .tangential(TangentialSpec::SpringBed)
+        .run()
+        .unwrap_err();
+    assert_eq!(error.key(), Some("tangential"));
 }
