@@ -36,6 +36,8 @@ pub mod tangential;
 
 pub use error::{ContactError, Result};
 pub use material::{ContactPair, Counterpart, Material};
+/// The linear-algebra crate of the vector types in this API (`Vector3`, `Vector2`).
+pub use nalgebra;
 
 /// The names most programs need.
 pub mod prelude {
