@@ -249,3 +249,49 @@ fn stored_energy_is_the_work_returned_on_unloading() {
         );
     }
 }
+
+/// Numerical `dF/dδ` on the branch the law reports: forward difference on loading (`d = d_max`),
+/// central difference below `d_max`.
+fn numerical_stiffness<L: NormalLaw>(law: &L, state: &L::State, d: f64, loading: bool) -> f64 {
+    let h = 1e-7 * d;
+    if loading {
+        (law.evaluate(state, d + h).force - law.evaluate(state, d).force) / h
+    } else {
+        (law.evaluate(state, d + h).force - law.evaluate(state, d - h).force) / (2.0 * h)
+    }
+}
+
+#[test]
+fn reported_stiffness_is_the_slope_of_the_force() {
+    let pair = pair();
+    for theta in [0.0, 0.37, 1.0] {
+        let params = MdrElastoPlastic::new(3.8e5, theta).unwrap();
+        let law = params.bind(&pair).unwrap();
+        let u_c = law.yield_overlap();
+        // Loading: elastic (0.5 u_c) and plastic (3 u_c).
+        for d in [0.5 * u_c, 3.0 * u_c] {
+            let mut state = MdrState::default();
+            let reported = law.update(&mut state, d).stiffness;
+            let slope = numerical_stiffness(&law, &state, d, true);
+            assert!(
+                (reported / slope - 1.0).abs() < 1e-5,
+                "θ = {theta}, loading at {d}"
+            );
+        }
+        // Unloading from 4 u_c: above s and on the flattened branch.
+        let mut state = MdrState::default();
+        law.update(&mut state, 4.0 * u_c);
+        let s = 3.0 * u_c;
+        for d in [3.5 * u_c, (1.0 - 0.5 * theta) * s] {
+            let response = law.evaluate(&state, d);
+            if response.force > 0.0 {
+                let slope = numerical_stiffness(&law, &state, d, false);
+                assert!(
+                    (response.stiffness / slope - 1.0).abs() < 1e-5,
+                    "θ = {theta}, unloading at {d}: {} vs {slope}",
+                    response.stiffness
+                );
+            }
+        }
+    }
+}

@@ -21,6 +21,8 @@ impl NormalModel for Hertz {
 pub struct HertzLaw {
     effective_modulus: f64,
     effective_radius: f64,
+    /// `√R`, so that the contact radius `√(R δ)` reuses `√δ`.
+    sqrt_radius: f64,
     /// `(4/3) E* √R`.
     force_coefficient: f64,
 }
@@ -33,6 +35,7 @@ impl HertzLaw {
         Self {
             effective_modulus: e,
             effective_radius: r,
+            sqrt_radius: r.sqrt(),
             force_coefficient: 4.0 / 3.0 * e * r.sqrt(),
         }
     }
@@ -70,9 +73,11 @@ impl NormalLaw for HertzLaw {
         if overlap > *state {
             *state = overlap;
         }
-        let a = (self.effective_radius * overlap).sqrt();
+        // One square root: a = √R √δ, F = c δ √δ.
+        let sqrt_overlap = overlap.sqrt();
+        let a = self.sqrt_radius * sqrt_overlap;
         NormalResponse {
-            force: self.force_coefficient * overlap * overlap.sqrt(),
+            force: self.force_coefficient * overlap * sqrt_overlap,
             contact_radius: a,
             stiffness: 2.0 * self.effective_modulus * a,
         }

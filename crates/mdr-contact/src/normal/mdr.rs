@@ -143,6 +143,14 @@ pub struct EnergyRouteImpact {
 pub struct MdrLaw {
     effective_modulus: f64,
     effective_radius: f64,
+    /// `√R`, so that the contact radius `√(R d)` reuses `√d`.
+    sqrt_radius: f64,
+    /// `2 E* √R`: the tangent stiffness `2 E* a` is `stiffness_coefficient · √d`.
+    stiffness_coefficient: f64,
+    /// `√(R/θ)`: radius factor of the flattened residual profile.
+    flat_radius_sqrt: f64,
+    /// `(4/3) E* √(R/θ)`.
+    flat_force_coefficient: f64,
     /// `(4/3) E* √R`: `F_H(d) = force_coefficient · d^{3/2}`.
     force_coefficient: f64,
     /// `u_c = π q_c / (2 E*)`, eq. (11).
@@ -163,18 +171,27 @@ impl MdrLaw {
         yield_displacement: f64,
         hardening_ratio: f64,
     ) -> Self {
+        // θ^{-1/2}; with θ = 0 the flattened branch never occurs (its force would be 0·∞).
+        let flat_factor = if hardening_ratio > 0.0 {
+            1.0 / hardening_ratio.sqrt()
+        } else {
+            f64::INFINITY
+        };
         Self {
             effective_modulus,
             effective_radius,
+            sqrt_radius: effective_radius.sqrt(),
+            stiffness_coefficient: 2.0 * effective_modulus * effective_radius.sqrt(),
+            flat_radius_sqrt: effective_radius.sqrt() * flat_factor,
+            flat_force_coefficient: 4.0 / 3.0
+                * effective_modulus
+                * effective_radius.sqrt()
+                * flat_factor,
             force_coefficient: 4.0 / 3.0 * effective_modulus * effective_radius.sqrt(),
             yield_displacement,
             hardening_ratio,
             plastic_fraction: 1.0 - hardening_ratio,
-            flat_factor: if hardening_ratio > 0.0 {
-                1.0 / hardening_ratio.sqrt()
-            } else {
-                f64::INFINITY
-            },
+            flat_factor,
         }
     }
 
@@ -339,60 +356,51 @@ impl MdrLaw {
 impl NormalLaw for MdrLaw {
     type State = MdrState;
 
+    /// The hot path of many-particle runs. Loading (`d = d_max`) and unloading with `d ≥ s`
+    /// share one formula, `F = F_H(d) − (1 − θ) F_H(s₊)` with `s = d_max − u_c` (model.md §4),
+    /// so the common case is one branch and two square roots (`√d`, `√s`); the contact radius
+    /// reuses `√d` through the precomputed `√R`.
     #[inline]
     fn update(&self, state: &mut MdrState, d: f64) -> NormalResponse {
         if d <= 0.0 {
             return NormalResponse::default();
         }
-        let e2 = 2.0 * self.effective_modulus;
-        if d >= state.max_overlap {
+        let loading = d >= state.max_overlap;
+        if loading {
             state.max_overlap = d;
-            let a = (self.effective_radius * d).sqrt();
-            let s = d - self.yield_displacement;
-            if s <= 0.0 {
-                // Elastic loading: Hertz, eq. (5).
-                return NormalResponse {
-                    force: self.force_coefficient * pow3_2(d),
-                    contact_radius: a,
-                    stiffness: e2 * a,
-                };
-            }
-            // Plastic loading: F_H(d) − (1 − θ) F_H(d − u_c), eqs. (10)–(13) integrated.
-            let sqrt_s = s.sqrt();
+        }
+        let s = state.max_overlap - self.yield_displacement;
+        if d >= s {
+            // Elastic or plastic loading (eqs. 5, 10–13 integrated), or elastic unloading and
+            // reloading while every spring with g < d is in contact.
             let sqrt_d = d.sqrt();
+            let s = s.max(0.0);
+            let sqrt_s = s.sqrt();
+            let a = self.sqrt_radius * sqrt_d;
+            // Tangent stiffness: 2E*√R(√d − (1 − θ)√s) on plastic loading, 2E* a otherwise.
+            let softening = if loading {
+                self.plastic_fraction * sqrt_s
+            } else {
+                0.0
+            };
             return NormalResponse {
                 force: self.force_coefficient * (d * sqrt_d - self.plastic_fraction * s * sqrt_s),
                 contact_radius: a,
-                stiffness: e2
-                    * self.effective_radius.sqrt()
-                    * (sqrt_d - self.plastic_fraction * sqrt_s),
-            };
-        }
-        // Unloading or reloading below d_max: every spring is on its elastic branch, eq. (10).
-        let s = state.max_overlap - self.yield_displacement;
-        if s <= 0.0 || d >= s {
-            let a = (self.effective_radius * d).sqrt();
-            let force = if s <= 0.0 {
-                self.force_coefficient * pow3_2(d)
-            } else {
-                self.force_coefficient * (pow3_2(d) - self.plastic_fraction * pow3_2(s))
-            };
-            return NormalResponse {
-                force,
-                contact_radius: a,
-                stiffness: e2 * a,
+                stiffness: self.stiffness_coefficient * (sqrt_d - softening),
             };
         }
         let excess = d - self.plastic_fraction * s;
         if excess <= 0.0 {
+            // Inside the residual crater: no contact.
             return NormalResponse::default();
         }
         // Only the flattened plastic zone touches: Hertz with radius R/θ about the residual depth.
-        let a = (self.effective_radius * excess / self.hardening_ratio).sqrt();
+        let sqrt_excess = excess.sqrt();
+        let a = self.flat_radius_sqrt * sqrt_excess;
         NormalResponse {
-            force: self.force_coefficient * self.flat_factor * pow3_2(excess),
+            force: self.flat_force_coefficient * excess * sqrt_excess,
             contact_radius: a,
-            stiffness: e2 * a,
+            stiffness: 2.0 * self.effective_modulus * a,
         }
     }
 
