@@ -32,6 +32,7 @@ pub mod model;
 pub mod normal;
 pub mod profile;
 mod quadrature;
+pub mod rolling;
 pub mod tangential;
 
 pub use error::{ContactError, Result};

@@ -1,0 +1,212 @@
+//! Rolling resistance sub-models (optional; off by default). Kept separate from the normal and
+//! tangential laws, with their own parameters and per-contact state, so that a coupling can add
+//! them to any [`crate::model::ContactModel`].
+//!
+//! The elastic–plastic spring model ([`EpsdRolling`]) is the "type C" model of Ai, Chen, Rotter &
+//! Ooi, Powder Technology 206 (2011) 269–282 (without its optional dashpot), written incrementally
+//! like the Mindlin law: a rotational spring `k_r = 2.25 k_n μ_r² R²` on the relative rolling
+//! rotation, capped at the limiting torque `μ_r R F_N`.
+
+use crate::error::{non_negative, Result};
+use crate::material::ContactPair;
+use nalgebra::Vector3;
+
+/// Input of one rolling-resistance update.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RollingInput {
+    /// Unit contact normal, pointing from body 2 towards body 1.
+    pub normal: Vector3<f64>,
+    /// Relative rotation of body 1 with respect to body 2 during this step (rad):
+    /// `(ω₁ − ω₂) · dt`. Its normal part (twisting) is ignored.
+    pub rotation_increment: Vector3<f64>,
+    /// Total normal force of the contact (N, ≥ 0).
+    pub normal_force: f64,
+    /// Tangent normal stiffness `dF/dδ` of the normal law (N/m).
+    pub normal_stiffness: f64,
+}
+
+/// What a rolling law returns.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RollingResponse {
+    /// Rolling-resistance torque on body 1 (N·m); body 2 receives the opposite.
+    pub torque: Vector3<f64>,
+    /// Whether the torque is at its limit `μ_r R F_N` (the contact rolls).
+    pub rolling: bool,
+    /// Work dissipated during this update (J, ≥ 0).
+    pub dissipated: f64,
+}
+
+/// A rolling-resistance law bound to one pair.
+pub trait RollingLaw: Send + Sync {
+    /// Per-contact history.
+    type State: Clone + Default + std::fmt::Debug + Send + Sync;
+    /// Advance the history by one step and return the torque.
+    fn update(&self, state: &mut Self::State, input: &RollingInput) -> RollingResponse;
+}
+
+/// Material-level parameters of a rolling-resistance law.
+pub trait RollingModel: Clone + Send + Sync {
+    /// The law for one pair.
+    type Law: RollingLaw;
+    /// Bind to a pair.
+    fn bind(&self, pair: &ContactPair) -> Result<Self::Law>;
+}
+
+/// No rolling resistance (the default).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct NoRolling;
+
+impl RollingModel for NoRolling {
+    type Law = NoRolling;
+    fn bind(&self, _pair: &ContactPair) -> Result<NoRolling> {
+        Ok(NoRolling)
+    }
+}
+
+impl RollingLaw for NoRolling {
+    type State = ();
+    #[inline]
+    fn update(&self, _state: &mut (), _input: &RollingInput) -> RollingResponse {
+        RollingResponse::default()
+    }
+}
+
+/// Elastic–plastic spring rolling resistance with coefficient `μ_r` (dimensionless, ≥ 0):
+/// `M_r ← M_r − k_r Δθ_r`, `|M_r| ≤ μ_r R F_N`, `k_r = 2.25 k_n μ_r² R²` (Ai et al. 2011, eqs. 13–16).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct EpsdRolling {
+    coefficient: f64,
+}
+
+impl EpsdRolling {
+    /// `μ_r` (finite, ≥ 0).
+    pub fn new(coefficient: f64) -> Result<Self> {
+        Ok(Self {
+            coefficient: non_negative("mu_r", coefficient)?,
+        })
+    }
+
+    /// `μ_r`.
+    pub fn coefficient(&self) -> f64 {
+        self.coefficient
+    }
+}
+
+/// [`EpsdRolling`] bound to a pair.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EpsdRollingLaw {
+    /// `μ_r R`: lever arm of the limiting torque (m).
+    arm: f64,
+    /// `2.25 μ_r² R²`: `k_r / k_n` (m²).
+    stiffness_ratio: f64,
+}
+
+impl RollingModel for EpsdRolling {
+    type Law = EpsdRollingLaw;
+    fn bind(&self, pair: &ContactPair) -> Result<EpsdRollingLaw> {
+        let arm = self.coefficient * pair.effective_radius();
+        Ok(EpsdRollingLaw {
+            arm,
+            stiffness_ratio: 2.25 * arm * arm,
+        })
+    }
+}
+
+/// History of [`EpsdRolling`]: the rolling torque stored in the spring (N·m, in the contact plane).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct EpsdRollingState {
+    /// Stored torque on body 1 (N·m).
+    pub torque: Vector3<f64>,
+}
+
+impl RollingLaw for EpsdRollingLaw {
+    type State = EpsdRollingState;
+
+    #[inline]
+    fn update(&self, state: &mut EpsdRollingState, input: &RollingInput) -> RollingResponse {
+        if input.normal_force <= 0.0 {
+            *state = EpsdRollingState::default();
+            return RollingResponse::default();
+        }
+        let n = input.normal;
+        // Keep the stored torque in the current contact plane (the frame rotated, the spring did
+        // not twist), at its length.
+        let mut torque = state.torque;
+        let old_len2 = torque.norm_squared();
+        if old_len2 > 0.0 {
+            torque -= n * n.dot(&torque);
+            let new_len2 = torque.norm_squared();
+            if new_len2 > 0.0 {
+                torque *= (old_len2 / new_len2).sqrt();
+            }
+        }
+        let rotation = input.rotation_increment - n * n.dot(&input.rotation_increment);
+        let stiffness = self.stiffness_ratio * input.normal_stiffness;
+        let elastic_increment = -stiffness * rotation;
+        torque += elastic_increment;
+        let cap = self.arm * input.normal_force;
+        let magnitude = torque.norm();
+        let mut response = RollingResponse::default();
+        if magnitude > cap {
+            // At the limit: the excess rotation is plastic and dissipates `cap · Δθ_plastic`.
+            let excess = magnitude - cap;
+            torque *= cap / magnitude;
+            response.rolling = true;
+            response.dissipated = if stiffness > 0.0 {
+                cap * excess / stiffness
+            } else {
+                cap * rotation.norm()
+            };
+        }
+        state.torque = torque;
+        response.torque = torque;
+        response
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn input(rotation: f64, normal_force: f64) -> RollingInput {
+        RollingInput {
+            normal: Vector3::z(),
+            rotation_increment: Vector3::new(rotation, 0.0, 0.0),
+            normal_force,
+            normal_stiffness: 1.0e7,
+        }
+    }
+
+    #[test]
+    fn epsd_is_elastic_then_capped_at_mu_r_r_fn() {
+        let pair = ContactPair::paper_fig2();
+        let law = EpsdRolling::new(0.1).unwrap().bind(&pair).unwrap();
+        let mut state = EpsdRollingState::default();
+        let r = pair.effective_radius();
+        let k_r = 2.25 * 1.0e7 * (0.1 * r) * (0.1 * r);
+        // Small rotation: linear spring, opposing the rotation.
+        let small = law.update(&mut state, &input(1e-6, 10.0));
+        assert!((small.torque.x + k_r * 1e-6).abs() < 1e-12 * k_r);
+        assert!(!small.rolling);
+        // Large rotation: capped at μ_r R F_N.
+        let big = law.update(&mut state, &input(1.0, 10.0));
+        assert!((big.torque.norm() - 0.1 * r * 10.0).abs() < 1e-12);
+        assert!(big.rolling && big.dissipated > 0.0);
+        // Twisting about the normal is not resisted.
+        let mut fresh = EpsdRollingState::default();
+        let twist = law.update(
+            &mut fresh,
+            &RollingInput {
+                rotation_increment: Vector3::new(0.0, 0.0, 1.0),
+                ..input(0.0, 10.0)
+            },
+        );
+        assert_eq!(twist.torque, Vector3::zeros());
+        // Unloaded contact forgets the spring.
+        let apart = law.update(&mut state, &input(0.0, 0.0));
+        assert_eq!(apart.torque, Vector3::zeros());
+        assert_eq!(state.torque, Vector3::zeros());
+    }
+}

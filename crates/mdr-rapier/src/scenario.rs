@@ -1,0 +1,304 @@
+//! Single-impact scenes in rapier, in either coupling mode: a sphere launched without gravity at
+//! a fixed half-space ("drop") or at a free sphere ("pair"), measuring the coefficients of
+//! restitution as rapier integrates them. Used by `mdr-dem sim drop|pair`, the tests and the
+//! docs; compare with the single-impact validator (`mdr-impact`).
+
+use crate::error::{positive, CouplingError, Result};
+use crate::force_mode::ForceModeStepper;
+use crate::particles::SphereBuilder;
+use crate::restitution::RestitutionHooks;
+use crate::timestep::stable_time_step;
+use mdr_contact::model::ContactModel;
+use mdr_contact::normal::MdrElastoPlastic;
+use mdr_contact::tangential::Mindlin;
+use mdr_contact::{ContactPair, Material};
+use rapier3d_f64::prelude::*;
+
+/// How the law enters rapier.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CouplingMode {
+    /// Soft spheres: forces from the law, symplectic Euler ([`ForceModeStepper`]).
+    Force,
+    /// Hard spheres: impulses with the law's restitution ([`RestitutionHooks`]).
+    Restitution,
+}
+
+/// What the sphere hits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Target {
+    /// A fixed half-space.
+    HalfSpace {
+        /// Its material.
+        material: Material,
+    },
+    /// A free sphere at rest.
+    Sphere {
+        /// Its radius (m).
+        radius: f64,
+        /// Its material.
+        material: Material,
+    },
+}
+
+/// One impact scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImpactScene {
+    /// Radius of the launched sphere (m).
+    pub radius: f64,
+    /// Its material.
+    pub material: Material,
+    /// What it hits.
+    pub target: Target,
+    /// The normal law.
+    pub model: MdrElastoPlastic,
+    /// Friction coefficient `μ`.
+    pub friction: f64,
+    /// Approach speed (m/s): relative speed of the two bodies.
+    pub speed: f64,
+    /// Angle of the approach velocity from the normal (degrees, half-space only).
+    pub angle_degrees: f64,
+    /// Force mode: time steps per Hertz contact time.
+    pub steps_per_contact: f64,
+}
+
+/// What one scene produced.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SceneOutcome {
+    /// Approach speed (m/s).
+    pub speed: f64,
+    /// `e_n = −v_n,out / v_n,in` of the relative velocity (eq. 14).
+    pub normal_restitution: f64,
+    /// Tangential velocity of the launched sphere's centre after the impact (m/s), along the
+    /// incoming tangential direction.
+    pub tangential_velocity: f64,
+    /// Its spin after the impact (rad/s), positive in the sense of rolling forward.
+    pub spin: f64,
+    /// Steps during which the bodies were in contact (restitution mode: the step the impulse
+    /// was applied in, so 1).
+    pub steps: u64,
+    /// Time step used (s).
+    pub time_step: f64,
+}
+
+impl ImpactScene {
+    /// The paper's steel ball (R = 0.635 cm, model.md §3) on a steel half-space at `speed`.
+    pub fn paper_drop(speed: f64) -> Self {
+        Self {
+            radius: 0.635e-2,
+            material: Material::paper_steel(),
+            target: Target::HalfSpace {
+                material: Material::paper_steel(),
+            },
+            model: MdrElastoPlastic::paper(),
+            friction: 0.0,
+            speed,
+            angle_degrees: 0.0,
+            steps_per_contact: 1000.0,
+        }
+    }
+
+    /// The pair quantities of the scene.
+    pub fn pair(&self) -> Result<ContactPair> {
+        Ok(match self.target {
+            Target::HalfSpace { material } => {
+                ContactPair::sphere_on_half_space(self.radius, &self.material, &material)?
+            }
+            Target::Sphere { radius, material } => {
+                ContactPair::sphere_on_sphere(self.radius, &self.material, radius, &material)?
+            }
+        })
+    }
+
+    fn validate(&self) -> Result<()> {
+        positive("radius", self.radius)?;
+        positive("v0", self.speed)?;
+        positive("steps_per_contact", self.steps_per_contact)?;
+        if !(self.angle_degrees.is_finite() && (0.0..90.0).contains(&self.angle_degrees)) {
+            return Err(CouplingError::OutOfRange {
+                name: "angle",
+                value: self.angle_degrees,
+                range: "[0, 90) degrees",
+            });
+        }
+        if self.angle_degrees != 0.0 && matches!(self.target, Target::Sphere { .. }) {
+            return Err(CouplingError::OutOfRange {
+                name: "angle",
+                value: self.angle_degrees,
+                range: "0 for a sphere pair (oblique impacts are on the half-space)",
+            });
+        }
+        Ok(())
+    }
+
+    /// Run the scene in `mode`.
+    pub fn run(&self, mode: CouplingMode) -> Result<SceneOutcome> {
+        self.validate()?;
+        let pair = self.pair()?;
+        let (vn, vt) = {
+            let a = self.angle_degrees.to_radians();
+            (self.speed * a.cos(), self.speed * a.sin())
+        };
+        let dt = match mode {
+            CouplingMode::Force => stable_time_step(&pair, vn, self.steps_per_contact)?.time_step,
+            // Hard spheres: any step; take the contact time so the flight is a few steps.
+            CouplingMode::Restitution => pair.hertz_contact_time(vn),
+        };
+        let mut world = PhysicsWorld::default();
+        world.gravity = Vector::ZERO;
+        world.integration_parameters.length_unit = 2.0 * self.radius;
+        // Start 2.5 steps of flight apart: the first contact falls inside a step.
+        let gap = 2.5 * vn * dt;
+        let launch = Vector::new(vt, -vn, 0.0);
+        let centre = Vector::new(0.0, self.radius + gap, 0.0);
+        match mode {
+            CouplingMode::Force => {
+                let model =
+                    ContactModel::new(self.model).with_tangential(Mindlin::new(self.friction)?);
+                let mut stepper = ForceModeStepper::new(model);
+                stepper.configure(&mut world.integration_parameters, dt, 0.2 * self.radius)?;
+                let ball_material = stepper.particles_mut().insert_material(self.material);
+                let (ball, target) = match self.target {
+                    Target::HalfSpace { material } => {
+                        let m = stepper.particles_mut().insert_material(material);
+                        stepper.insert_surface(
+                            &mut world,
+                            ColliderBuilder::new(SharedShape::halfspace(Vector::Y)),
+                            None,
+                            m,
+                        )?;
+                        let (b, _) = stepper.insert_sphere(
+                            &mut world,
+                            SphereBuilder::new(self.radius, ball_material)
+                                .translation(centre)
+                                .linvel(launch),
+                        )?;
+                        (b, None)
+                    }
+                    Target::Sphere { radius, material } => {
+                        let m = stepper.particles_mut().insert_material(material);
+                        let (t, _) = stepper.insert_sphere(
+                            &mut world,
+                            SphereBuilder::new(radius, m)
+                                .translation(Vector::new(0.0, -radius, 0.0)),
+                        )?;
+                        let (b, _) = stepper.insert_sphere(
+                            &mut world,
+                            SphereBuilder::new(self.radius, ball_material)
+                                .translation(centre)
+                                .linvel(launch),
+                        )?;
+                        (b, Some(t))
+                    }
+                };
+                let max_steps = (200.0 * self.steps_per_contact) as u64 + 100;
+                let mut steps = 0;
+                let mut touched = false;
+                for _ in 0..max_steps {
+                    let report = stepper.step(&mut world)?;
+                    if report.contacts > 0 {
+                        touched = true;
+                        steps += 1;
+                    } else if touched && separating(&world, ball, target) {
+                        break;
+                    }
+                }
+                Ok(self.outcome(&world, ball, target, vn, vt, steps, dt))
+            }
+            CouplingMode::Restitution => {
+                let mut hooks = RestitutionHooks::new(self.model, self.friction)?;
+                let ball_material = hooks.particles_mut().insert_material(self.material);
+                let (ball, target) = match self.target {
+                    Target::HalfSpace { material } => {
+                        let m = hooks.particles_mut().insert_material(material);
+                        hooks.insert_surface(
+                            &mut world,
+                            ColliderBuilder::new(SharedShape::halfspace(Vector::Y)),
+                            None,
+                            m,
+                        )?;
+                        let (b, _) = hooks.insert_sphere(
+                            &mut world,
+                            SphereBuilder::new(self.radius, ball_material)
+                                .translation(centre)
+                                .linvel(launch),
+                        )?;
+                        (b, None)
+                    }
+                    Target::Sphere { radius, material } => {
+                        let m = hooks.particles_mut().insert_material(material);
+                        let (t, _) = hooks.insert_sphere(
+                            &mut world,
+                            SphereBuilder::new(radius, m)
+                                .translation(Vector::new(0.0, -radius, 0.0)),
+                        )?;
+                        let (b, _) = hooks.insert_sphere(
+                            &mut world,
+                            SphereBuilder::new(self.radius, ball_material)
+                                .translation(centre)
+                                .linvel(launch),
+                        )?;
+                        (b, Some(t))
+                    }
+                };
+                world.integration_parameters.dt = dt;
+                world.integration_parameters.normalized_max_linear_velocity = f64::MAX;
+                let mut steps = 0;
+                for _ in 0..50 {
+                    hooks.step(&mut world)?;
+                    if separating(&world, ball, target) {
+                        steps += 1;
+                        // One more step to let the solver settle, then stop.
+                        hooks.step(&mut world)?;
+                        break;
+                    }
+                }
+                Ok(self.outcome(&world, ball, target, vn, vt, steps, dt))
+            }
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn outcome(
+        &self,
+        world: &PhysicsWorld,
+        ball: RigidBodyHandle,
+        target: Option<RigidBodyHandle>,
+        vn: f64,
+        vt: f64,
+        steps: u64,
+        dt: f64,
+    ) -> SceneOutcome {
+        let b = &world.bodies[ball];
+        let rel = relative_velocity(world, ball, target);
+        let tangential_velocity = if vt > 0.0 { b.linvel().x } else { 0.0 };
+        SceneOutcome {
+            speed: self.speed,
+            normal_restitution: rel.y / vn,
+            tangential_velocity,
+            // Rolling forward along +x on a floor below (normal +y) is a negative z spin.
+            spin: -b.angvel().z,
+            steps,
+            time_step: dt,
+        }
+    }
+}
+
+fn relative_velocity(
+    world: &PhysicsWorld,
+    ball: RigidBodyHandle,
+    target: Option<RigidBodyHandle>,
+) -> Vector {
+    let v = world.bodies[ball].linvel();
+    match target {
+        Some(t) => v - world.bodies[t].linvel(),
+        None => v,
+    }
+}
+
+fn separating(
+    world: &PhysicsWorld,
+    ball: RigidBodyHandle,
+    target: Option<RigidBodyHandle>,
+) -> bool {
+    relative_velocity(world, ball, target).y > 0.0
+}

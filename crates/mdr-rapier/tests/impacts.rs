@@ -1,0 +1,141 @@
+//! Single impacts in rapier against the single-impact validator (`mdr-impact`), in both
+//! coupling modes. The validator integrates (or, head-on, evaluates the energy route of) the same
+//! law without rapier, so these tests check the coupling: geometry, kinematics, force
+//! application, integration order and the restitution hook.
+
+use mdr_contact::normal::MdrElastoPlastic;
+use mdr_contact::Material;
+use mdr_impact::{Impact, NormalSpec, Route};
+use mdr_rapier::scenario::{CouplingMode, ImpactScene, Target};
+
+const SPEEDS: [f64; 3] = [0.5, 1.0, 3.0];
+
+fn reference_restitution(scene: &ImpactScene) -> f64 {
+    Impact::new(
+        scene.pair().unwrap(),
+        NormalSpec::Mdr(scene.model),
+        scene.speed,
+    )
+    .route(Route::Energy)
+    .run()
+    .unwrap()
+    .normal_restitution
+}
+
+fn unequal_pair(speed: f64) -> ImpactScene {
+    // The paper's steel ball on a larger sphere of another steel (R = 1 cm, E = 210 GPa).
+    ImpactScene {
+        target: Target::Sphere {
+            radius: 1.0e-2,
+            material: Material::new(2.1e11, 0.3, 7850.0).unwrap(),
+        },
+        ..ImpactScene::paper_drop(speed)
+    }
+}
+
+fn check(scene: &ImpactScene, mode: CouplingMode, tolerance: f64) {
+    let reference = reference_restitution(scene);
+    let outcome = scene.run(mode).unwrap();
+    let error = (outcome.normal_restitution - reference).abs() / reference;
+    assert!(
+        error < tolerance,
+        "{mode:?} at {} m/s: e_n = {} vs validator {} (relative error {error:.2e} > {tolerance})",
+        scene.speed,
+        outcome.normal_restitution,
+        reference
+    );
+    // The paper's law is plastic at these speeds: the check is not trivially e = 1.
+    assert!(reference < 0.95, "reference e_n = {reference}");
+}
+
+#[test]
+fn force_mode_ball_on_half_space_matches_validator_within_1_percent() {
+    for v in SPEEDS {
+        check(&ImpactScene::paper_drop(v), CouplingMode::Force, 0.01);
+    }
+}
+
+#[test]
+fn force_mode_unequal_pair_matches_validator_within_1_percent() {
+    for v in SPEEDS {
+        check(&unequal_pair(v), CouplingMode::Force, 0.01);
+    }
+}
+
+#[test]
+fn restitution_mode_matches_validator_within_half_percent() {
+    for v in SPEEDS {
+        check(
+            &ImpactScene::paper_drop(v),
+            CouplingMode::Restitution,
+            0.005,
+        );
+        check(&unequal_pair(v), CouplingMode::Restitution, 0.005);
+    }
+}
+
+#[test]
+fn force_mode_resolves_contact_with_the_requested_steps() {
+    let scene = ImpactScene::paper_drop(1.0);
+    let outcome = scene.run(CouplingMode::Force).unwrap();
+    // The MDR contact is longer than Hertz's at the same speed, and of the same order.
+    assert!(
+        (1000..3000).contains(&outcome.steps),
+        "steps in contact = {}",
+        outcome.steps
+    );
+}
+
+#[test]
+fn oblique_gross_sliding_matches_validator_within_2_percent() {
+    // 1 m/s normal, 4 m/s tangential, μ = 0.2: the contact slides throughout
+    // (v_t > 3.5 μ (1 + e_n) v_n), so the tangential impulse is μ times the normal one.
+    let angle = (4.0f64).atan().to_degrees();
+    let speed = 17.0f64.sqrt();
+    let scene = ImpactScene {
+        friction: 0.2,
+        angle_degrees: angle,
+        ..ImpactScene::paper_drop(speed)
+    };
+    let outcome = scene.run(CouplingMode::Force).unwrap();
+    let reference = Impact::new(scene.pair().unwrap(), NormalSpec::Mdr(scene.model), speed)
+        .angle_degrees(angle)
+        .friction(0.2)
+        .run()
+        .unwrap();
+    let vt0 = speed * angle.to_radians().sin();
+    let dvt = vt0 - outcome.tangential_velocity;
+    let dvt_ref = vt0 - reference.tangential_velocity;
+    let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+    assert!(
+        rel(dvt, dvt_ref) < 0.02,
+        "tangential velocity change {dvt} vs validator {dvt_ref}"
+    );
+    assert!(
+        rel(outcome.spin, reference.spin) < 0.02,
+        "spin {} vs validator {}",
+        outcome.spin,
+        reference.spin
+    );
+    assert!(
+        rel(outcome.normal_restitution, reference.normal_restitution) < 0.01,
+        "e_n {} vs validator {}",
+        outcome.normal_restitution,
+        reference.normal_restitution
+    );
+    // Gross sliding: Δv_t = μ (1 + e_n) v_n (Coulomb impulse), independent of the validator.
+    let coulomb = 0.2 * (1.0 + reference.normal_restitution) * 1.0;
+    assert!(rel(dvt, coulomb) < 0.02, "Δv_t {dvt} vs Coulomb {coulomb}");
+}
+
+#[test]
+fn elastic_law_gives_unit_restitution_in_both_modes() {
+    let scene = ImpactScene {
+        model: MdrElastoPlastic::elastic(),
+        ..ImpactScene::paper_drop(1.0)
+    };
+    for mode in [CouplingMode::Force, CouplingMode::Restitution] {
+        let e = scene.run(mode).unwrap().normal_restitution;
+        assert!((e - 1.0).abs() < 2e-3, "{mode:?}: e = {e}");
+    }
+}
