@@ -8,8 +8,10 @@
 //! - [`material`]: materials and pair quantities (`E*`, eq. 3; `G*`; effective radius; reduced mass).
 //! - [`profile`]: axisymmetric profiles and their MDR 1D profiles (eq. 1), closed form and numerical.
 //! - [`normal`]: normal laws — [`normal::Hertz`], the MDR closed form
-//!   [`normal::MdrElastoPlastic`], [`normal::Thornton`].
-//! - [`tangential`]: the O(1) Mindlin law with a Coulomb cap.
+//!   [`normal::MdrElastoPlastic`] (O(1)), the discrete MDR spring bed [`normal::SpringBed`]
+//!   (eqs. 2, 6, 9–13, any profile), [`normal::Thornton`].
+//! - [`tangential`]: the O(1) Mindlin law with a Coulomb cap, and the MDR spring-bed law with
+//!   per-spring stick/slip [`tangential::SpringBedTangential`].
 //! - [`damping`]: optional viscous damping.
 //! - [`model`]: composition of the sub-models into one contact model.
 //!
@@ -54,10 +56,12 @@ pub mod prelude {
     };
     pub use crate::normal::{
         Hertz, HertzLaw, MdrElastoPlastic, MdrLaw, MdrState, NormalLaw, NormalModel,
-        NormalResponse, Thornton, ThorntonLaw, ThorntonState,
+        NormalResponse, SphereSpringBed, SpringBed, SpringBedState, Thornton, ThorntonLaw,
+        ThorntonState,
     };
     pub use crate::tangential::{
-        Frictionless, Mindlin, MindlinLaw, MindlinState, TangentialInput, TangentialLaw,
-        TangentialModel, TangentialResponse,
+        Frictionless, Mindlin, MindlinLaw, MindlinState, SpringBedTangential,
+        SpringBedTangentialState, TangentialInput, TangentialLaw, TangentialModel,
+        TangentialResponse,
     };
 }
