@@ -187,7 +187,10 @@ fn a_slower_second_impact_on_the_same_spot_is_elastic() {
 fn a_law_without_strength_reports_no_rebound() {
     // q_c = 0 and Θ = 0 carry no force at all: the energy route must not report e = 1.
     let pair = pair();
-    let law = MdrElastoPlastic::new(0.0, 0.0).unwrap().bind(&pair).unwrap();
+    let law = MdrElastoPlastic::new(0.0, 0.0)
+        .unwrap()
+        .bind(&pair)
+        .unwrap();
     let impact = law.impact(&MdrState::default(), pair.reduced_mass(), 1.0);
     assert_eq!(impact.restitution, 0.0);
 }
