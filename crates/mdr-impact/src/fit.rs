@@ -297,7 +297,7 @@ pub fn fit(
     let normal_matrix = jacobian.transpose() * &jacobian;
     // Identifiability: the correlation form of JᵀJ must be well conditioned.
     let diagonal = DVector::from_iterator(p, (0..p).map(|j| normal_matrix[(j, j)]));
-    if let Some(j) = (0..p).find(|&j| !(diagonal[j] > 0.0)) {
+    if let Some(j) = (0..p).find(|&j| diagonal[j].is_nan() || diagonal[j] <= 0.0) {
         return Err(ImpactError::Underdetermined(format!(
             "the data do not depend on `{}` (zero sensitivity at the optimum)",
             free[j].name()

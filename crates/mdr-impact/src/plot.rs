@@ -234,6 +234,7 @@ impl Figure {
                 .label_style(("sans-serif", 15))
                 .axis_desc_style(("sans-serif", 17))
                 .x_label_formatter(&|x| format!("{x}"))
+                .light_line_style(RGBColor(235, 235, 235))
                 .draw()
                 .map_err(text)?;
             self.draw_series(&mut chart, y0, y1).map_err(text)?;
@@ -253,6 +254,7 @@ impl Figure {
                 .y_desc(&self.y_label)
                 .label_style(("sans-serif", 15))
                 .axis_desc_style(("sans-serif", 17))
+                .light_line_style(RGBColor(235, 235, 235))
                 .draw()
                 .map_err(text)?;
             self.draw_series(&mut chart, y0, y1).map_err(text)?;
