@@ -49,6 +49,7 @@ pub mod geometry;
 pub mod kernel;
 pub mod particles;
 pub mod restitution;
+pub mod restitution_law;
 pub mod scenario;
 pub mod store;
 pub mod timestep;

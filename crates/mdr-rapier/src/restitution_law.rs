@@ -1,0 +1,232 @@
+//! Restitution laws for hard-sphere (restitution-mode) collisions behind one trait: the
+//! coefficient of restitution of a pair at its normal approach speed, with a per-contact history.
+//! A hook generic over [`RestitutionLaw`] (e.g. the planetary-ring hook of `mdr-ring`) can then
+//! switch laws per run; [`crate::RestitutionHooks`] is the MDR-only hook with its lock-free store.
+//!
+//! - [`MdrRestitution`]: the MDR elasto-plastic law of `mdr-contact` through its energy route
+//!   ([`MdrLaw::impact`], model.md §4, eqs. 7–14); the history is the pair's largest indentation.
+//! - [`BridgesLaw`]: the empirical law of Bridges, Hatzes & Lin (1984, Nature 309, 333) for
+//!   frost-covered ice at 165 K, `ε(v) = min(1, 0.32 (v / 1 cm s⁻¹)^−0.234)` — REBOUND's default.
+//! - [`ConstantRestitution`]: one ε for every impact.
+//!
+//! Bridges and constant are not contact mechanics of the MDR model; they are here so that the
+//! three can be compared on the same ring.
+
+use mdr_contact::normal::{MdrElastoPlastic, MdrLaw, MdrState, NormalModel};
+use mdr_contact::{ContactPair, Material};
+
+/// What a restitution law may need to know about the two spheres of an impact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImpactPair {
+    /// Radius of the first sphere (m).
+    pub radius1: f64,
+    /// Radius of the second sphere (m).
+    pub radius2: f64,
+    /// Mass of the first sphere (kg).
+    pub mass1: f64,
+    /// Mass of the second sphere (kg).
+    pub mass2: f64,
+}
+
+impl ImpactPair {
+    /// Effective radius `R₁R₂/(R₁ + R₂)` (m).
+    pub fn effective_radius(&self) -> f64 {
+        self.radius1 * self.radius2 / (self.radius1 + self.radius2)
+    }
+
+    /// Reduced mass `m₁m₂/(m₁ + m₂)` (kg).
+    pub fn reduced_mass(&self) -> f64 {
+        self.mass1 * self.mass2 / (self.mass1 + self.mass2)
+    }
+}
+
+/// A coefficient-of-restitution law: the normal restitution of a pair at normal approach speed
+/// `v > 0` (m/s), given and updating the pair's contact history.
+///
+/// Implementors must return a value in `[0, 1]`. The history lives as long as the contact
+/// (created at first touch, dropped when the pair separates); a law without memory uses `()`.
+pub trait RestitutionLaw: Send + Sync {
+    /// Per-contact history.
+    type History: Clone + Default + std::fmt::Debug + Send + Sync;
+
+    /// The restitution of an impact at `approach_speed`; updates `history`.
+    fn restitution(
+        &self,
+        pair: &ImpactPair,
+        history: &mut Self::History,
+        approach_speed: f64,
+    ) -> f64;
+
+    /// The restitution of a first impact (fresh history) without side effects, for plots.
+    fn first_impact(&self, pair: &ImpactPair, approach_speed: f64) -> f64 {
+        self.restitution(pair, &mut Self::History::default(), approach_speed)
+    }
+
+    /// A short name for reports (`mdr`, `bridges`, `constant`).
+    fn name(&self) -> &'static str;
+}
+
+/// The MDR elasto-plastic law (Lyashenko & Popov 2018) for spheres of one material: each impact
+/// binds the law to the pair (`E*` eq. 3, `R`, `m`) and evaluates the energy route
+/// ([`MdrLaw::impact`]): `e² = W_returned / W_in` (eq. 14), with re-impacts of a contact that
+/// already yielded seeing the flattened profile (eq. 13).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MdrRestitution {
+    material: Material,
+    model: MdrElastoPlastic,
+    effective_modulus: f64,
+    effective_shear_modulus: f64,
+}
+
+impl MdrRestitution {
+    /// Spheres of `material` with the MDR parameters `model` (`q_c`, `Θ`).
+    pub fn new(material: Material, model: MdrElastoPlastic) -> mdr_contact::Result<Self> {
+        // Validate the hardening against E* now rather than at the first impact.
+        let probe = ContactPair::sphere_on_sphere(1.0, &material, 1.0, &material)?;
+        model.bind(&probe)?;
+        Ok(Self {
+            material,
+            model,
+            effective_modulus: probe.effective_modulus(),
+            effective_shear_modulus: probe.effective_shear_modulus(),
+        })
+    }
+
+    /// Ice ring particles (docs/rings.md §6): `E = 9 GPa`, `ν = 0.33` (solid ice, Petrenko &
+    /// Whitworth 1999), `ρ = 400 kg/m³` (REBOUND's porous particles), `q_c = 8·10³ N/m` and
+    /// `Θ = 0.2 E*`, fitted to the Bridges law over 0.05–5 mm/s for a pair of 1.6 m particles
+    /// (the mean radius). The mean pressure at yield, `q_c / a_y ≈ 5.6 MPa`, is the compressive
+    /// strength of cold ice.
+    pub fn ice() -> Self {
+        let ice = Material::new(9.0e9, 0.33, 400.0).expect("valid ice constants");
+        let model = MdrElastoPlastic::new(8.0e3, 0.2).expect("valid MDR parameters");
+        Self::new(ice, model).expect("valid ice law")
+    }
+
+    /// The material.
+    pub fn material(&self) -> Material {
+        self.material
+    }
+
+    /// The MDR parameters.
+    pub fn model(&self) -> MdrElastoPlastic {
+        self.model
+    }
+
+    /// The law bound to `pair`: `E*`, `G*` of the material pair (eq. 3), `R = R₁R₂/(R₁+R₂)`,
+    /// `m = m₁m₂/(m₁+m₂)`, bound by `mdr-contact` ([`MdrElastoPlastic::bind`]). Fails only for a
+    /// non-positive radius or mass.
+    pub fn bind(&self, pair: &ImpactPair) -> mdr_contact::Result<MdrLaw> {
+        let contact = ContactPair::new(
+            self.effective_modulus,
+            self.effective_shear_modulus,
+            pair.effective_radius(),
+            pair.reduced_mass(),
+        )?;
+        self.model.bind(&contact)
+    }
+
+    /// Speed below which the first impact of `pair` is elastic (m/s).
+    pub fn yield_speed(&self, pair: &ImpactPair) -> mdr_contact::Result<f64> {
+        Ok(self.bind(pair)?.yield_speed(pair.reduced_mass()))
+    }
+}
+
+impl RestitutionLaw for MdrRestitution {
+    type History = MdrState;
+
+    fn restitution(&self, pair: &ImpactPair, history: &mut MdrState, approach_speed: f64) -> f64 {
+        // A pair that cannot be bound (non-positive radius or mass: a caller bug, never user
+        // input, which is validated when the ring is built) is treated as elastic.
+        let Ok(law) = self.bind(pair) else {
+            return 1.0;
+        };
+        let outcome = law.impact(history, pair.reduced_mass(), approach_speed);
+        *history = outcome.state;
+        outcome.restitution.clamp(0.0, 1.0)
+    }
+
+    fn name(&self) -> &'static str {
+        "mdr"
+    }
+}
+
+/// The Bridges et al. (1984) law `ε(v) = min(1, a (v / v₀)^−b)` with `a = 0.32`, `b = 0.234`,
+/// `v₀ = 1 cm/s` (as in REBOUND's shearing-sheet example).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BridgesLaw {
+    prefactor: f64,
+    exponent: f64,
+    reference_speed: f64,
+}
+
+impl Default for BridgesLaw {
+    fn default() -> Self {
+        Self {
+            prefactor: 0.32,
+            exponent: 0.234,
+            reference_speed: 0.01,
+        }
+    }
+}
+
+impl BridgesLaw {
+    /// `ε(v)` for speed `v` (m/s).
+    pub fn at(&self, speed: f64) -> f64 {
+        (self.prefactor * (speed.abs() / self.reference_speed).powf(-self.exponent)).clamp(0.0, 1.0)
+    }
+
+    /// Speed below which `ε = 1`: `v₀ a^{1/b}` (m/s).
+    pub fn elastic_speed(&self) -> f64 {
+        self.reference_speed * self.prefactor.powf(1.0 / self.exponent)
+    }
+}
+
+impl RestitutionLaw for BridgesLaw {
+    type History = ();
+
+    fn restitution(&self, _: &ImpactPair, _: &mut (), approach_speed: f64) -> f64 {
+        self.at(approach_speed)
+    }
+
+    fn name(&self) -> &'static str {
+        "bridges"
+    }
+}
+
+/// A constant coefficient of restitution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ConstantRestitution {
+    value: f64,
+}
+
+impl ConstantRestitution {
+    /// `ε` in `[0, 1]`.
+    pub fn new(value: f64) -> crate::Result<Self> {
+        if !(value.is_finite() && (0.0..=1.0).contains(&value)) {
+            return Err(crate::CouplingError::OutOfRange {
+                name: "eps",
+                value,
+                range: "[0, 1]",
+            });
+        }
+        Ok(Self { value })
+    }
+
+    /// The value.
+    pub fn value(&self) -> f64 {
+        self.value
+    }
+}
+
+impl RestitutionLaw for ConstantRestitution {
+    type History = ();
+
+    fn restitution(&self, _: &ImpactPair, _: &mut (), _: f64) -> f64 {
+        self.value
+    }
+
+    fn name(&self) -> &'static str {
+        "constant"
+    }
+}

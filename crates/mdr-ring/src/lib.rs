@@ -1,0 +1,53 @@
+//! # mdr-ring
+//!
+//! A planetary-ring shearing box — the local co-rotating patch of a ring of ice particles used by
+//! ring dynamicists — with hard-sphere collisions resolved by rapier through a restitution hook,
+//! so that the MDR law's `e(v)` can be compared with the Bridges et al. law and a constant on the
+//! same ring, and with REBOUND's shearing sheet (`docs/rings.md`).
+//!
+//! - [`hill`]: Hill's equations and the symplectic epicycle integrator (SEI) for free motion;
+//! - [`boundary`]: shear-periodic (Lees–Edwards) boundaries and periodic images;
+//! - [`particles`]: state, size distribution, REBOUND's initial conditions;
+//! - restitution laws (MDR energy route, Bridges, constant) behind one trait live in the plugin,
+//!   [`mdr_rapier::restitution_law`], re-exported here as [`law`];
+//! - [`hooks`], [`world`]: rapier collision step with ghost images and the restitution hook;
+//! - [`gravity`]: optional direct-sum self-gravity;
+//! - [`diagnostics`], [`run`], [`output`]: measurements, the time loop, CSV/JSON/VTK/SVG.
+//!
+//! ```no_run
+//! use mdr_ring::prelude::*;
+//! let config = RingConfig::default().particles(300).box_size(80.0);
+//! let mut ring = RingSimulation::new(config, BridgesLaw::default()).unwrap();
+//! let result = ring.run(2.0, |_, _| {}).unwrap();
+//! println!("c = {} m/s", result.summary.c_m_per_s);
+//! ```
+#![warn(missing_docs)]
+
+pub mod boundary;
+pub mod diagnostics;
+pub mod error;
+pub mod gravity;
+pub mod hill;
+pub mod hooks;
+pub mod output;
+pub mod particles;
+pub mod run;
+pub mod world;
+
+pub use error::{Result, RingError};
+pub use mdr_rapier::restitution_law as law;
+
+/// The names most programs need.
+pub mod prelude {
+    pub use crate::boundary::ShearingBox;
+    pub use crate::diagnostics::{Sample, Summary};
+    pub use crate::error::{Result, RingError};
+    pub use crate::gravity::SelfGravity;
+    pub use crate::hill::{HillFrame, Sei};
+    pub use crate::particles::{Particles, Population, SizeDistribution};
+    pub use crate::run::{RingConfig, RingSimulation, RunResult, REBOUND_OMEGA};
+    pub use crate::world::CollisionSettings;
+    pub use mdr_rapier::restitution_law::{
+        BridgesLaw, ConstantRestitution, ImpactPair, MdrRestitution, RestitutionLaw,
+    };
+}

@@ -1,0 +1,249 @@
+//! Outputs of a ring run, each written atomically (temporary file, then rename): the time series
+//! (CSV), the summary (JSON), particle frames (legacy VTK poly data, readable by ParaView) and
+//! plots (SVG).
+
+use crate::diagnostics::Sample;
+use crate::error::{Result, RingError};
+use crate::particles::Particles;
+use plotters::prelude::*;
+use plotters::style::{register_font, FontStyle};
+use std::path::Path;
+use std::sync::Once;
+
+/// DejaVu Sans (Bitstream Vera licence), shared with `mdr-impact`'s plots: text is laid out with
+/// an embedded font so plots do not depend on the fonts of the machine.
+static FONT: &[u8] = include_bytes!("../../mdr-impact/assets/DejaVuSans.ttf");
+
+fn register_embedded_font() {
+    static REGISTER: Once = Once::new();
+    REGISTER.call_once(|| {
+        // A valid TrueType font shipped in the workspace; on failure plotters reports the
+        // missing font when drawing, which is returned as an error.
+        let _ = register_font("sans-serif", FontStyle::Normal, FONT);
+    });
+}
+
+/// Write `bytes` to `path` through a temporary file in the same directory and a rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let io = |source| RingError::Io {
+        path: path.display().to_string(),
+        source,
+    };
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(io)?;
+    }
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(format!(".tmp{}", std::process::id()));
+    std::fs::write(&tmp, bytes).map_err(io)?;
+    std::fs::rename(&tmp, path).map_err(io)
+}
+
+fn output_error(path: &Path, reason: impl ToString) -> RingError {
+    RingError::Output {
+        path: path.display().to_string(),
+        reason: reason.to_string(),
+    }
+}
+
+/// The time series as CSV, one row per sample.
+pub fn write_samples_csv(path: &Path, samples: &[Sample]) -> Result<()> {
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    for s in samples {
+        writer.serialize(s).map_err(|e| output_error(path, e))?;
+    }
+    let bytes = writer.into_inner().map_err(|e| output_error(path, e))?;
+    write_atomic(path, &bytes)
+}
+
+/// Any serialisable value as pretty JSON.
+pub fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<()> {
+    let text = serde_json::to_string_pretty(value).map_err(|e| output_error(path, e))?;
+    write_atomic(path, text.as_bytes())
+}
+
+/// The particles as legacy-VTK poly data: one vertex per particle with point data `radius`
+/// (m) and `velocity` (m/s, rotating frame, shear included).
+pub fn write_vtk_frame(path: &Path, particles: &Particles, title: &str) -> Result<()> {
+    use vtkio::model::*;
+    let n = particles.len();
+    let points: Vec<f64> = particles
+        .position
+        .iter()
+        .flat_map(|p| [p.x, p.y, p.z])
+        .collect();
+    let velocity: Vec<f64> = particles
+        .velocity
+        .iter()
+        .flat_map(|v| [v.x, v.y, v.z])
+        .collect();
+    let vertices: Vec<u32> = (0..n as u32).flat_map(|i| [1, i]).collect();
+    let vtk = Vtk {
+        version: Version::new_legacy(4, 2),
+        title: title.to_string(),
+        byte_order: ByteOrder::BigEndian,
+        file_path: None,
+        data: DataSet::inline(PolyDataPiece {
+            points: points.into(),
+            verts: Some(VertexNumbers::Legacy {
+                num_cells: n as u32,
+                vertices,
+            }),
+            data: Attributes {
+                point: vec![
+                    Attribute::scalars("radius", 1).with_data(particles.radius.clone()),
+                    Attribute::vectors("velocity").with_data(velocity),
+                ],
+                cell: vec![],
+            },
+            ..Default::default()
+        }),
+    };
+    let mut bytes = Vec::new();
+    vtk.write_legacy(&mut bytes)
+        .map_err(|e| output_error(path, format!("{e:?}")))?;
+    write_atomic(path, &bytes)
+}
+
+/// One named curve of a plot.
+pub struct Curve<'a> {
+    /// Legend label.
+    pub label: String,
+    /// `(x, y)` points.
+    pub points: Vec<(f64, f64)>,
+    /// Colour.
+    pub color: &'a RGBColor,
+}
+
+/// A panel: title, axis labels, curves, logarithmic axes.
+pub struct Panel<'a> {
+    /// Caption.
+    pub title: String,
+    /// x-axis label.
+    pub x_label: String,
+    /// y-axis label.
+    pub y_label: String,
+    /// Curves.
+    pub curves: Vec<Curve<'a>>,
+    /// Logarithmic x axis.
+    pub log_x: bool,
+}
+
+fn range_of(points: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in points.filter(|v| v.is_finite() && (!log || *v > 0.0)) {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    if !lo.is_finite() {
+        return (0.0, 1.0);
+    }
+    if log {
+        return (lo, hi.max(lo * 1.01));
+    }
+    let pad = 0.05 * (hi - lo).max(hi.abs() * 1e-3).max(1e-12);
+    (lo.min(0.0), hi + pad)
+}
+
+/// Panels stacked vertically in one SVG file.
+pub fn write_panels_svg(path: &Path, panels: &[Panel]) -> Result<()> {
+    register_embedded_font();
+    let mut svg = String::new();
+    {
+        let height = 300 * panels.len().max(1) as u32;
+        let root = SVGBackend::with_string(&mut svg, (900, height)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| output_error(path, e))?;
+        let areas = root.split_evenly((panels.len().max(1), 1));
+        for (panel, area) in panels.iter().zip(areas) {
+            draw_panel(panel, &area).map_err(|e| output_error(path, e))?;
+        }
+        root.present().map_err(|e| output_error(path, e))?;
+    }
+    write_atomic(path, svg.as_bytes())
+}
+
+type DrawResult = std::result::Result<(), Box<dyn std::error::Error>>;
+
+fn draw_panel(panel: &Panel, area: &DrawingArea<SVGBackend, plotters::coord::Shift>) -> DrawResult {
+    let xs = panel
+        .curves
+        .iter()
+        .flat_map(|c| c.points.iter().map(|p| p.0));
+    let ys = panel
+        .curves
+        .iter()
+        .flat_map(|c| c.points.iter().map(|p| p.1));
+    let (x0, x1) = range_of(xs, panel.log_x);
+    let (y0, y1) = range_of(ys, false);
+    let mut builder = ChartBuilder::on(area);
+    builder
+        .caption(&panel.title, ("sans-serif", 18))
+        .margin(10)
+        .x_label_area_size(40)
+        .y_label_area_size(70);
+    macro_rules! finish {
+        ($chart:expr) => {{
+            let mut chart = $chart;
+            chart
+                .configure_mesh()
+                .x_desc(panel.x_label.as_str())
+                .y_desc(panel.y_label.as_str())
+                .draw()?;
+            for curve in &panel.curves {
+                let color = *curve.color;
+                chart
+                    .draw_series(LineSeries::new(
+                        curve.points.iter().copied(),
+                        color.stroke_width(2),
+                    ))?
+                    .label(curve.label.as_str())
+                    .legend(move |(x, y)| {
+                        PathElement::new([(x, y), (x + 20, y)], color.stroke_width(2))
+                    });
+            }
+            chart
+                .configure_series_labels()
+                .background_style(WHITE.mix(0.8))
+                .border_style(BLACK)
+                .draw()?;
+        }};
+    }
+    if panel.log_x {
+        finish!(builder.build_cartesian_2d((x0..x1).log_scale(), y0..y1)?);
+    } else {
+        finish!(builder.build_cartesian_2d(x0..x1, y0..y1)?);
+    }
+    Ok(())
+}
+
+/// The equilibration plot of one or more runs: `c(t)`, `z_rms(t)` and the mid-plane filling
+/// factor against time in orbits.
+pub fn write_equilibration_svg(path: &Path, runs: &[(String, &[Sample])]) -> Result<()> {
+    const COLORS: [RGBColor; 6] = [BLUE, RED, GREEN, MAGENTA, CYAN, BLACK];
+    let panel = |title: &str, y: &str, f: fn(&Sample) -> f64| Panel {
+        title: title.to_string(),
+        x_label: "t [orbits]".to_string(),
+        y_label: y.to_string(),
+        curves: runs
+            .iter()
+            .enumerate()
+            .map(|(k, (label, samples))| Curve {
+                label: label.clone(),
+                points: samples.iter().map(|s| (s.t_orbits, f(s))).collect(),
+                color: &COLORS[k % COLORS.len()],
+            })
+            .collect(),
+        log_x: false,
+    };
+    write_panels_svg(
+        path,
+        &[
+            panel("velocity dispersion", "c [mm/s]", |s| s.c * 1e3),
+            panel("vertical thickness (mass-weighted)", "z_rms [m]", |s| {
+                s.z_rms
+            }),
+            panel("mid-plane filling factor", "FF(z=0)", |s| {
+                s.filling_factor_z0
+            }),
+        ],
+    )
+}

@@ -1,0 +1,101 @@
+//! Binary collisions through the rapier restitution hook, inside the box and across the
+//! shear-periodic boundaries: the outgoing normal relative velocity is `−e` times the incoming one,
+//! momentum is conserved, and each impact is counted once.
+
+use mdr_ring::boundary::ShearingBox;
+use mdr_ring::prelude::*;
+use mdr_ring::world::CollisionWorld;
+use rapier3d_f64::math::Vector;
+
+const OMEGA: f64 = REBOUND_OMEGA;
+
+fn two_particles(p1: Vector, v1: Vector, p2: Vector, v2: Vector) -> Particles {
+    let mut particles = Particles::default();
+    let mass = |r: f64| 400.0 * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
+    particles.push(p1, v1, 1.0, mass(1.0));
+    particles.push(p2, v2, 2.0, mass(2.0));
+    particles
+}
+
+/// Step collisions only (positions drift linearly) until the pair has separated again.
+fn collide_linear<L: RestitutionLaw>(
+    particles: &mut Particles,
+    domain: &ShearingBox,
+    law: L,
+    dt: f64,
+    steps: usize,
+) -> u64 {
+    let mut world = CollisionWorld::new(particles, law, dt, CollisionSettings::default());
+    for k in 0..steps {
+        world.collide(particles, domain, k as f64 * dt);
+        for i in 0..particles.len() {
+            let v = particles.velocity[i];
+            particles.position[i] += v * dt;
+        }
+    }
+    world.hooks().collisions()
+}
+
+fn momentum(p: &Particles) -> Vector {
+    p.velocity
+        .iter()
+        .zip(&p.mass)
+        .fold(Vector::ZERO, |acc, (v, m)| acc + *v * *m)
+}
+
+#[test]
+fn head_on_collision_has_the_requested_restitution() {
+    let domain = ShearingBox::new(HillFrame::new(OMEGA).unwrap(), 200.0, 200.0).unwrap();
+    let dt = 47.8;
+    let u = 1e-3; // approach speed (m/s)
+    for e in [0.0, 0.3, 0.9, 1.0] {
+        let mut particles = two_particles(
+            Vector::new(-1.6, 0.0, 0.0),
+            Vector::new(0.5 * u, 0.0, 0.0),
+            Vector::new(1.6, 0.3, 0.1),
+            Vector::new(-0.5 * u, 0.0, 0.0),
+        );
+        let p0 = momentum(&particles);
+        let law = ConstantRestitution::new(e).unwrap();
+        let count = collide_linear(&mut particles, &domain, law, dt, 40);
+        assert_eq!(count, 1, "e = {e}");
+        // Straight-line approach along x with offsets (0.3, 0.1) m: at contact the line of
+        // centres is (√(9 − 0.3² − 0.1²), 0.3, 0.1) / 3 (radii 1 + 2 m).
+        let dx = (9.0_f64 - 0.3 * 0.3 - 0.1 * 0.1).sqrt();
+        let contact_normal = Vector::new(dx, 0.3, 0.1) / 3.0;
+        let u_n = u * contact_normal.x;
+        let out = (particles.velocity[1] - particles.velocity[0]).dot(contact_normal);
+        assert!(
+            (out - e * u_n).abs() < 1e-3 * u_n,
+            "e = {e}: outgoing {out}, expected {}",
+            e * u_n
+        );
+        assert!((momentum(&particles) - p0).length() < 1e-9 * p0.length().max(1.0) + 1e-9);
+    }
+}
+
+#[test]
+fn collision_across_the_radial_boundary_is_resolved_once() {
+    // Particle 0 near the inner edge, particle 1 near the outer edge: they meet through the
+    // shear-periodic boundary. Give them velocities so that, in the frame of the images, they
+    // approach radially.
+    let frame = HillFrame::new(OMEGA).unwrap();
+    let domain = ShearingBox::new(frame, 100.0, 100.0).unwrap();
+    let dt = 47.8;
+    let u = 1e-3;
+    // At t = 0 the image of particle 1 in box −1 is at (x − L, y) moving with vy + (3/2)ΩL.
+    let mut particles = two_particles(
+        Vector::new(-48.0, 10.0, 0.0),
+        Vector::new(-0.5 * u, 0.0, 0.0),
+        Vector::new(48.5, 10.0, 0.0),
+        Vector::new(0.5 * u, -domain.shear_speed(), 0.0),
+    );
+    let p0 = momentum(&particles);
+    let law = ConstantRestitution::new(0.5).unwrap();
+    let count = collide_linear(&mut particles, &domain, law, dt, 30);
+    assert_eq!(count, 1);
+    // Relative radial velocity reversed and halved; momentum conserved.
+    let out = particles.velocity[1].x - particles.velocity[0].x;
+    assert!((out + 0.5 * u).abs() < 1e-3 * u, "outgoing {out}");
+    assert!((momentum(&particles) - p0).length() < 1e-9 * p0.length());
+}
