@@ -11,6 +11,7 @@
 
 use mdr_contact::normal::MdrState;
 use mdr_rapier::prelude::*;
+use mdr_rapier::prelude::ContactPair;
 use mdr_rapier::rapier::prelude::*;
 use mdr_rapier::rapier::rayon;
 use std::time::Instant;

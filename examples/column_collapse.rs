@@ -10,6 +10,7 @@
 //! time step follows the Hertz contact time, which grows as E*^(-2/5).
 
 use mdr_rapier::prelude::*;
+use mdr_rapier::prelude::ContactPair;
 use mdr_rapier::rapier::prelude::*;
 use rand::{Rng, SeedableRng};
 use std::path::{Path, PathBuf};
