@@ -44,6 +44,7 @@
 
 pub mod convert;
 pub mod error;
+pub mod fast;
 pub mod force_mode;
 pub mod geometry;
 pub mod kernel;

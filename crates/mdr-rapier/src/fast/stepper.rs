@@ -1,0 +1,758 @@
+//! The fast force-mode stepper: the particles live in the plugin's own arrays, contacts come
+//! from binned neighbour lists with a skin, and rapier keeps every other collider and body.
+//!
+//! Per step ([`FastForceStepper::step`]):
+//! 1. rebuild the neighbour lists if a particle moved more than half the skin, or a surface
+//!    collider moved more than half the skin, since the last build (the first step always
+//!    builds); a build wraps the particles into the periodic box;
+//! 2. every sphere–sphere candidate: exact overlap, then the per-pair kernel
+//!    [`crate::kernel::evaluate_pair`] on the history stored next to the pair (parallel);
+//! 3. every particle–surface candidate: [`crate::geometry::sphere_shape`] against the rapier
+//!    collider, then the same kernel (parallel);
+//! 4. per particle, in a fixed order (surfaces, then partners by increasing index), sum the
+//!    wrenches and integrate as rapier does with one solver iteration: `v += (F + m g)/m · dt`,
+//!    `ω += τ/I · dt`, `x += v dt`, the orientation by rapier's linearised update (parallel);
+//! 5. reaction forces on dynamic rapier bodies, in key order, through `add_force`/`add_torque`;
+//!    then `PhysicsWorld::step` moves the rapier bodies.
+//!
+//! Every sum has a fixed order, so results do not depend on the number of threads.
+
+use super::boundary::Boundary;
+use super::neighbours::{NeighbourBuilder, PairList};
+use super::particles::{FastParticles, Species};
+use super::surfaces::{surface_displacement, FastSurface, SurfacePairs};
+use crate::convert::{to_glam, to_na};
+use crate::error::{positive, CouplingError, Result};
+use crate::geometry::{sphere_shape, sphere_sphere};
+use crate::kernel::{evaluate_pair, ContactKinematics, PairHistory, PairWrench};
+use crate::particles::{MaterialHandle, SphereBuilder};
+use mdr_contact::damping::{DampingModel, NoDamping};
+use mdr_contact::material::{effective_modulus, effective_shear_modulus};
+use mdr_contact::model::{ContactLaw, ContactModel, StateOf};
+use mdr_contact::normal::NormalModel;
+use mdr_contact::rolling::{NoRolling, RollingLaw, RollingModel};
+use mdr_contact::tangential::{Frictionless, TangentialModel};
+use mdr_contact::{ContactPair, Material};
+use nalgebra::Vector3;
+use rapier3d_f64::parry::mass_properties::MassProperties;
+use rapier3d_f64::prelude::*;
+use rayon::prelude::*;
+
+/// Pairs per parallel work item of the force loops.
+const CHUNK: usize = 2048;
+
+type Law<N, T, D> = ContactLaw<
+    <N as NormalModel>::Law,
+    <T as TangentialModel>::Law,
+    <D as DampingModel>::Law,
+>;
+/// The pair history of a stepper's laws.
+pub type FastHistory<N, T, R> = PairHistory<
+    StateOf<<N as NormalModel>::Law, <T as TangentialModel>::Law>,
+    <<R as RollingModel>::Law as RollingLaw>::State,
+>;
+
+/// What one fast step did.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FastStepReport {
+    /// Touching sphere–sphere pairs.
+    pub sphere_contacts: usize,
+    /// Touching particle–surface pairs.
+    pub surface_contacts: usize,
+    /// Sphere–sphere pairs in the neighbour list.
+    pub neighbour_pairs: usize,
+    /// Whether the neighbour lists were rebuilt at the start of this step.
+    pub rebuilt: bool,
+    /// Largest particle displacement since the last build, after this step.
+    pub max_displacement: f64,
+}
+
+/// The fast force-mode coupling. Owns the particles (structure of arrays), the neighbour lists
+/// with their histories, and the registered rapier surfaces; call
+/// [`FastForceStepper::step`] instead of `PhysicsWorld::step`.
+pub struct FastForceStepper<
+    N: NormalModel,
+    T: TangentialModel = Frictionless,
+    D: DampingModel = NoDamping,
+    R: RollingModel = NoRolling,
+> {
+    model: ContactModel<N, T, D>,
+    rolling: R,
+    boundary: Boundary,
+    skin: f64,
+    materials: Vec<Material>,
+    /// `(E*, G*)` of material pair `(a, b)` at `a * n + b`.
+    moduli: Vec<(f64, f64)>,
+    particles: FastParticles,
+    /// Positions at the last build.
+    built_at: Vec<Vector3<f64>>,
+    /// Sphere–sphere laws by species pair `(a, b)` at `a * n + b`.
+    sphere_laws: Vec<(Law<N, T, D>, R::Law)>,
+    /// Particle–surface laws by `(species, surface)` at `species * surfaces + surface`.
+    surface_laws: Vec<(Law<N, T, D>, R::Law)>,
+    laws_species: usize,
+    surfaces: Vec<FastSurface>,
+    pairs: PairList<FastHistory<N, T, R>>,
+    old_pairs: PairList<FastHistory<N, T, R>>,
+    builder: NeighbourBuilder,
+    surface_pairs: SurfacePairs<FastHistory<N, T, R>>,
+    old_surface_pairs: SurfacePairs<FastHistory<N, T, R>>,
+    surface_candidates: Vec<(u32, u32)>,
+    /// Reaction wrench per surface body, reduced in key order.
+    reactions: Vec<(RigidBodyHandle, Vector3<f64>, Vector3<f64>)>,
+    needs_build: bool,
+    max_displacement: f64,
+    report: FastStepReport,
+    rebuilds: u64,
+}
+
+impl<N: NormalModel, T: TangentialModel, D: DampingModel> FastForceStepper<N, T, D, NoRolling> {
+    /// A stepper for `model` in `boundary`, no rolling resistance, skin 0.1 × (set it with
+    /// [`FastForceStepper::skin`]).
+    pub fn new(model: ContactModel<N, T, D>, boundary: Boundary) -> Self {
+        Self {
+            model,
+            rolling: NoRolling,
+            boundary,
+            skin: 0.0,
+            materials: Vec::new(),
+            moduli: Vec::new(),
+            particles: FastParticles::default(),
+            built_at: Vec::new(),
+            sphere_laws: Vec::new(),
+            surface_laws: Vec::new(),
+            laws_species: 0,
+            surfaces: Vec::new(),
+            pairs: PairList::default(),
+            old_pairs: PairList::default(),
+            builder: NeighbourBuilder::default(),
+            surface_pairs: SurfacePairs::default(),
+            old_surface_pairs: SurfacePairs::default(),
+            surface_candidates: Vec::new(),
+            reactions: Vec::new(),
+            needs_build: true,
+            max_displacement: 0.0,
+            report: FastStepReport::default(),
+            rebuilds: 0,
+        }
+    }
+}
+
+impl<N, T, D, R> FastForceStepper<N, T, D, R>
+where
+    N: NormalModel,
+    T: TangentialModel,
+    D: DampingModel,
+    R: RollingModel,
+    N::Law: Clone,
+    T::Law: Clone,
+    D::Law: Clone,
+    R::Law: Clone,
+{
+    /// Add a rolling-resistance sub-model (call before inserting particles).
+    pub fn with_rolling<R2: RollingModel>(self, rolling: R2) -> FastForceStepper<N, T, D, R2> {
+        FastForceStepper {
+            model: self.model,
+            rolling,
+            boundary: self.boundary,
+            skin: self.skin,
+            materials: self.materials,
+            moduli: self.moduli,
+            particles: self.particles,
+            built_at: self.built_at,
+            sphere_laws: Vec::new(),
+            surface_laws: Vec::new(),
+            laws_species: 0,
+            surfaces: self.surfaces,
+            pairs: PairList::default(),
+            old_pairs: PairList::default(),
+            builder: self.builder,
+            surface_pairs: SurfacePairs::default(),
+            old_surface_pairs: SurfacePairs::default(),
+            surface_candidates: self.surface_candidates,
+            reactions: self.reactions,
+            needs_build: true,
+            max_displacement: 0.0,
+            report: self.report,
+            rebuilds: self.rebuilds,
+        }
+    }
+
+    /// Neighbour skin (length, > 0): pairs closer than `r_i + r_j + skin` are listed, and the
+    /// lists are rebuilt once something moved more than half of it. Without this call the skin
+    /// is 10 % of the first particle's diameter.
+    pub fn skin(mut self, skin: f64) -> Result<Self> {
+        self.skin = positive("skin", skin)?;
+        self.needs_build = true;
+        Ok(self)
+    }
+
+    /// Add a material; pair moduli follow from eq. (3) and model.md §5 unless overridden by
+    /// [`FastForceStepper::set_pair_moduli`].
+    pub fn insert_material(&mut self, material: Material) -> MaterialHandle {
+        let old_n = self.materials.len();
+        self.materials.push(material);
+        let n = old_n + 1;
+        let mut moduli = Vec::with_capacity(n * n);
+        for a in 0..n {
+            for b in 0..n {
+                moduli.push(if a < old_n && b < old_n {
+                    self.moduli[a * old_n + b]
+                } else {
+                    (
+                        effective_modulus(&self.materials[a], &self.materials[b]),
+                        effective_shear_modulus(&self.materials[a], &self.materials[b]),
+                    )
+                });
+            }
+        }
+        self.moduli = moduli;
+        self.laws_species = 0;
+        MaterialHandle(old_n as u32)
+    }
+
+    /// Set `E*` and `G*` of a material pair directly (both > 0), e.g. to match a code that
+    /// specifies normal and tangential stiffnesses instead of materials.
+    pub fn set_pair_moduli(
+        &mut self,
+        a: MaterialHandle,
+        b: MaterialHandle,
+        effective_modulus: f64,
+        effective_shear_modulus: f64,
+    ) -> Result<()> {
+        self.material(a)?;
+        self.material(b)?;
+        positive("effective_modulus", effective_modulus)?;
+        positive("effective_shear_modulus", effective_shear_modulus)?;
+        let n = self.materials.len();
+        let value = (effective_modulus, effective_shear_modulus);
+        self.moduli[a.0 as usize * n + b.0 as usize] = value;
+        self.moduli[b.0 as usize * n + a.0 as usize] = value;
+        self.laws_species = 0;
+        Ok(())
+    }
+
+    fn material(&self, handle: MaterialHandle) -> Result<&Material> {
+        self.materials
+            .get(handle.0 as usize)
+            .ok_or(CouplingError::UnknownMaterial(
+                handle.0,
+                self.materials.len(),
+            ))
+    }
+
+    /// Add a sphere; returns its particle index. Mass and inertia are rapier's for a ball of the
+    /// material's density.
+    pub fn insert_sphere(&mut self, sphere: SphereBuilder) -> Result<usize> {
+        positive("radius", sphere.radius)?;
+        let density = self.material(sphere.material)?.density();
+        let props = MassProperties::from_ball(density, sphere.radius);
+        let species = self.particles.species_of(Species {
+            material: sphere.material,
+            radius: sphere.radius,
+            mass: props.mass(),
+            inv_mass: props.inv_mass,
+            inv_inertia: props.inv_principal_inertia.x,
+        })?;
+        if self.skin == 0.0 {
+            self.skin = 0.2 * sphere.radius;
+        }
+        self.needs_build = true;
+        Ok(self.particles.push(
+            species,
+            to_na(sphere.translation),
+            to_na(sphere.linvel),
+            to_na(sphere.angvel),
+        ))
+    }
+
+    /// Insert a collider of any shape (wall, box, mesh, container …), optionally on a body, with
+    /// rapier's contact impulses off, and register it as a surface of `material`.
+    pub fn insert_surface(
+        &mut self,
+        world: &mut PhysicsWorld,
+        collider: ColliderBuilder,
+        parent: Option<RigidBodyHandle>,
+        material: MaterialHandle,
+    ) -> Result<ColliderHandle> {
+        self.material(material)?;
+        let c = world.insert_collider(collider.solver_groups(InteractionGroups::none()), parent);
+        self.register_surface(&world.colliders, c, material)?;
+        Ok(c)
+    }
+
+    /// Register an existing collider as a surface of `material`.
+    pub fn register_surface(
+        &mut self,
+        colliders: &ColliderSet,
+        collider: ColliderHandle,
+        material: MaterialHandle,
+    ) -> Result<()> {
+        self.material(material)?;
+        let co = colliders
+            .get(collider)
+            .ok_or(CouplingError::UnknownCollider(collider))?;
+        let surface = FastSurface {
+            collider,
+            body: co.parent(),
+            material,
+            pose_at_build: *co.position(),
+            bounding_radius: co.shape().compute_local_bounding_sphere().radius(),
+        };
+        // Keep surfaces in collider-index order (the plain path's summation order).
+        let at = self
+            .surfaces
+            .partition_point(|s| s.collider.into_raw_parts().0 < collider.into_raw_parts().0);
+        self.surfaces.insert(at, surface);
+        self.needs_build = true;
+        self.old_surface_pairs = SurfacePairs::default();
+        self.surface_pairs = SurfacePairs::default();
+        Ok(())
+    }
+
+    /// Set what the fast path needs on rapier's integration parameters (for the rapier bodies):
+    /// time step `dt`, one solver iteration, no CCD, no speed cap.
+    pub fn configure(&self, params: &mut IntegrationParameters, dt: f64) -> Result<()> {
+        positive("dt", dt)?;
+        params.dt = dt;
+        params.num_solver_iterations = 1;
+        params.max_ccd_substeps = 0;
+        params.normalized_max_linear_velocity = f64::MAX;
+        Ok(())
+    }
+
+    /// The particles (structure of arrays).
+    pub fn particles(&self) -> &FastParticles {
+        &self.particles
+    }
+
+    /// The particles, mutably (positions, velocities). Moving particles by hand triggers no
+    /// rebuild by itself: call [`FastForceStepper::request_rebuild`] afterwards.
+    pub fn particles_mut(&mut self) -> &mut FastParticles {
+        &mut self.particles
+    }
+
+    /// Force a neighbour-list rebuild at the next step.
+    pub fn request_rebuild(&mut self) {
+        self.needs_build = true;
+    }
+
+    /// The boundary.
+    pub fn boundary(&self) -> &Boundary {
+        &self.boundary
+    }
+
+    /// The sphere–sphere neighbour list (pairs, images, histories).
+    pub fn pairs(&self) -> &PairList<FastHistory<N, T, R>> {
+        &self.pairs
+    }
+
+    /// The particle–surface candidates (histories included).
+    pub fn surface_pairs(&self) -> &SurfacePairs<FastHistory<N, T, R>> {
+        &self.surface_pairs
+    }
+
+    /// The sphere–sphere law bound to the species of particles `i` and `j`.
+    pub fn sphere_law(&self, i: usize, j: usize) -> &Law<N, T, D> {
+        let ns = self.laws_species;
+        let (si, sj) = (
+            self.particles.species[i] as usize,
+            self.particles.species[j] as usize,
+        );
+        &self.sphere_laws[si * ns + sj].0
+    }
+
+    /// The report of the last step.
+    pub fn last_report(&self) -> FastStepReport {
+        self.report
+    }
+
+    /// Neighbour-list builds so far.
+    pub fn rebuilds(&self) -> u64 {
+        self.rebuilds
+    }
+
+    /// Bytes held by the stepper's buffers (capacities), particles and lists included.
+    pub fn memory_bytes(&self) -> usize {
+        self.particles.bytes()
+            + self.built_at.capacity() * 24
+            + self.pairs.bytes()
+            + self.old_pairs.bytes()
+            + self.builder.bytes()
+            + self.surface_pairs.bytes()
+            + self.old_surface_pairs.bytes()
+            + self.surface_candidates.capacity() * 8
+            + (self.sphere_laws.capacity() + self.surface_laws.capacity())
+                * std::mem::size_of::<(Law<N, T, D>, R::Law)>()
+    }
+
+    /// Bind the sphere–sphere laws (species pairs) and the particle–surface laws.
+    fn bind_laws(&mut self, bodies: &RigidBodySet) -> Result<()> {
+        let table = &self.particles.species_table;
+        let ns = table.len();
+        let nm = self.materials.len();
+        if self.laws_species != ns {
+            self.sphere_laws.clear();
+            for a in table {
+                for b in table {
+                    let (e, g) = self.moduli[a.material.0 as usize * nm + b.material.0 as usize];
+                    // The plain path's pair quantities: R = r1 r2/(r1 + r2), m = m1 m2/(m1 + m2).
+                    let pair = ContactPair::new(
+                        e,
+                        g,
+                        a.radius * b.radius / (a.radius + b.radius),
+                        a.mass * b.mass / (a.mass + b.mass),
+                    )?;
+                    self.sphere_laws
+                        .push((self.model.bind(&pair)?, self.rolling.bind(&pair)?));
+                }
+            }
+            self.laws_species = ns;
+        }
+        // Surface laws each build: a dynamic body's mass may change.
+        self.surface_laws.clear();
+        for a in table {
+            for s in &self.surfaces {
+                let (e, g) = self.moduli[a.material.0 as usize * nm + s.material.0 as usize];
+                let m2 = s
+                    .body
+                    .and_then(|h| bodies.get(h))
+                    .filter(|b| b.is_dynamic())
+                    .map_or(f64::INFINITY, |b| b.mass());
+                let mass = if m2.is_finite() {
+                    a.mass * m2 / (a.mass + m2)
+                } else {
+                    a.mass
+                };
+                let pair = ContactPair::new(e, g, a.radius, mass)?;
+                self.surface_laws
+                    .push((self.model.bind(&pair)?, self.rolling.bind(&pair)?));
+            }
+        }
+        Ok(())
+    }
+
+    fn surfaces_moved(&self, colliders: &ColliderSet) -> f64 {
+        self.surfaces
+            .iter()
+            .map(|s| {
+                colliders
+                    .get(s.collider)
+                    .map_or(0.0, |co| surface_displacement(s, co.position()))
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// Wrap the particles into the box and rebuild both neighbour lists.
+    fn rebuild(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet) -> Result<()> {
+        let n = self.particles.len();
+        let r_max = self.particles.radius.iter().cloned().fold(0.0, f64::max);
+        self.boundary.check_cutoff(2.0 * r_max + self.skin)?;
+        self.bind_laws(bodies)?;
+        let p = &mut self.particles;
+        for (x, v) in p.position.iter_mut().zip(p.linvel.iter_mut()) {
+            self.boundary.wrap(x, v);
+        }
+        self.built_at.clear();
+        self.built_at.extend_from_slice(&p.position);
+
+        std::mem::swap(&mut self.pairs, &mut self.old_pairs);
+        self.builder.build(
+            &self.boundary,
+            &p.position,
+            &p.radius,
+            self.skin,
+            &mut self.old_pairs,
+            &mut self.pairs,
+        );
+
+        // Particle–surface candidates: within r + skin of the collider (parry distance query),
+        // after a cheap test against its loosened AABB.
+        self.surface_candidates.clear();
+        for s in &mut self.surfaces {
+            if let Some(co) = colliders.get(s.collider) {
+                s.pose_at_build = *co.position();
+            }
+        }
+        let skin = self.skin;
+        for i in 0..n {
+            let x = to_glam(&p.position[i]);
+            let reach = p.radius[i] + skin;
+            for (k, s) in self.surfaces.iter().enumerate() {
+                let Some(co) = colliders.get(s.collider) else {
+                    continue;
+                };
+                let aabb = co.compute_aabb();
+                let inside = (0..3).all(|d| x[d] >= aabb.mins[d] - reach && x[d] <= aabb.maxs[d] + reach);
+                if inside && co.shape().distance_to_point(co.position(), x, true) < reach {
+                    self.surface_candidates.push((i as u32, k as u32));
+                }
+            }
+        }
+        std::mem::swap(&mut self.surface_pairs, &mut self.old_surface_pairs);
+        self.surface_pairs.rebuild_from(
+            &self.surface_candidates,
+            n,
+            &mut self.old_surface_pairs,
+        );
+        self.max_displacement = 0.0;
+        self.needs_build = false;
+        self.rebuilds += 1;
+        Ok(())
+    }
+
+    /// One coupled step: particle forces and integration, reactions on rapier bodies, then
+    /// `world.step()`.
+    pub fn step(&mut self, world: &mut PhysicsWorld) -> Result<FastStepReport> {
+        let dt = world.integration_parameters.dt;
+        positive("dt", dt)?;
+        let half_skin = 0.5 * self.skin;
+        let rebuilt = self.needs_build
+            || self.max_displacement > half_skin
+            || self.surfaces_moved(&world.colliders) > half_skin;
+        if rebuilt {
+            self.rebuild(&world.bodies, &world.colliders)?;
+        }
+        self.sphere_wrenches(dt);
+        self.surface_wrenches(&world.bodies, &world.colliders, dt);
+        let gravity = to_na(world.gravity);
+        self.max_displacement = self.integrate(&gravity, dt).sqrt();
+        self.apply_reactions(&mut world.bodies);
+        world.step();
+        self.report = FastStepReport {
+            sphere_contacts: self.pairs.touching(),
+            surface_contacts: self.surface_pairs.active.iter().filter(|&&a| a).count(),
+            neighbour_pairs: self.pairs.len(),
+            rebuilt,
+            max_displacement: self.max_displacement,
+        };
+        Ok(self.report)
+    }
+
+    /// Step 2: sphere–sphere pairs.
+    fn sphere_wrenches(&mut self, dt: f64) {
+        let offsets = self.boundary.offsets();
+        let p = &self.particles;
+        let laws = &self.sphere_laws;
+        let ns = self.laws_species;
+        let PairList {
+            i: pi,
+            j: pj,
+            image,
+            active,
+            history,
+            wrench,
+            ..
+        } = &mut self.pairs;
+        let (pi, pj, image) = (&*pi, &*pj, &*image);
+        history
+            .par_chunks_mut(CHUNK)
+            .zip(wrench.par_chunks_mut(CHUNK))
+            .zip(active.par_chunks_mut(CHUNK))
+            .enumerate()
+            .for_each(|(c, ((history, wrench), active))| {
+                let base = c * CHUNK;
+                for k in 0..history.len() {
+                    let q = base + k;
+                    let (i, j) = (pi[q] as usize, pj[q] as usize);
+                    let offset = &offsets[image[q] as usize];
+                    let xi = &p.position[i];
+                    let xj = p.position[j] + offset.position;
+                    match sphere_sphere(xi, p.radius[i], &xj, p.radius[j]) {
+                        None => {
+                            if active[k] {
+                                // Separated: the plain path drops the entry, so does this one.
+                                active[k] = false;
+                                history[k] = Default::default();
+                            }
+                        }
+                        Some(contact) => {
+                            active[k] = true;
+                            let kinematics = ContactKinematics {
+                                overlap: contact.overlap,
+                                normal: contact.normal,
+                                arm1: contact.point - xi,
+                                arm2: contact.point - xj,
+                                linvel1: p.linvel[i],
+                                angvel1: p.angvel[i],
+                                linvel2: p.linvel[j] + offset.velocity,
+                                angvel2: p.angvel[j],
+                            };
+                            let (law, rolling) = &laws
+                                [p.species[i] as usize * ns + p.species[j] as usize];
+                            wrench[k] =
+                                evaluate_pair(law, rolling, &mut history[k], &kinematics, dt);
+                        }
+                    }
+                }
+            });
+    }
+
+    /// Step 3: particle–surface pairs.
+    fn surface_wrenches(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet, dt: f64) {
+        let p = &self.particles;
+        let laws = &self.surface_laws;
+        let surfaces = &self.surfaces;
+        let nsurf = surfaces.len();
+        let SurfacePairs {
+            particle,
+            surface,
+            active,
+            history,
+            wrench,
+            ..
+        } = &mut self.surface_pairs;
+        let (particle, surface) = (&*particle, &*surface);
+        history
+            .par_chunks_mut(CHUNK)
+            .zip(wrench.par_chunks_mut(CHUNK))
+            .zip(active.par_chunks_mut(CHUNK))
+            .enumerate()
+            .for_each(|(c, ((history, wrench), active))| {
+                let base = c * CHUNK;
+                for k in 0..history.len() {
+                    let q = base + k;
+                    let (i, s) = (particle[q] as usize, surface[q] as usize);
+                    let surf = &surfaces[s];
+                    let contact = colliders.get(surf.collider).and_then(|co| {
+                        sphere_shape(&p.position[i], p.radius[i], co.shape(), co.position())
+                    });
+                    let Some(contact) = contact else {
+                        if active[k] {
+                            active[k] = false;
+                            history[k] = Default::default();
+                        }
+                        continue;
+                    };
+                    active[k] = true;
+                    let (linvel2, angvel2, arm2) = match surf.body.and_then(|h| bodies.get(h)) {
+                        Some(b2) => (
+                            to_na(b2.linvel()),
+                            to_na(b2.angvel()),
+                            contact.point - to_na(b2.center_of_mass()),
+                        ),
+                        None => (Vector3::zeros(), Vector3::zeros(), Vector3::zeros()),
+                    };
+                    let kinematics = ContactKinematics {
+                        overlap: contact.overlap,
+                        normal: contact.normal,
+                        arm1: contact.point - p.position[i],
+                        arm2,
+                        linvel1: p.linvel[i],
+                        angvel1: p.angvel[i],
+                        linvel2,
+                        angvel2,
+                    };
+                    let (law, rolling) = &laws[p.species[i] as usize * nsurf + s];
+                    wrench[k] = evaluate_pair(law, rolling, &mut history[k], &kinematics, dt);
+                }
+            });
+    }
+
+    /// Step 4: sum each particle's wrenches in a fixed order and integrate it. Returns the
+    /// largest squared displacement since the last build.
+    fn integrate(&mut self, gravity: &Vector3<f64>, dt: f64) -> f64 {
+        let pairs = &self.pairs;
+        let sp = &self.surface_pairs;
+        let built_at = &self.built_at;
+        let FastParticles {
+            position,
+            linvel,
+            angvel,
+            rotation,
+            species,
+            species_table,
+            ..
+        } = &mut self.particles;
+        let (species, table) = (&*species, &*species_table);
+        const PCHUNK: usize = 1024;
+        position
+            .par_chunks_mut(PCHUNK)
+            .zip(linvel.par_chunks_mut(PCHUNK))
+            .zip(angvel.par_chunks_mut(PCHUNK))
+            .zip(rotation.par_chunks_mut(PCHUNK))
+            .enumerate()
+            .map(|(c, (((x, v), w), q))| {
+                let mut max2: f64 = 0.0;
+                for k in 0..x.len() {
+                    let i = c * PCHUNK + k;
+                    let mut force = Vector3::zeros();
+                    let mut torque = Vector3::zeros();
+                    for s in sp.start[i] as usize..sp.start[i + 1] as usize {
+                        if sp.active[s] {
+                            force += sp.wrench[s].force;
+                            torque += sp.wrench[s].torque1;
+                        }
+                    }
+                    for &e in
+                        &pairs.second[pairs.second_start[i] as usize..pairs.second_start[i + 1] as usize]
+                    {
+                        let e = e as usize;
+                        if pairs.active[e] {
+                            let w: &PairWrench = &pairs.wrench[e];
+                            force += -w.force;
+                            torque += w.torque2;
+                        }
+                    }
+                    for e in pairs.first[i] as usize..pairs.first[i + 1] as usize {
+                        if pairs.active[e] {
+                            force += pairs.wrench[e].force;
+                            torque += pairs.wrench[e].torque1;
+                        }
+                    }
+                    let s = &table[species[i] as usize];
+                    // rapier: force = user_force + g · m; Δv = force · (1/m) · dt.
+                    let total = force + gravity * s.mass;
+                    v[k] += total * s.inv_mass * dt;
+                    w[k] += torque * s.inv_inertia * dt;
+                    x[k] += v[k] * dt;
+                    // rapier's linearised rotation update.
+                    let half = w[k] * (dt * 0.5);
+                    let id_plus_half = Rotation::from_xyzw(half.x, half.y, half.z, 1.0);
+                    q[k] = (id_plus_half * q[k]).normalize();
+                    max2 = max2.max((x[k] - built_at[i]).norm_squared());
+                }
+                max2
+            })
+            .reduce(|| 0.0, f64::max)
+    }
+
+    /// Step 5: reaction wrenches on the surfaces' dynamic bodies, in key order.
+    fn apply_reactions(&mut self, bodies: &mut RigidBodySet) {
+        self.reactions.clear();
+        for s in &self.surfaces {
+            if let Some(h) = s.body {
+                if bodies.get(h).is_some_and(|b| b.is_dynamic())
+                    && !self.reactions.iter().any(|r| r.0 == h)
+                {
+                    self.reactions.push((h, Vector3::zeros(), Vector3::zeros()));
+                }
+            }
+        }
+        if self.reactions.is_empty() {
+            return;
+        }
+        let sp = &self.surface_pairs;
+        for q in 0..sp.len() {
+            if !sp.active[q] {
+                continue;
+            }
+            let Some(h) = self.surfaces[sp.surface[q] as usize].body else {
+                continue;
+            };
+            if let Some(r) = self.reactions.iter_mut().find(|r| r.0 == h) {
+                r.1 += -sp.wrench[q].force;
+                r.2 += sp.wrench[q].torque2;
+            }
+        }
+        for (h, f, t) in &self.reactions {
+            let body = &mut bodies[*h];
+            body.reset_forces(false);
+            body.reset_torques(false);
+            body.add_force(to_glam(f), false);
+            body.add_torque(to_glam(t), false);
+        }
+    }
+}
+
+use rapier3d_f64::math::Rotation;

@@ -1,0 +1,116 @@
+//! Particles against rapier colliders (walls, meshes, containers, user bodies): candidate pairs
+//! found at neighbour-list rebuilds with parry distance queries, exact contacts every step with
+//! [`crate::geometry::sphere_shape`], histories carried over rebuilds by `(particle, surface)`.
+
+use crate::kernel::PairWrench;
+use crate::particles::MaterialHandle;
+use rapier3d_f64::math::Pose;
+use rapier3d_f64::prelude::{ColliderHandle, RigidBodyHandle};
+
+/// A rapier collider registered as a surface of the fast path.
+#[derive(Debug, Clone, Copy)]
+pub struct FastSurface {
+    /// The collider.
+    pub collider: ColliderHandle,
+    /// Its parent body, if any (receives the reaction forces when dynamic).
+    pub body: Option<RigidBodyHandle>,
+    /// Material of the surface.
+    pub material: MaterialHandle,
+    /// Pose at the last neighbour-list build.
+    pub pose_at_build: Pose,
+    /// Radius of the collider's local bounding sphere (infinite for a half-space), to bound the
+    /// displacement of its points under a rotation.
+    pub bounding_radius: f64,
+}
+
+/// Particle–surface candidate pairs, sorted by `(particle, surface)`.
+#[derive(Debug, Clone, Default)]
+pub struct SurfacePairs<H> {
+    /// Particle of each pair.
+    pub particle: Vec<u32>,
+    /// Surface index (into the stepper's surface list, sorted by collider index).
+    pub surface: Vec<u32>,
+    /// Whether the pair touched at the last force evaluation.
+    pub active: Vec<bool>,
+    /// Contact history.
+    pub history: Vec<H>,
+    /// Wrench at the last force evaluation (force on the particle; `torque2` on the surface's
+    /// body).
+    pub wrench: Vec<PairWrench>,
+    /// `start[i]..start[i + 1]`: the pairs of particle `i`.
+    pub start: Vec<u32>,
+}
+
+impl<H: Default> SurfacePairs<H> {
+    /// Number of candidate pairs.
+    pub fn len(&self) -> usize {
+        self.particle.len()
+    }
+
+    /// Whether there are no candidates.
+    pub fn is_empty(&self) -> bool {
+        self.particle.is_empty()
+    }
+
+    /// Bytes held (capacity).
+    pub fn bytes(&self) -> usize {
+        self.particle.capacity() * 4
+            + self.surface.capacity() * 4
+            + self.active.capacity()
+            + self.history.capacity() * std::mem::size_of::<H>()
+            + self.wrench.capacity() * std::mem::size_of::<PairWrench>()
+            + self.start.capacity() * 4
+    }
+
+    /// Replace the candidates by `candidates` (sorted by `(particle, surface)`), carrying the
+    /// histories of `old` over by key.
+    pub(crate) fn rebuild_from(
+        &mut self,
+        candidates: &[(u32, u32)],
+        n_particles: usize,
+        old: &mut SurfacePairs<H>,
+    ) {
+        self.particle.clear();
+        self.surface.clear();
+        self.active.clear();
+        self.history.clear();
+        self.wrench.clear();
+        self.start.clear();
+        self.start.resize(n_particles + 1, 0);
+        let mut q = 0;
+        for &(i, s) in candidates {
+            while q < old.len() && (old.particle[q], old.surface[q]) < (i, s) {
+                q += 1;
+            }
+            if q < old.len() && (old.particle[q], old.surface[q]) == (i, s) {
+                self.history.push(std::mem::take(&mut old.history[q]));
+                self.active.push(old.active[q]);
+                self.wrench.push(old.wrench[q]);
+                q += 1;
+            } else {
+                self.history.push(H::default());
+                self.active.push(false);
+                self.wrench.push(PairWrench::default());
+            }
+            self.particle.push(i);
+            self.surface.push(s);
+            self.start[i as usize + 1] += 1;
+        }
+        for i in 0..n_particles {
+            self.start[i + 1] += self.start[i];
+        }
+    }
+}
+
+/// Largest distance any point of a surface moved between two poses, bounded by the translation
+/// of its origin plus the rotation angle times its bounding radius.
+pub(crate) fn surface_displacement(surface: &FastSurface, now: &Pose) -> f64 {
+    let before = &surface.pose_at_build;
+    let dt = (now.translation - before.translation).length();
+    let angle = (now.rotation * before.rotation.inverse()).to_axis_angle().1.abs();
+    if angle == 0.0 {
+        dt
+    } else {
+        dt + angle * surface.bounding_radius
+    }
+}
