@@ -2,3 +2,4 @@
 
 pub mod impact;
 pub mod sim;
+pub mod sim_run;

@@ -1,0 +1,223 @@
+//! Run-time choice of the sub-models named in a scene file: enums that forward to the law
+//! crate's models, so one force-mode stepper type serves every scene. No physics here: each
+//! variant calls the law crate's own implementation.
+
+use crate::scene::{ContactSpec, DampingSpec, NormalSpec};
+use mdr_contact::damping::{
+    DampingLaw, DampingModel, HertzianViscous, NoDamping, StiffnessViscous,
+};
+use mdr_contact::model::ContactModel;
+use mdr_contact::normal::{
+    Hertz, HertzLaw, MdrElastoPlastic, MdrLaw, MdrState, NormalLaw, NormalModel, NormalResponse,
+    Thornton, ThorntonLaw, ThorntonState,
+};
+use mdr_contact::rolling::{
+    EpsdRolling, EpsdRollingState, RollingInput, RollingLaw, RollingModel, RollingResponse,
+};
+use mdr_contact::tangential::Mindlin;
+use mdr_contact::{ContactPair, Result};
+use serde::{Deserialize, Serialize};
+
+/// The normal model of a scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum AnyNormal {
+    /// MDR elasto-plastic.
+    Mdr(MdrElastoPlastic),
+    /// Hertz.
+    Hertz(Hertz),
+    /// Thornton.
+    Thornton(Thornton),
+}
+
+/// [`AnyNormal`] bound to a pair.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum AnyNormalLaw {
+    /// MDR elasto-plastic.
+    Mdr(MdrLaw),
+    /// Hertz.
+    Hertz(HertzLaw),
+    /// Thornton.
+    Thornton(ThorntonLaw),
+}
+
+/// History of [`AnyNormalLaw`]: the state of whichever law is in use (the others stay default).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct AnyNormalState {
+    /// MDR history.
+    pub mdr: MdrState,
+    /// Hertz history (largest overlap, m).
+    pub hertz: f64,
+    /// Thornton history.
+    pub thornton: ThorntonState,
+}
+
+impl NormalModel for AnyNormal {
+    type Law = AnyNormalLaw;
+    fn bind(&self, pair: &ContactPair) -> Result<AnyNormalLaw> {
+        Ok(match self {
+            AnyNormal::Mdr(m) => AnyNormalLaw::Mdr(m.bind(pair)?),
+            AnyNormal::Hertz(m) => AnyNormalLaw::Hertz(m.bind(pair)?),
+            AnyNormal::Thornton(m) => AnyNormalLaw::Thornton(m.bind(pair)?),
+        })
+    }
+}
+
+macro_rules! forward {
+    ($self:ident, $state:ident, |$law:ident, $s:ident| $body:expr) => {
+        match $self {
+            AnyNormalLaw::Mdr($law) => {
+                let $s = &$state.mdr;
+                $body
+            }
+            AnyNormalLaw::Hertz($law) => {
+                let $s = &$state.hertz;
+                $body
+            }
+            AnyNormalLaw::Thornton($law) => {
+                let $s = &$state.thornton;
+                $body
+            }
+        }
+    };
+}
+
+impl NormalLaw for AnyNormalLaw {
+    type State = AnyNormalState;
+
+    #[inline]
+    fn update(&self, state: &mut AnyNormalState, overlap: f64) -> NormalResponse {
+        match self {
+            AnyNormalLaw::Mdr(l) => l.update(&mut state.mdr, overlap),
+            AnyNormalLaw::Hertz(l) => l.update(&mut state.hertz, overlap),
+            AnyNormalLaw::Thornton(l) => l.update(&mut state.thornton, overlap),
+        }
+    }
+
+    fn max_overlap(&self, state: &AnyNormalState) -> f64 {
+        forward!(self, state, |l, s| l.max_overlap(s))
+    }
+
+    fn residual_overlap(&self, state: &AnyNormalState) -> f64 {
+        forward!(self, state, |l, s| l.residual_overlap(s))
+    }
+
+    fn dissipated_work(&self, state: &AnyNormalState) -> f64 {
+        forward!(self, state, |l, s| l.dissipated_work(s))
+    }
+
+    fn elastic_energy(&self, state: &AnyNormalState, overlap: f64) -> f64 {
+        forward!(self, state, |l, s| l.elastic_energy(s, overlap))
+    }
+
+    fn yield_overlap(&self) -> f64 {
+        match self {
+            AnyNormalLaw::Mdr(l) => l.yield_overlap(),
+            AnyNormalLaw::Hertz(l) => l.yield_overlap(),
+            AnyNormalLaw::Thornton(l) => l.yield_overlap(),
+        }
+    }
+}
+
+/// The damping model of a scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum AnyDamping {
+    /// None.
+    None(NoDamping),
+    /// `m γ_n (dδ/dt) √(R δ)`.
+    HertzianViscous(HertzianViscous),
+    /// `η √(m k_n) (dδ/dt)`.
+    StiffnessViscous(StiffnessViscous),
+}
+
+/// [`AnyDamping`] bound to a pair.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum AnyDampingLaw {
+    /// None.
+    None(NoDamping),
+    /// Hertzian viscous.
+    HertzianViscous(<HertzianViscous as DampingModel>::Law),
+    /// Stiffness viscous.
+    StiffnessViscous(<StiffnessViscous as DampingModel>::Law),
+}
+
+impl DampingModel for AnyDamping {
+    type Law = AnyDampingLaw;
+    fn bind(&self, pair: &ContactPair) -> Result<AnyDampingLaw> {
+        Ok(match self {
+            AnyDamping::None(d) => AnyDampingLaw::None(d.bind(pair)?),
+            AnyDamping::HertzianViscous(d) => AnyDampingLaw::HertzianViscous(d.bind(pair)?),
+            AnyDamping::StiffnessViscous(d) => AnyDampingLaw::StiffnessViscous(d.bind(pair)?),
+        })
+    }
+}
+
+impl DampingLaw for AnyDampingLaw {
+    #[inline]
+    fn normal_force(&self, response: &NormalResponse, overlap: f64, approach_rate: f64) -> f64 {
+        match self {
+            AnyDampingLaw::None(d) => d.normal_force(response, overlap, approach_rate),
+            AnyDampingLaw::HertzianViscous(d) => d.normal_force(response, overlap, approach_rate),
+            AnyDampingLaw::StiffnessViscous(d) => d.normal_force(response, overlap, approach_rate),
+        }
+    }
+}
+
+/// The rolling-resistance model of a scene: off, or the elastic–plastic spring model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AnyRolling(pub Option<EpsdRolling>);
+
+/// [`AnyRolling`] bound to a pair.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AnyRollingLaw(Option<<EpsdRolling as RollingModel>::Law>);
+
+impl RollingModel for AnyRolling {
+    type Law = AnyRollingLaw;
+    fn bind(&self, pair: &ContactPair) -> Result<AnyRollingLaw> {
+        Ok(AnyRollingLaw(match &self.0 {
+            Some(r) => Some(r.bind(pair)?),
+            None => None,
+        }))
+    }
+}
+
+impl RollingLaw for AnyRollingLaw {
+    type State = EpsdRollingState;
+    #[inline]
+    fn update(&self, state: &mut EpsdRollingState, input: &RollingInput) -> RollingResponse {
+        match &self.0 {
+            Some(l) => l.update(state, input),
+            None => RollingResponse::default(),
+        }
+    }
+}
+
+/// The composed model of a scene (normal + Mindlin with the scene's `μ`, 0 = frictionless +
+/// damping) and its rolling model.
+pub fn scene_model(
+    spec: &ContactSpec,
+) -> Result<(ContactModel<AnyNormal, Mindlin, AnyDamping>, AnyRolling)> {
+    let normal = match spec.normal {
+        NormalSpec::Mdr {
+            critical_line_load,
+            hardening_ratio,
+        } => AnyNormal::Mdr(MdrElastoPlastic::new(critical_line_load, hardening_ratio)?),
+        NormalSpec::Hertz => AnyNormal::Hertz(Hertz),
+        NormalSpec::Thornton { yield_pressure } => {
+            AnyNormal::Thornton(Thornton::new(yield_pressure)?)
+        }
+    };
+    let damping = match spec.damping {
+        DampingSpec::None => AnyDamping::None(NoDamping),
+        DampingSpec::HertzianViscous(g) => AnyDamping::HertzianViscous(HertzianViscous::new(g)?),
+        DampingSpec::StiffnessViscous(e) => AnyDamping::StiffnessViscous(StiffnessViscous::new(e)?),
+    };
+    let rolling = if spec.rolling_friction > 0.0 {
+        AnyRolling(Some(EpsdRolling::new(spec.rolling_friction)?))
+    } else {
+        AnyRolling(None)
+    };
+    let model = ContactModel::new(normal)
+        .with_tangential(Mindlin::new(spec.friction)?)
+        .with_damping(damping);
+    Ok((model, rolling))
+}

@@ -1,0 +1,99 @@
+//! The energy books: where the energy of a run is at one time, and the CSV time series.
+//!
+//! With no external work the sum `kinetic + rotational + gravitational + elastic + plastic +
+//! friction + damping` is constant up to the time-integration error; a kinematic wall's work on
+//! the particles is booked in `wall_work_j` and subtracted, so `balance_j` stays constant then too.
+
+use super::atomic::write_atomic;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// One row of the energy books (J, except time and counts).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct EnergyRow {
+    /// Simulated time (s).
+    pub time_s: f64,
+    /// `Σ m v² / 2` (J).
+    pub kinetic_translational_j: f64,
+    /// `Σ ω·Iω / 2` (J).
+    pub kinetic_rotational_j: f64,
+    /// `−Σ m g·x` (J).
+    pub gravitational_j: f64,
+    /// Elastic energy stored in the normal direction of the touching contacts (J).
+    pub elastic_normal_j: f64,
+    /// Elastic energy stored in the tangential springs of the touching contacts (J).
+    pub elastic_tangential_j: f64,
+    /// Work dissipated by plasticity since the start (J).
+    pub plastic_j: f64,
+    /// Work dissipated by friction since the start (J).
+    pub friction_j: f64,
+    /// Work dissipated by damping since the start (J).
+    pub damping_j: f64,
+    /// Work done on the particles by moving walls since the start (J).
+    pub wall_work_j: f64,
+    /// Sum of the books minus the wall work (J): constant in an exact integration.
+    pub balance_j: f64,
+    /// Touching contacts.
+    pub contacts: u64,
+}
+
+impl EnergyRow {
+    /// Fill `balance_j` from the other books.
+    pub fn with_balance(mut self) -> Self {
+        self.balance_j = self.kinetic_translational_j
+            + self.kinetic_rotational_j
+            + self.gravitational_j
+            + self.elastic_normal_j
+            + self.elastic_tangential_j
+            + self.plastic_j
+            + self.friction_j
+            + self.damping_j
+            - self.wall_work_j;
+        self
+    }
+
+    /// Total kinetic energy (J).
+    pub fn kinetic(&self) -> f64 {
+        self.kinetic_translational_j + self.kinetic_rotational_j
+    }
+}
+
+/// Write the rows as CSV atomically.
+pub fn write_csv(path: &Path, rows: &[EnergyRow]) -> std::io::Result<()> {
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    for row in rows {
+        writer.serialize(row).map_err(std::io::Error::other)?;
+    }
+    if rows.is_empty() {
+        writer
+            .write_record([
+                "time_s",
+                "kinetic_translational_j",
+                "kinetic_rotational_j",
+                "gravitational_j",
+                "elastic_normal_j",
+                "elastic_tangential_j",
+                "plastic_j",
+                "friction_j",
+                "damping_j",
+                "wall_work_j",
+                "balance_j",
+                "contacts",
+            ])
+            .map_err(std::io::Error::other)?;
+    }
+    let bytes = writer
+        .into_inner()
+        .map_err(|e| std::io::Error::other(e.to_string()))?;
+    write_atomic(path, &bytes)
+}
+
+/// Read rows written by [`write_csv`].
+pub fn read_csv(path: &Path) -> Result<Vec<EnergyRow>, String> {
+    let mut reader =
+        csv::Reader::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    reader
+        .deserialize()
+        .collect::<Result<Vec<EnergyRow>, _>>()
+        .map_err(|e| format!("{}: {e}", path.display()))
+}

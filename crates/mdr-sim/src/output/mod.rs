@@ -1,0 +1,7 @@
+//! Everything a run writes: VTK frames and their ParaView collection ([`vtk`]), the energy-book
+//! CSV ([`energy`]), SVG plots ([`plot`]); every file through [`atomic::write_atomic`].
+
+pub mod atomic;
+pub mod energy;
+pub mod plot;
+pub mod vtk;

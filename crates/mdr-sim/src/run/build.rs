@@ -1,0 +1,215 @@
+//! Building the rapier world of a scene: materials, wall bodies (fixed or kinematic) with their
+//! solid pieces, then the spheres, in the scene's order, so the same scene always gets the same
+//! handles (which the checkpoints rely on).
+
+use crate::error::SimError;
+use crate::laws::{scene_model, AnyDamping, AnyNormal, AnyRolling};
+use crate::scene::{CouplingMode, NormalSpec, Scene};
+use crate::walls::WallPiece;
+use mdr_contact::normal::MdrElastoPlastic;
+use mdr_contact::tangential::Mindlin;
+use mdr_rapier::convert::to_glam;
+use mdr_rapier::particles::{MaterialHandle, SphereBuilder};
+use mdr_rapier::{ForceModeStepper, RestitutionHooks};
+use rapier3d_f64::parry::shape::TriMeshFlags;
+use rapier3d_f64::prelude::*;
+
+/// The force-mode stepper type every scene uses.
+pub type SceneStepper = ForceModeStepper<AnyNormal, Mindlin, AnyDamping, AnyRolling>;
+
+/// The coupling of a built scene.
+pub enum Coupling {
+    /// Force mode.
+    Force(Box<SceneStepper>),
+    /// Restitution mode.
+    Restitution(Box<RestitutionHooks>),
+}
+
+/// A built scene.
+pub struct Built {
+    /// The rapier world.
+    pub world: PhysicsWorld,
+    /// The coupling.
+    pub coupling: Coupling,
+    /// Body of particle `i`.
+    pub particle_bodies: Vec<RigidBodyHandle>,
+    /// Collider of particle `i`.
+    pub particle_colliders: Vec<ColliderHandle>,
+    /// Body of wall `j`.
+    pub wall_bodies: Vec<RigidBodyHandle>,
+    /// Wall index of each wall collider, by collider arena index (`usize::MAX` when not a wall).
+    pub wall_of_collider: Vec<usize>,
+    /// Particle index of each particle collider, by collider arena index.
+    pub particle_of_collider: Vec<usize>,
+}
+
+fn piece_collider(piece: &WallPiece) -> Result<ColliderBuilder, SimError> {
+    Ok(match piece {
+        WallPiece::HalfSpace { point, normal } => {
+            ColliderBuilder::new(SharedShape::halfspace(to_glam(normal)))
+                .translation(to_glam(point))
+        }
+        WallPiece::Cuboid {
+            center,
+            rotation,
+            half_extents,
+        } => {
+            let q = rotation.quaternion();
+            let rot = rapier3d_f64::math::Rotation::from_xyzw(q.i, q.j, q.k, q.w);
+            ColliderBuilder::cuboid(half_extents.x, half_extents.y, half_extents.z)
+                .position(Pose::from_parts(to_glam(center), rot))
+        }
+        WallPiece::ConvexHull { points } => {
+            let pts: Vec<Vector> = points.iter().map(to_glam).collect();
+            ColliderBuilder::convex_hull(&pts).ok_or_else(|| {
+                SimError::Build("a wall piece's convex hull is degenerate".to_owned())
+            })?
+        }
+        WallPiece::TriMesh { vertices, indices } => ColliderBuilder::trimesh_with_flags(
+            vertices.iter().map(to_glam).collect(),
+            indices.clone(),
+            TriMeshFlags::ORIENTED | TriMeshFlags::MERGE_DUPLICATE_VERTICES,
+        )
+        .map_err(|e| SimError::Build(format!("triangle mesh: {e}")))?,
+    })
+}
+
+/// Prediction distance (m): twice the largest relative displacement in one step, and at least a
+/// tenth of the smallest radius.
+fn prediction_distance(scene: &Scene) -> f64 {
+    let r_min = scene
+        .particles
+        .iter()
+        .map(|p| p.radius)
+        .fold(f64::INFINITY, f64::min);
+    (4.0 * scene.max_speed * scene.dt).max(0.1 * r_min)
+}
+
+/// Build the world of `scene`.
+pub fn build(scene: &Scene) -> Result<Built, SimError> {
+    let mut world = PhysicsWorld {
+        gravity: to_glam(&scene.gravity),
+        ..PhysicsWorld::default()
+    };
+    let mean_diameter =
+        2.0 * scene.particles.iter().map(|p| p.radius).sum::<f64>() / scene.particles.len() as f64;
+    world.integration_parameters.length_unit = mean_diameter;
+
+    enum Inserter {
+        Force(Box<SceneStepper>),
+        Restitution(Box<RestitutionHooks>),
+    }
+    let mut inserter = match scene.coupling {
+        CouplingMode::Force => {
+            let (model, rolling) = scene_model(&scene.contact)?;
+            Inserter::Force(Box::new(ForceModeStepper::new(model).with_rolling(rolling)))
+        }
+        CouplingMode::Restitution => {
+            let NormalSpec::Mdr {
+                critical_line_load,
+                hardening_ratio,
+            } = scene.contact.normal
+            else {
+                return Err(SimError::Build(
+                    "restitution mode needs normal = \"mdr\"".to_owned(),
+                ));
+            };
+            let model = MdrElastoPlastic::new(critical_line_load, hardening_ratio)?;
+            Inserter::Restitution(Box::new(RestitutionHooks::new(
+                model,
+                scene.contact.friction,
+            )?))
+        }
+    };
+    let materials: Vec<MaterialHandle> = scene
+        .materials
+        .iter()
+        .map(|(_, m)| match &mut inserter {
+            Inserter::Force(s) => s.particles_mut().insert_material(*m),
+            Inserter::Restitution(h) => h.particles_mut().insert_material(*m),
+        })
+        .collect();
+
+    let mut wall_bodies = Vec::new();
+    let mut wall_of_collider = Vec::new();
+    for (j, wall) in scene.walls.iter().enumerate() {
+        let body = match wall.angular_velocity {
+            Some(omega) => RigidBodyBuilder::kinematic_velocity_based()
+                .translation(to_glam(&wall.origin))
+                .angvel(to_glam(&omega))
+                .can_sleep(false),
+            None => RigidBodyBuilder::fixed().translation(to_glam(&wall.origin)),
+        };
+        let handle = world.insert_body(body);
+        wall_bodies.push(handle);
+        for piece in &wall.pieces {
+            let collider = piece_collider(piece)?;
+            let material = materials[wall.material];
+            let c = match &mut inserter {
+                Inserter::Force(s) => {
+                    s.insert_surface(&mut world, collider, Some(handle), material)?
+                }
+                Inserter::Restitution(h) => {
+                    h.insert_surface(&mut world, collider, Some(handle), material)?
+                }
+            };
+            let i = c.into_raw_parts().0 as usize;
+            if wall_of_collider.len() <= i {
+                wall_of_collider.resize(i + 1, usize::MAX);
+            }
+            wall_of_collider[i] = j;
+        }
+    }
+
+    let mut particle_bodies = Vec::with_capacity(scene.particles.len());
+    let mut particle_colliders = Vec::with_capacity(scene.particles.len());
+    let mut particle_of_collider = Vec::new();
+    for (k, p) in scene.particles.iter().enumerate() {
+        let sphere = SphereBuilder::new(p.radius, materials[p.material])
+            .translation(to_glam(&p.position))
+            .linvel(to_glam(&p.velocity));
+        let (b, c) = match &mut inserter {
+            Inserter::Force(s) => s.insert_sphere(&mut world, sphere)?,
+            Inserter::Restitution(h) => h.insert_sphere(&mut world, sphere)?,
+        };
+        particle_bodies.push(b);
+        particle_colliders.push(c);
+        let i = c.into_raw_parts().0 as usize;
+        if particle_of_collider.len() <= i {
+            particle_of_collider.resize(i + 1, usize::MAX);
+        }
+        particle_of_collider[i] = k;
+    }
+    if wall_of_collider.len() < particle_of_collider.len() {
+        wall_of_collider.resize(particle_of_collider.len(), usize::MAX);
+    }
+
+    let coupling = match inserter {
+        Inserter::Force(s) => {
+            s.configure(
+                &mut world.integration_parameters,
+                scene.dt,
+                prediction_distance(scene),
+            )?;
+            Coupling::Force(s)
+        }
+        Inserter::Restitution(mut h) => {
+            world.integration_parameters.dt = scene.dt;
+            world.integration_parameters.max_ccd_substeps = 0;
+            world.integration_parameters.normalized_max_linear_velocity = f64::MAX;
+            world.integration_parameters.normalized_prediction_distance =
+                prediction_distance(scene) / world.integration_parameters.length_unit;
+            h.set_time_step(scene.dt)?;
+            Coupling::Restitution(h)
+        }
+    };
+    Ok(Built {
+        world,
+        coupling,
+        particle_bodies,
+        particle_colliders,
+        wall_bodies,
+        wall_of_collider,
+        particle_of_collider,
+    })
+}

@@ -1,0 +1,636 @@
+//! The run loop: build the world, step it with the coupling, keep the energy books, write
+//! frames, energy CSV, plots and checkpoints, and resume from a checkpoint bit-identically.
+//!
+//! One step `k` (force mode):
+//! 1. a checkpoint, if one is due (the state holds `x_k, v_k` and the histories up to `x_{k−1}`);
+//! 2. the plugin's `compute_forces` at `x_k, v_k` (the law updates every touching pair's history);
+//! 3. the books take the work increments of every contact, and the samples (energy row, frame,
+//!    headline) are taken here, where positions, velocities and contact states all describe `x_k`;
+//! 4. `apply_forces` and `PhysicsWorld::step`: `v_{k+1}`, `x_{k+1}` (symplectic Euler).
+
+pub mod build;
+mod state;
+
+pub use state::{BodyRecord, CheckpointData};
+
+use crate::checkpoint::{self, CheckpointError};
+use crate::error::{output, SimError};
+use crate::headline::{HeadlineReport, HeadlineSample, ParticleView, Tracker};
+use crate::output::energy::{self, EnergyRow};
+use crate::output::plot;
+use crate::output::vtk::{self, CollectionEntry, ContactFrame, ParticleFrame};
+use crate::scene::Scene;
+use build::{build, Built, Coupling};
+use indicatif::{ProgressBar, ProgressStyle};
+use mdr_contact::normal::NormalLaw;
+use mdr_rapier::convert::to_na;
+use nalgebra::Vector3;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use state::Books;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// How to run a scene.
+#[derive(Debug, Clone, Default)]
+pub struct RunOptions {
+    /// Output directory (frames, CSV, plots, checkpoints).
+    pub out_dir: PathBuf,
+    /// No progress bar, no summary on stderr.
+    pub quiet: bool,
+    /// Continue from this checkpoint.
+    pub resume: Option<PathBuf>,
+    /// Stop at this step with a checkpoint (batch jobs, tests).
+    pub stop_at_step: Option<u64>,
+    /// Set from outside (Ctrl-C) to stop at the next step with a checkpoint.
+    pub interrupt: Option<Arc<AtomicBool>>,
+    /// Skip VTK frames (tests that look at the books only).
+    pub no_frames: bool,
+}
+
+impl RunOptions {
+    /// Options writing into `out_dir`.
+    pub fn new(out_dir: impl Into<PathBuf>) -> Self {
+        Self {
+            out_dir: out_dir.into(),
+            ..Self::default()
+        }
+    }
+
+    /// Quiet or not.
+    pub fn quiet(mut self, quiet: bool) -> Self {
+        self.quiet = quiet;
+        self
+    }
+
+    /// Resume from a checkpoint.
+    pub fn resume(mut self, checkpoint: Option<PathBuf>) -> Self {
+        self.resume = checkpoint;
+        self
+    }
+
+    /// Stop at a step with a checkpoint.
+    pub fn stop_at_step(mut self, step: Option<u64>) -> Self {
+        self.stop_at_step = step;
+        self
+    }
+
+    /// Flag that interrupts the run.
+    pub fn interrupt(mut self, flag: Arc<AtomicBool>) -> Self {
+        self.interrupt = Some(flag);
+        self
+    }
+
+    /// Skip the VTK frames.
+    pub fn no_frames(mut self, yes: bool) -> Self {
+        self.no_frames = yes;
+        self
+    }
+}
+
+/// What a run did.
+#[derive(Debug, Clone)]
+pub struct RunSummary {
+    /// Last step reached.
+    pub step: u64,
+    /// Simulated time reached (s).
+    pub time: f64,
+    /// Whether the run stopped early (interrupt or `stop_at_step`).
+    pub stopped_early: bool,
+    /// The last checkpoint written.
+    pub checkpoint: Option<PathBuf>,
+    /// The energy books.
+    pub energy: Vec<EnergyRow>,
+    /// The headline result.
+    pub headline: HeadlineReport,
+    /// Final state of every particle.
+    pub particles: Vec<BodyRecord>,
+    /// Wall-clock seconds spent stepping.
+    pub wall_seconds: f64,
+    /// Files written.
+    pub files: Vec<PathBuf>,
+}
+
+/// A scene being run.
+pub(crate) struct Sim<'a> {
+    scene: &'a Scene,
+    built: Built,
+    step: u64,
+    books: Books,
+    rng: ChaCha8Rng,
+    tracker: Tracker,
+    collection: Vec<CollectionEntry>,
+    energy: Vec<EnergyRow>,
+    samples: Vec<HeadlineSample>,
+    checkpoints: Vec<PathBuf>,
+    /// Scratch: per-particle state for the trackers.
+    view: ViewBuffers,
+}
+
+#[derive(Default)]
+struct ViewBuffers {
+    position: Vec<Vector3<f64>>,
+    velocity: Vec<Vector3<f64>>,
+    radius: Vec<f64>,
+    mass: Vec<f64>,
+    contacts: Vec<u32>,
+}
+
+fn every(interval: f64, dt: f64) -> u64 {
+    ((interval / dt).round() as u64).max(1)
+}
+
+/// Run `scene` (from the start, or from `options.resume`).
+pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunSummary, SimError> {
+    let mut sim = match &options.resume {
+        Some(path) => Sim::resume(scene, path)?,
+        None => Sim::new(scene)?,
+    };
+    sim.run(options)
+}
+
+impl<'a> Sim<'a> {
+    fn new(scene: &'a Scene) -> Result<Self, SimError> {
+        let mut built = build(scene)?;
+        // Candidate pairs for the first step (a restart does the same, so both see the same
+        // touching pairs).
+        built.world.detect_collisions(&(), &());
+        // The placement used its own generator; the run's generator continues the seed's
+        // stream after it (kept in the checkpoint for any later random input).
+        let rng = ChaCha8Rng::seed_from_u64(scene.seed.wrapping_add(1));
+        Ok(Self {
+            scene,
+            books: Books::new(scene.particles.len()),
+            built,
+            step: 0,
+            rng,
+            tracker: Tracker::new(scene),
+            collection: Vec::new(),
+            energy: Vec::new(),
+            samples: Vec::new(),
+            checkpoints: Vec::new(),
+            view: ViewBuffers::default(),
+        })
+    }
+
+    fn resume(scene: &'a Scene, path: &Path) -> Result<Self, SimError> {
+        let data: CheckpointData = checkpoint::read(path)?;
+        let incompatible = |reason: String| CheckpointError::Incompatible {
+            path: path.to_path_buf(),
+            reason,
+        };
+        let fingerprint = state::fingerprint(scene);
+        if data.fingerprint != fingerprint {
+            return Err(incompatible(format!(
+                "it was written for scene `{}` with fingerprint {:08x}; this scene (`{}`) has {:08x} \
+                 (only duration_s and the output/checkpoint/energy intervals may change on a restart)",
+                data.scene_name, data.fingerprint, scene.name, fingerprint
+            ))
+            .into());
+        }
+        if data.dt_bits != scene.dt.to_bits() {
+            return Err(incompatible(format!(
+                "time step {} s differs from the scene's {} s",
+                f64::from_bits(data.dt_bits),
+                scene.dt
+            ))
+            .into());
+        }
+        let mut sim = Self::new(scene)?;
+        let n_bodies = sim.built.particle_bodies.len() + sim.built.wall_bodies.len();
+        if data.bodies.len() != n_bodies
+            || data.books.particle_plastic.len() != scene.particles.len()
+        {
+            return Err(incompatible(format!(
+                "it holds {} bodies, the scene builds {n_bodies}",
+                data.bodies.len()
+            ))
+            .into());
+        }
+        // Everything is checked: now apply it.
+        let handles: Vec<_> = sim
+            .built
+            .particle_bodies
+            .iter()
+            .chain(&sim.built.wall_bodies)
+            .copied()
+            .collect();
+        for (h, record) in handles.iter().zip(&data.bodies) {
+            record.apply(&mut sim.built.world.bodies[*h]);
+        }
+        sim.built.world.detect_collisions(&(), &());
+        sim.restore_contacts(&data)?;
+        sim.step = data.step;
+        sim.books = data.books;
+        sim.rng = data.rng.restore();
+        sim.tracker = data.tracker;
+        sim.collection = data.collection;
+        sim.energy = data.energy;
+        sim.samples = data.samples;
+        Ok(sim)
+    }
+
+    /// Put the checkpoint's per-contact histories back. Force mode: the plugin binds the laws of
+    /// the pairs touching now (one force pass, whose forces are discarded), then every entry gets
+    /// the checkpoint's history, or a fresh one for a pair that was not touching at the checkpoint.
+    fn restore_contacts(&mut self, data: &CheckpointData) -> Result<(), SimError> {
+        let dt = self.scene.dt;
+        let world = &mut self.built.world;
+        match &mut self.built.coupling {
+            Coupling::Force(stepper) => {
+                stepper.compute_forces(&world.bodies, &world.colliders, &world.narrow_phase, dt)?;
+                // Clears the plugin's force accumulators; the forces are reset before every step.
+                stepper.apply_forces(&mut world.bodies);
+                let records = &data.contacts;
+                for entry in stepper.contacts_mut().entries_mut() {
+                    match records.binary_search_by_key(&entry.key.0, |r| r.key) {
+                        Ok(i) => {
+                            entry.history.contact = records[i].contact.clone();
+                            entry.history.rolling = records[i].rolling;
+                        }
+                        Err(_) => entry.history = Default::default(),
+                    }
+                }
+            }
+            Coupling::Restitution(hooks) => {
+                let history = hooks.history();
+                for (key, max_overlap) in &data.impacts {
+                    let slot = history.slot_for(mdr_rapier::PairKey(*key));
+                    history.commit(slot, *max_overlap);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn time(&self) -> f64 {
+        self.step as f64 * self.scene.dt
+    }
+
+    fn run(&mut self, options: &RunOptions) -> Result<RunSummary, SimError> {
+        let scene = self.scene;
+        let out = &options.out_dir;
+        std::fs::create_dir_all(out).map_err(output(out))?;
+        let total = scene.total_steps();
+        let frame_every = every(scene.output_interval, scene.dt);
+        let energy_every = every(scene.energy_interval, scene.dt);
+        let checkpoint_every = scene.checkpoint_interval.map(|c| every(c, scene.dt));
+        let start_step = self.step;
+        let progress = progress_bar(options.quiet, total, start_step);
+        let started = Instant::now();
+        let mut last_tick = Instant::now();
+        let mut files = Vec::new();
+        let mut stopped_early = false;
+        let n = scene.particles.len() as f64;
+        loop {
+            let k = self.step;
+            let interrupted = options
+                .interrupt
+                .as_ref()
+                .is_some_and(|f| f.load(Ordering::SeqCst));
+            let stop_here = options.stop_at_step == Some(k) && k < total;
+            let due = checkpoint_every.is_some_and(|c| k % c == 0) && k != start_step;
+            if (due && k < total) || interrupted || stop_here {
+                self.write_checkpoint(out)?;
+            }
+            if interrupted || stop_here {
+                stopped_early = true;
+                break;
+            }
+            self.compute_forces()?;
+            let last = k >= total;
+            let sampling = k % energy_every == 0 || k % frame_every == 0 || last;
+            if sampling || self.tracker.needs_every_step() {
+                self.gather_view();
+                let view = ParticleView {
+                    position: &self.view.position,
+                    velocity: &self.view.velocity,
+                    radius: &self.view.radius,
+                    mass: &self.view.mass,
+                    contacts: &self.view.contacts,
+                };
+                self.tracker.on_step(scene, &view);
+            }
+            if k % energy_every == 0 || last {
+                let row = self.energy_row();
+                self.energy.push(row);
+            }
+            if k % frame_every == 0 || last {
+                self.check_state()?;
+                let sample = self.tracker.sample(scene, self.time(), &self.view_ref());
+                self.samples.push(sample);
+                if !options.no_frames {
+                    self.write_frame(out)?;
+                }
+                self.write_series(out, &mut files, false)?;
+            }
+            if last {
+                break;
+            }
+            self.advance()?;
+            if last_tick.elapsed() > Duration::from_millis(250) {
+                last_tick = Instant::now();
+                let done = (self.step - start_step) as f64;
+                let rate = done * n / started.elapsed().as_secs_f64().max(1e-9);
+                progress.set_position(self.step);
+                progress.set_message(format!(
+                    "t = {:.4e} s of {:.4e} s, {:.3e} particle-steps/s",
+                    self.time(),
+                    scene.duration,
+                    rate
+                ));
+            }
+        }
+        progress.finish_and_clear();
+        if !stopped_early {
+            self.write_checkpoint(out)?;
+        }
+        self.write_series(out, &mut files, true)?;
+        let headline = self.tracker.report(scene, &self.samples);
+        if !headline.text.is_empty() {
+            let path = out.join(format!("{}_headline.toml", scene.name));
+            let text = toml::to_string(&headline).unwrap_or_default();
+            crate::output::atomic::write_atomic(&path, text.as_bytes()).map_err(output(&path))?;
+            files.push(path);
+        }
+        files.push(out.join(format!("{}.pvd", scene.name)));
+        Ok(RunSummary {
+            step: self.step,
+            time: self.time(),
+            stopped_early,
+            checkpoint: self.checkpoints.last().cloned(),
+            energy: self.energy.clone(),
+            headline,
+            particles: self
+                .built
+                .particle_bodies
+                .iter()
+                .map(|h| BodyRecord::of(&self.built.world.bodies[*h]))
+                .collect(),
+            wall_seconds: started.elapsed().as_secs_f64(),
+            files,
+        })
+    }
+
+    fn compute_forces(&mut self) -> Result<(), SimError> {
+        let dt = self.scene.dt;
+        let world = &self.built.world;
+        if let Coupling::Force(stepper) = &mut self.built.coupling {
+            stepper.compute_forces(&world.bodies, &world.colliders, &world.narrow_phase, dt)?;
+            self.books.take(
+                stepper,
+                &world.bodies,
+                &self.built.particle_of_collider,
+                &self.built.wall_of_collider,
+                dt,
+            );
+        }
+        Ok(())
+    }
+
+    fn advance(&mut self) -> Result<(), SimError> {
+        let world = &mut self.built.world;
+        match &mut self.built.coupling {
+            Coupling::Force(stepper) => {
+                stepper.apply_forces(&mut world.bodies);
+                world.step();
+            }
+            Coupling::Restitution(hooks) => hooks.step(world)?,
+        }
+        self.step += 1;
+        Ok(())
+    }
+
+    fn gather_view(&mut self) {
+        let v = &mut self.view;
+        let bodies = &self.built.world.bodies;
+        let n = self.built.particle_bodies.len();
+        v.position.clear();
+        v.velocity.clear();
+        v.mass.clear();
+        v.radius.clear();
+        for (h, p) in self.built.particle_bodies.iter().zip(&self.scene.particles) {
+            let b = &bodies[*h];
+            v.position.push(to_na(b.translation()));
+            v.velocity.push(to_na(b.linvel()));
+            v.mass.push(b.mass());
+            v.radius.push(p.radius);
+        }
+        v.contacts.clear();
+        v.contacts.resize(n, 0);
+        if let Coupling::Force(stepper) = &self.built.coupling {
+            for e in stepper.contacts().entries() {
+                let count = |c: rapier3d_f64::prelude::ColliderHandle, v: &mut Vec<u32>| {
+                    if let Some(&i) = self
+                        .built
+                        .particle_of_collider
+                        .get(c.into_raw_parts().0 as usize)
+                    {
+                        if i != usize::MAX {
+                            v[i] += 1;
+                        }
+                    }
+                };
+                count(e.collider1, &mut v.contacts);
+                count(e.collider2, &mut v.contacts);
+            }
+        }
+    }
+
+    fn view_ref(&self) -> ParticleView<'_> {
+        ParticleView {
+            position: &self.view.position,
+            velocity: &self.view.velocity,
+            radius: &self.view.radius,
+            mass: &self.view.mass,
+            contacts: &self.view.contacts,
+        }
+    }
+
+    /// A NaN stops the run with a clear message.
+    fn check_state(&self) -> Result<(), SimError> {
+        for (i, p) in self.view.position.iter().enumerate() {
+            let v = self.view.velocity[i];
+            if !(p.iter().all(|c| c.is_finite()) && v.iter().all(|c| c.is_finite())) {
+                return Err(SimError::Diverged {
+                    time: self.time(),
+                    step: self.step,
+                    reason: format!(
+                        "particle {i} has a non-finite position or velocity: reduce dt_s"
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    fn energy_row(&self) -> EnergyRow {
+        let g = self.scene.gravity;
+        let mut row = EnergyRow {
+            time_s: self.time(),
+            ..EnergyRow::default()
+        };
+        let bodies = &self.built.world.bodies;
+        for (h, p) in self.built.particle_bodies.iter().zip(&self.scene.particles) {
+            let b = &bodies[*h];
+            let m = b.mass();
+            let v = to_na(b.linvel());
+            let w = to_na(b.angvel());
+            row.kinetic_translational_j += 0.5 * m * v.norm_squared();
+            // Solid sphere: I = (2/5) m r².
+            row.kinetic_rotational_j += 0.5 * 0.4 * m * p.radius * p.radius * w.norm_squared();
+            row.gravitational_j -= m * g.dot(&to_na(b.translation()));
+        }
+        if let Coupling::Force(stepper) = &self.built.coupling {
+            for e in stepper.contacts().entries() {
+                let report = e.law.report(&e.history.contact, e.contact.overlap);
+                row.elastic_normal_j += report.normal_elastic_energy;
+                let t = &e.history.contact.tangential;
+                row.elastic_tangential_j += 0.5
+                    * e.law.tangential.stiffness(t.contact_radius)
+                    * t.displacement.norm_squared();
+            }
+            row.contacts = stepper.contacts().len() as u64;
+        }
+        row.plastic_j = self.books.plastic;
+        row.friction_j = self.books.friction;
+        row.damping_j = self.books.damping;
+        row.wall_work_j = self.books.wall_work;
+        row.with_balance()
+    }
+
+    fn write_frame(&mut self, out: &Path) -> Result<(), SimError> {
+        let scene = self.scene;
+        let index = self.collection.iter().filter(|e| e.part == 0).count();
+        let name = PathBuf::from("frames").join(format!("{}_{index:06}.vtp", scene.name));
+        let bodies = &self.built.world.bodies;
+        let mut frame = ParticleFrame::default();
+        for (i, h) in self.built.particle_bodies.iter().enumerate() {
+            let b = &bodies[*h];
+            frame.position.push(to_na(b.translation()).into());
+            frame.radius.push(scene.particles[i].radius);
+            frame.velocity.push(to_na(b.linvel()).into());
+            frame.angular_velocity.push(to_na(b.angvel()).into());
+            frame.contacts.push(self.view.contacts[i]);
+            frame.plastic_work.push(self.books.particle_plastic[i]);
+            frame.id.push(i as u32);
+        }
+        let path = out.join(&name);
+        vtk::write_particles(&path, &frame).map_err(output(&path))?;
+        self.collection.push(CollectionEntry {
+            time: self.time(),
+            file: name,
+            part: 0,
+        });
+        if scene.contact_network {
+            if let Coupling::Force(stepper) = &self.built.coupling {
+                let mut net = ContactFrame::default();
+                for e in stepper.contacts().entries() {
+                    let c1 = to_na(bodies[e.body1].translation());
+                    let to = match self
+                        .built
+                        .particle_of_collider
+                        .get(e.collider2.into_raw_parts().0 as usize)
+                    {
+                        Some(&j) if j != usize::MAX => {
+                            to_na(bodies[self.built.particle_bodies[j]].translation())
+                        }
+                        _ => e.contact.point,
+                    };
+                    net.from.push(c1.into());
+                    net.to.push(to.into());
+                    net.force.push(e.wrench.force.into());
+                    net.normal_force.push(e.wrench.force.dot(&e.contact.normal));
+                    net.overlap.push(e.contact.overlap);
+                    net.plastic_indentation
+                        .push(e.law.normal.residual_overlap(&e.history.contact.normal));
+                }
+                let cname =
+                    PathBuf::from("frames").join(format!("{}_contacts_{index:06}.vtp", scene.name));
+                let cpath = out.join(&cname);
+                vtk::write_contacts(&cpath, &net).map_err(output(&cpath))?;
+                self.collection.push(CollectionEntry {
+                    time: self.time(),
+                    file: cname,
+                    part: 1,
+                });
+            }
+        }
+        let pvd = out.join(format!("{}.pvd", scene.name));
+        vtk::write_collection(&pvd, &self.collection).map_err(output(&pvd))
+    }
+
+    /// Energy CSV at every frame; plots at the end.
+    fn write_series(
+        &self,
+        out: &Path,
+        files: &mut Vec<PathBuf>,
+        plots: bool,
+    ) -> Result<(), SimError> {
+        let name = &self.scene.name;
+        let csv = out.join(format!("{name}_energy.csv"));
+        energy::write_csv(&csv, &self.energy).map_err(output(&csv))?;
+        if !plots {
+            return Ok(());
+        }
+        files.push(csv);
+        let svg = out.join(format!("{name}_energy.svg"));
+        plot::write_energy_plot(&svg, &format!("{name}: energy books"), &self.energy)
+            .map_err(output(&svg))?;
+        files.push(svg);
+        let names = self.tracker.series_names();
+        if !names.is_empty() && !self.samples.is_empty() {
+            let series: Vec<(&str, Vec<(f64, f64)>)> = names
+                .iter()
+                .enumerate()
+                .map(|(i, n)| {
+                    (
+                        *n,
+                        self.samples.iter().map(|s| (s.time, s.values[i])).collect(),
+                    )
+                })
+                .collect();
+            let path = out.join(format!("{name}_headline.svg"));
+            plot::write_lines(
+                &path,
+                &format!("{name}: headline"),
+                "time (s)",
+                "value",
+                &series,
+            )
+            .map_err(output(&path))?;
+            files.push(path);
+        }
+        Ok(())
+    }
+
+    fn write_checkpoint(&mut self, out: &Path) -> Result<(), SimError> {
+        let data = CheckpointData::capture(self);
+        let path = out
+            .join("checkpoints")
+            .join(format!("{}_step{:012}.mdrck", self.scene.name, self.step));
+        checkpoint::write(&path, &data)?;
+        self.checkpoints.push(path);
+        // Keep the last three.
+        while self.checkpoints.len() > 3 {
+            let old = self.checkpoints.remove(0);
+            let _ = std::fs::remove_file(old);
+        }
+        Ok(())
+    }
+}
+
+fn progress_bar(quiet: bool, total: u64, start: u64) -> ProgressBar {
+    if quiet {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(total);
+    bar.set_style(
+        ProgressStyle::with_template("{bar:30.cyan/blue} {percent:>3}% {msg} ETA {eta}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar.set_position(start);
+    bar
+}

@@ -1,0 +1,288 @@
+//! What a run carries from step to step besides rapier's bodies: the energy books, and the
+//! checkpoint payload that holds everything needed to continue bit-identically.
+
+use super::build::{Coupling, SceneStepper};
+use super::Sim;
+use crate::headline::{HeadlineSample, Tracker};
+use crate::laws::AnyNormalState;
+use crate::output::energy::EnergyRow;
+use crate::output::vtk::CollectionEntry;
+use crate::scene::Scene;
+use mdr_contact::model::ContactState;
+use mdr_contact::rolling::EpsdRollingState;
+use mdr_contact::tangential::MindlinState;
+use mdr_rapier::convert::{to_glam, to_na};
+use nalgebra::Vector3;
+use rand_chacha::ChaCha8Rng;
+use rapier3d_f64::prelude::*;
+use serde::{Deserialize, Serialize};
+
+/// Running totals of the dissipated work and of the work of moving walls. A pair's history (and
+/// its work books) is dropped when the pair separates, so the totals take each contact's
+/// increments step by step.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct Books {
+    /// Plastic work since the start (J).
+    pub plastic: f64,
+    /// Friction work since the start (J).
+    pub friction: f64,
+    /// Damping work since the start (J).
+    pub damping: f64,
+    /// Work of kinematic walls on the particles since the start (J).
+    pub wall_work: f64,
+    /// `(pair key, plastic, friction, damping)` of every touching pair at the last update,
+    /// sorted by key.
+    pub last: Vec<(u64, f64, f64, f64)>,
+    /// Plastic work per particle (J).
+    pub particle_plastic: Vec<f64>,
+}
+
+impl Books {
+    pub(crate) fn new(particles: usize) -> Self {
+        Self {
+            particle_plastic: vec![0.0; particles],
+            ..Self::default()
+        }
+    }
+
+    /// Take the increments of the step whose forces were just computed.
+    pub(crate) fn take(
+        &mut self,
+        stepper: &SceneStepper,
+        bodies: &RigidBodySet,
+        particle_of_collider: &[usize],
+        wall_of_collider: &[usize],
+        dt: f64,
+    ) {
+        let entries = stepper.contacts().entries();
+        let mut next = Vec::with_capacity(entries.len());
+        let mut j = 0;
+        let particle = |c: ColliderHandle| {
+            particle_of_collider
+                .get(c.into_raw_parts().0 as usize)
+                .copied()
+                .filter(|&i| i != usize::MAX)
+        };
+        for e in entries {
+            let key = e.key.0;
+            while j < self.last.len() && self.last[j].0 < key {
+                j += 1;
+            }
+            let prev = match self.last.get(j) {
+                Some(l) if l.0 == key => (l.1, l.2, l.3),
+                _ => (0.0, 0.0, 0.0),
+            };
+            let report = e.law.report(&e.history.contact, e.contact.overlap);
+            let dp = report.plastic_work - prev.0;
+            self.plastic += dp;
+            self.friction += report.friction_work - prev.1;
+            self.damping += report.damping_work - prev.2;
+            if dp != 0.0 {
+                match (particle(e.collider1), particle(e.collider2)) {
+                    (Some(a), Some(b)) => {
+                        self.particle_plastic[a] += 0.5 * dp;
+                        self.particle_plastic[b] += 0.5 * dp;
+                    }
+                    (Some(a), None) | (None, Some(a)) => self.particle_plastic[a] += dp,
+                    (None, None) => {}
+                }
+            }
+            // Work of a moving wall on the sphere: F · v_wall(contact point) dt.
+            let on_wall = wall_of_collider
+                .get(e.collider2.into_raw_parts().0 as usize)
+                .is_some_and(|&w| w != usize::MAX);
+            if on_wall {
+                if let Some(b2) = e.body2.and_then(|h| bodies.get(h)) {
+                    if b2.is_kinematic() {
+                        let arm = e.contact.point - to_na(b2.center_of_mass());
+                        let v = to_na(b2.linvel()) + to_na(b2.angvel()).cross(&arm);
+                        self.wall_work += e.wrench.force.dot(&v) * dt;
+                    }
+                }
+            }
+            next.push((
+                key,
+                report.plastic_work,
+                report.friction_work,
+                report.damping_work,
+            ));
+        }
+        self.last = next;
+    }
+}
+
+/// Pose and velocities of one rigid body, exactly.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct BodyRecord {
+    /// Translation (m).
+    pub translation: [f64; 3],
+    /// Rotation quaternion `(x, y, z, w)`.
+    pub rotation: [f64; 4],
+    /// Linear velocity (m/s).
+    pub linvel: [f64; 3],
+    /// Angular velocity (rad/s).
+    pub angvel: [f64; 3],
+}
+
+impl BodyRecord {
+    /// The record of a body.
+    pub fn of(body: &RigidBody) -> Self {
+        let p = body.position();
+        let q = p.rotation;
+        Self {
+            translation: to_na(p.translation).into(),
+            rotation: [q.x, q.y, q.z, q.w],
+            linvel: to_na(body.linvel()).into(),
+            angvel: to_na(body.angvel()).into(),
+        }
+    }
+
+    /// Put the record into a body.
+    pub fn apply(&self, body: &mut RigidBody) {
+        let [x, y, z, w] = self.rotation;
+        let rotation = rapier3d_f64::math::Rotation::from_xyzw(x, y, z, w);
+        body.set_position(
+            Pose::from_parts(to_glam(&Vector3::from(self.translation)), rotation),
+            true,
+        );
+        body.set_linvel(to_glam(&Vector3::from(self.linvel)), true);
+        body.set_angvel(to_glam(&Vector3::from(self.angvel)), true);
+    }
+}
+
+/// The history of one touching pair (force mode).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ContactRecord {
+    /// Pair key.
+    pub key: u64,
+    /// Normal + tangential history and work books.
+    pub contact: ContactState<AnyNormalState, MindlinState>,
+    /// Rolling history.
+    pub rolling: EpsdRollingState,
+}
+
+/// State of the run's random generator.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct RngRecord {
+    seed: [u8; 32],
+    stream: u64,
+    word_pos: u128,
+}
+
+impl RngRecord {
+    fn of(rng: &ChaCha8Rng) -> Self {
+        Self {
+            seed: rng.get_seed(),
+            stream: rng.get_stream(),
+            word_pos: rng.get_word_pos(),
+        }
+    }
+
+    pub(crate) fn restore(&self) -> ChaCha8Rng {
+        use rand::SeedableRng;
+        let mut rng = ChaCha8Rng::from_seed(self.seed);
+        rng.set_stream(self.stream);
+        rng.set_word_pos(self.word_pos);
+        rng
+    }
+}
+
+/// Everything a checkpoint holds.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct CheckpointData {
+    /// Scene name (messages only).
+    pub scene_name: String,
+    /// Fingerprint of the scene (see [`fingerprint`]).
+    pub fingerprint: u32,
+    /// Bits of the time step.
+    pub dt_bits: u64,
+    /// Step counter.
+    pub step: u64,
+    /// Particle bodies, then wall bodies, in creation order.
+    pub bodies: Vec<BodyRecord>,
+    /// Force mode: per-pair histories, sorted by key.
+    pub contacts: Vec<ContactRecord>,
+    /// Restitution mode: `(pair key, largest overlap)` of the impact history.
+    pub impacts: Vec<(u64, f64)>,
+    /// Energy books.
+    pub books: Books,
+    /// Random generator.
+    pub rng: RngRecord,
+    /// Headline tracker.
+    pub tracker: Tracker,
+    /// Frames written so far.
+    pub collection: Vec<CollectionEntry>,
+    /// Energy rows so far.
+    pub energy: Vec<EnergyRow>,
+    /// Headline samples so far.
+    pub samples: Vec<HeadlineSample>,
+}
+
+impl CheckpointData {
+    pub(crate) fn capture(sim: &Sim<'_>) -> Self {
+        let bodies = &sim.built.world.bodies;
+        let records = sim
+            .built
+            .particle_bodies
+            .iter()
+            .chain(&sim.built.wall_bodies)
+            .map(|h| BodyRecord::of(&bodies[*h]))
+            .collect();
+        let (contacts, impacts) = match &sim.built.coupling {
+            Coupling::Force(stepper) => (
+                stepper
+                    .contacts()
+                    .entries()
+                    .iter()
+                    .map(|e| ContactRecord {
+                        key: e.key.0,
+                        contact: e.history.contact.clone(),
+                        rolling: e.history.rolling,
+                    })
+                    .collect(),
+                Vec::new(),
+            ),
+            Coupling::Restitution(hooks) => {
+                let h = hooks.history();
+                let impacts = (0..h.allocated())
+                    .filter(|&slot| h.find(h.key(slot)) == Some(slot))
+                    .map(|slot| (h.key(slot).0, h.state(slot).max_overlap))
+                    .collect();
+                (Vec::new(), impacts)
+            }
+        };
+        Self {
+            scene_name: sim.scene.name.clone(),
+            fingerprint: fingerprint(sim.scene),
+            dt_bits: sim.scene.dt.to_bits(),
+            step: sim.step,
+            bodies: records,
+            contacts,
+            impacts,
+            books: sim.books.clone(),
+            rng: RngRecord::of(&sim.rng),
+            tracker: sim.tracker.clone(),
+            collection: sim.collection.clone(),
+            energy: sim.energy.clone(),
+            samples: sim.samples.clone(),
+        }
+    }
+}
+
+/// CRC-32 of the scene file's content with the keys a restart may change (duration and
+/// intervals) blanked, and of the placed particles.
+pub fn fingerprint(scene: &Scene) -> u32 {
+    let mut source = scene.source.clone();
+    source.run.duration_s = 0.0;
+    source.run.output_interval_s = 0.0;
+    source.run.checkpoint_interval_s = None;
+    source.run.energy_interval_s = None;
+    let mut hasher = crc32fast::Hasher::new();
+    hasher.update(toml::to_string(&source).unwrap_or_default().as_bytes());
+    for p in &scene.particles {
+        for c in p.position.iter().chain(std::iter::once(&p.radius)) {
+            hasher.update(&c.to_le_bytes());
+        }
+    }
+    hasher.finalize()
+}

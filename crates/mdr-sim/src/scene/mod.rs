@@ -1,0 +1,115 @@
+//! Scenes: the TOML file ([`schema`]), its validation with file/line/key of every problem
+//! ([`validate`], [`problems`]) and the checked, ready-to-build [`Scene`].
+
+pub mod problems;
+pub mod schema;
+pub mod validate;
+
+use crate::placement::ParticleInit;
+use crate::walls::Wall;
+use mdr_contact::Material;
+use nalgebra::Vector3;
+use std::path::PathBuf;
+
+pub use problems::{Problem, Problems, Severity};
+pub use schema::{CouplingMode, Headline, SceneFile};
+pub use validate::load_scene;
+
+/// The normal law of a scene with its parameters (checked by the law crate).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NormalSpec {
+    /// MDR elasto-plastic: `q_c` (N/m) and `Θ/E*`.
+    Mdr {
+        /// Critical linear force density `q_c` (N/m, eq. 7).
+        critical_line_load: f64,
+        /// Hardening ratio `Θ/E*` (eq. 12).
+        hardening_ratio: f64,
+    },
+    /// Hertz.
+    Hertz,
+    /// Thornton with limiting pressure `p_y` (Pa).
+    Thornton {
+        /// `p_y` (Pa).
+        yield_pressure: f64,
+    },
+}
+
+/// The damping law of a scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DampingSpec {
+    /// None.
+    None,
+    /// `hertzian_viscous` with `γ_n` (1/(m·s)).
+    HertzianViscous(f64),
+    /// `stiffness_viscous` with `η`.
+    StiffnessViscous(f64),
+}
+
+/// The contact model of a scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactSpec {
+    /// Normal law.
+    pub normal: NormalSpec,
+    /// Friction coefficient `μ` (0: frictionless).
+    pub friction: f64,
+    /// Damping.
+    pub damping: DampingSpec,
+    /// Rolling-resistance coefficient `μ_r` (0: off).
+    pub rolling_friction: f64,
+}
+
+/// A checked scene: every value within its range, particles placed without overlap.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// The scene file (outputs and relative paths refer to it).
+    pub file: PathBuf,
+    /// The file as parsed (kept for the checkpoint's compatibility check).
+    pub source: SceneFile,
+    /// Run name.
+    pub name: String,
+    /// Seed.
+    pub seed: u64,
+    /// Simulated time (s).
+    pub duration: f64,
+    /// Time step (s), resolved if `"auto"`.
+    pub dt: f64,
+    /// Whether the step was chosen automatically.
+    pub dt_auto: bool,
+    /// Largest expected relative speed (m/s).
+    pub max_speed: f64,
+    /// Shortest Hertz contact time among the scene's pairs at `max_speed` (s).
+    pub contact_time: f64,
+    /// Output frame interval (s).
+    pub output_interval: f64,
+    /// Checkpoint interval (s).
+    pub checkpoint_interval: Option<f64>,
+    /// Energy-book interval (s).
+    pub energy_interval: f64,
+    /// Coupling mode.
+    pub coupling: CouplingMode,
+    /// Headline quantity.
+    pub headline: Headline,
+    /// Write the contact network.
+    pub contact_network: bool,
+    /// Hopper: discharge height (m).
+    pub discharge_height: Option<f64>,
+    /// Gravity (m/s²).
+    pub gravity: Vector3<f64>,
+    /// Materials, by name.
+    pub materials: Vec<(String, Material)>,
+    /// Contact model.
+    pub contact: ContactSpec,
+    /// Particles to create, in creation order.
+    pub particles: Vec<ParticleInit>,
+    /// Walls.
+    pub walls: Vec<Wall>,
+    /// Warnings found while checking (the run goes on).
+    pub warnings: Vec<Problem>,
+}
+
+impl Scene {
+    /// Number of steps of the whole run.
+    pub fn total_steps(&self) -> u64 {
+        (self.duration / self.dt).ceil() as u64
+    }
+}

@@ -1,0 +1,364 @@
+//! The scene file as written by the user: plain serde structs, one per TOML table, every key
+//! carrying its unit in its name. Unknown keys are refused (`deny_unknown_fields`); the values
+//! are checked afterwards by [`super::validate`], which knows every key's allowed range.
+
+use serde::{Deserialize, Serialize};
+
+/// A whole scene file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// `[run]`: time stepping, outputs, seed.
+    pub run: RunSection,
+    /// `[gravity]`: optional; no gravity when absent.
+    #[serde(default)]
+    pub gravity: Option<GravitySection>,
+    /// `[[material]]`: named materials.
+    #[serde(default)]
+    pub material: Vec<MaterialSection>,
+    /// `[contact]`: the contact model shared by every pair.
+    pub contact: ContactSection,
+    /// `[[particles]]`: groups of spheres.
+    #[serde(default)]
+    pub particles: Vec<ParticleGroup>,
+    /// `[[walls]]`: fixed or kinematic boundaries.
+    #[serde(default)]
+    pub walls: Vec<WallSection>,
+}
+
+/// `dt_s`: a number of seconds or `"auto"`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum TimeStep {
+    /// A fixed step (s).
+    Seconds(f64),
+    /// `"auto"`: the plugin's time-step helper (Hertz contact time at the largest expected speed).
+    Auto(AutoKeyword),
+}
+
+/// The keyword `"auto"`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AutoKeyword {
+    /// `"auto"`.
+    Auto,
+}
+
+/// How the law enters rapier.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CouplingMode {
+    /// Soft spheres: forces from the law (exact; `mdr_rapier::ForceModeStepper`).
+    #[default]
+    Force,
+    /// Hard spheres: restitution from the law's energy route (`mdr_rapier::RestitutionHooks`).
+    Restitution,
+}
+
+/// Which headline quantity the run reports at the end.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Headline {
+    /// Nothing beyond the energy books.
+    #[default]
+    None,
+    /// Granular column collapse: run-out distance and final height.
+    Column,
+    /// Hopper discharge: steady mass flow rate against Beverloo.
+    Hopper,
+    /// Rotating drum: dynamic angle of repose.
+    Drum,
+    /// Single-sphere drop: coefficient of restitution of the first bounce.
+    Drop,
+}
+
+/// `[run]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RunSection {
+    /// Name used for output file names.
+    pub name: String,
+    /// Seed of the random generator (placement, size distributions).
+    #[serde(default)]
+    pub seed: u64,
+    /// Simulated time (s).
+    pub duration_s: f64,
+    /// Time step (s) or `"auto"`.
+    pub dt_s: TimeStep,
+    /// Largest expected relative speed (m/s), for `dt_s = "auto"` and the step check.
+    #[serde(default)]
+    pub max_speed_m_per_s: Option<f64>,
+    /// Steps per Hertz contact for `dt_s = "auto"` (default 50).
+    #[serde(default)]
+    pub steps_per_contact: Option<f64>,
+    /// Interval between output frames (s).
+    pub output_interval_s: f64,
+    /// Interval between checkpoints (s); none when absent.
+    #[serde(default)]
+    pub checkpoint_interval_s: Option<f64>,
+    /// Interval between energy-book rows (s); defaults to `output_interval_s / 10`.
+    #[serde(default)]
+    pub energy_interval_s: Option<f64>,
+    /// Coupling mode.
+    #[serde(default)]
+    pub coupling: CouplingMode,
+    /// Headline quantity.
+    #[serde(default)]
+    pub headline: Headline,
+    /// Also write the contact network (pairs, force, overlap, plastic indentation) per frame.
+    #[serde(default)]
+    pub contact_network: bool,
+    /// Hopper only: height (m) below which a particle counts as discharged.
+    #[serde(default)]
+    pub discharge_height_m: Option<f64>,
+}
+
+/// `[gravity]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GravitySection {
+    /// Gravitational acceleration (m/s²).
+    pub acceleration_m_per_s2: [f64; 3],
+}
+
+/// `[[material]]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSection {
+    /// Name the particles and walls refer to.
+    pub name: String,
+    /// Young's modulus `E` (Pa).
+    pub youngs_pa: f64,
+    /// Poisson's ratio `ν` (dimensionless).
+    pub poisson_ratio: f64,
+    /// Density `ρ` (kg/m³).
+    pub density_kg_per_m3: f64,
+}
+
+/// Normal law name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum NormalLawName {
+    /// MDR elasto-plastic (Lyashenko & Popov 2018), closed form.
+    Mdr,
+    /// Hertz (elastic).
+    Hertz,
+    /// Thornton (1997) elastic–perfectly plastic.
+    Thornton,
+}
+
+/// Tangential law name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TangentialLawName {
+    /// Frictionless.
+    None,
+    /// Incremental Mindlin with a Coulomb cap.
+    Mindlin,
+}
+
+/// Damping law name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DampingLawName {
+    /// No damping.
+    #[default]
+    None,
+    /// `F_d = m γ_n (dδ/dt) √(R δ)` (LAMMPS `gran/hertz/history`).
+    HertzianViscous,
+    /// `F_d = η √(m k_n) (dδ/dt)`.
+    StiffnessViscous,
+}
+
+/// `[contact]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSection {
+    /// Normal law.
+    pub normal: NormalLawName,
+    /// MDR: critical linear force density `q_c` (N/m, eq. 7).
+    #[serde(default)]
+    pub critical_line_load_n_per_m: Option<f64>,
+    /// MDR: hardening ratio `Θ/E*` (eq. 12).
+    #[serde(default)]
+    pub hardening_ratio: Option<f64>,
+    /// Thornton: limiting contact pressure `p_y` (Pa).
+    #[serde(default)]
+    pub yield_pressure_pa: Option<f64>,
+    /// Tangential law (default `none`).
+    #[serde(default)]
+    pub tangential: Option<TangentialLawName>,
+    /// Coulomb friction coefficient `μ` (Mindlin; restitution mode's friction).
+    #[serde(default)]
+    pub friction: Option<f64>,
+    /// Damping law (default `none`).
+    #[serde(default)]
+    pub damping: DampingLawName,
+    /// `γ_n` of `hertzian_viscous` (1/(m·s)).
+    #[serde(default)]
+    pub damping_gamma_n_per_m_s: Option<f64>,
+    /// `η` of `stiffness_viscous` (dimensionless).
+    #[serde(default)]
+    pub damping_eta: Option<f64>,
+    /// Rolling-resistance coefficient `μ_r` (dimensionless); off when absent or 0.
+    #[serde(default)]
+    pub rolling_friction: Option<f64>,
+}
+
+/// How particle radii are drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SizeDistribution {
+    /// Every particle has `radius_m`.
+    Mono,
+    /// Uniform in `[radius_min_m, radius_max_m]`.
+    Uniform,
+    /// Normal with `radius_m` mean and `radius_std_m`, truncated to `[radius_min_m, radius_max_m]`.
+    Normal,
+}
+
+/// How particles are placed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PlacementKind {
+    /// Simple cubic lattice filling the region, spacing `2 r_max (1 + gap_fraction)`.
+    Lattice,
+    /// Random non-overlapping fill of the region (seeded).
+    Random,
+    /// Read `x_m,y_m,z_m,radius_m` columns (optional `vx_m_per_s,vy_m_per_s,vz_m_per_s`) from CSV.
+    Csv,
+    /// Read a LAMMPS data file (`atom_style sphere`: id type diameter density x y z).
+    Lammps,
+}
+
+/// `[[particles]]`: one group of spheres.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParticleGroup {
+    /// Material name.
+    pub material: String,
+    /// Number of particles (lattice and random; for files, at most this many are read).
+    #[serde(default)]
+    pub count: Option<u64>,
+    /// Radius (m): the mono-size radius, or the mean of `normal`.
+    #[serde(default)]
+    pub radius_m: Option<f64>,
+    /// Size distribution (default `mono`).
+    #[serde(default)]
+    pub size_distribution: Option<SizeDistribution>,
+    /// Smallest radius (m) of `uniform`/`normal`.
+    #[serde(default)]
+    pub radius_min_m: Option<f64>,
+    /// Largest radius (m) of `uniform`/`normal`.
+    #[serde(default)]
+    pub radius_max_m: Option<f64>,
+    /// Standard deviation (m) of `normal`.
+    #[serde(default)]
+    pub radius_std_m: Option<f64>,
+    /// Placement.
+    pub placement: PlacementKind,
+    /// Lower corner of the region (m) for `lattice`/`random`.
+    #[serde(default)]
+    pub region_min_m: Option<[f64; 3]>,
+    /// Upper corner of the region (m) for `lattice`/`random`.
+    #[serde(default)]
+    pub region_max_m: Option<[f64; 3]>,
+    /// Lattice: extra gap between neighbours as a fraction of the diameter (default 0.01).
+    #[serde(default)]
+    pub gap_fraction: Option<f64>,
+    /// Lattice: random jitter of each centre as a fraction of the gap (default 0; seeded).
+    #[serde(default)]
+    pub jitter_fraction: Option<f64>,
+    /// `csv`/`lammps`: file, relative to the scene file.
+    #[serde(default)]
+    pub file: Option<String>,
+    /// `lammps`: metres per LAMMPS length unit (default 1).
+    #[serde(default)]
+    pub length_scale_m: Option<f64>,
+    /// Initial velocity of every particle of the group (m/s).
+    #[serde(default)]
+    pub velocity_m_per_s: Option<[f64; 3]>,
+}
+
+/// Kind of wall.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WallKind {
+    /// An infinite plane (half-space) through `point_m` with outward `normal`.
+    Plane,
+    /// An open-top (or closed) box container between `min_m` and `max_m`, walls `thickness_m`.
+    Box,
+    /// A cylindrical container (inner surface; triangle mesh) around `axis` through `center_m`.
+    Cylinder,
+    /// A triangle mesh read from an STL or OBJ file.
+    Mesh,
+    /// A horizontal disc with a circular hole (a flat-bottomed hopper's bottom).
+    OrificePlate,
+}
+
+/// `[[walls]]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WallSection {
+    /// Kind of wall.
+    pub kind: WallKind,
+    /// Material name.
+    pub material: String,
+    /// Plane: a point on it (m).
+    #[serde(default)]
+    pub point_m: Option<[f64; 3]>,
+    /// Plane: outward unit normal (normalised on reading); cylinder: axis direction.
+    #[serde(default)]
+    pub normal: Option<[f64; 3]>,
+    /// Box: lower corner of the inside (m).
+    #[serde(default)]
+    pub min_m: Option<[f64; 3]>,
+    /// Box: upper corner of the inside (m).
+    #[serde(default)]
+    pub max_m: Option<[f64; 3]>,
+    /// Box: whether the top face is open (default true).
+    #[serde(default)]
+    pub open_top: Option<bool>,
+    /// Box / orifice plate: wall thickness (m), default: a tenth of the smallest inside size.
+    #[serde(default)]
+    pub thickness_m: Option<f64>,
+    /// Cylinder: centre of the axis (m); orifice plate: centre of the hole (m).
+    #[serde(default)]
+    pub center_m: Option<[f64; 3]>,
+    /// Cylinder: unit axis (default `[0, 0, 1]`).
+    #[serde(default)]
+    pub axis: Option<[f64; 3]>,
+    /// Cylinder: inner radius (m).
+    #[serde(default)]
+    pub radius_m: Option<f64>,
+    /// Cylinder: length along the axis (m).
+    #[serde(default)]
+    pub length_m: Option<f64>,
+    /// Cylinder: whether both ends are closed by discs (default false).
+    #[serde(default)]
+    pub capped: Option<bool>,
+    /// Cylinder / orifice plate: number of segments around the circle (default 48).
+    #[serde(default)]
+    pub segments: Option<u32>,
+    /// Orifice plate: outer radius of the plate (m).
+    #[serde(default)]
+    pub outer_radius_m: Option<f64>,
+    /// Orifice plate: hole diameter (m).
+    #[serde(default)]
+    pub orifice_diameter_m: Option<f64>,
+    /// Mesh: STL or OBJ file, relative to the scene file.
+    #[serde(default)]
+    pub file: Option<String>,
+    /// Mesh: scale factor from file units to metres (default 1).
+    #[serde(default)]
+    pub scale: Option<f64>,
+    /// Mesh: translation applied after scaling (m).
+    #[serde(default)]
+    pub offset_m: Option<[f64; 3]>,
+    /// Kinematic rotation about `rotation_center_m` (rad/s); fixed wall when absent.
+    #[serde(default)]
+    pub angular_velocity_rad_per_s: Option<[f64; 3]>,
+    /// Centre of the kinematic rotation (m), default the origin.
+    #[serde(default)]
+    pub rotation_center_m: Option<[f64; 3]>,
+}

@@ -1,0 +1,1287 @@
+//! Checking a scene file before the run: structure (types, unknown keys) through serde with the
+//! parser's spans, then every value against its allowed range, collecting all problems with
+//! file, line and key. Material and law parameters are checked by the law crate itself
+//! ([`mdr_contact::ContactError`]), so the allowed ranges are stated once.
+
+use super::problems::{KeyPath, Locator, Problem, Problems, Severity};
+use super::schema::*;
+use super::{ContactSpec, DampingSpec, NormalSpec, Scene};
+use crate::placement::{self, ParticleInit, RadiusLaw};
+use crate::walls::{self, Wall, WallPiece};
+use mdr_contact::damping::{HertzianViscous, StiffnessViscous};
+use mdr_contact::normal::{MdrElastoPlastic, Thornton};
+use mdr_contact::rolling::EpsdRolling;
+use mdr_contact::tangential::Mindlin;
+use mdr_contact::{ContactError, ContactPair, Material};
+use nalgebra::Vector3;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use std::path::{Path, PathBuf};
+
+/// Largest number of particles a scene may create.
+pub const MAX_PARTICLES: u64 = 1_000_000;
+/// Largest number of steps a run may take.
+pub const MAX_STEPS: f64 = 1e10;
+/// A force-mode step coarser than `t_c / MIN_STEPS_HARD` is refused (the contact would be
+/// resolved so coarsely that symplectic Euler gains energy in every impact).
+pub const MIN_STEPS_HARD: f64 = 5.0;
+/// Initial overlaps above this fraction of the smaller radius are refused.
+pub const OVERLAP_TOLERANCE: f64 = 0.01;
+
+/// Read and check a scene file. Every problem is reported with its file, line and key; warnings
+/// are returned inside the [`Scene`].
+pub fn load_scene(path: &Path) -> Result<Scene, Problems> {
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        Problems(vec![Problem {
+            severity: Severity::Error,
+            file: path.to_path_buf(),
+            line: 0,
+            column: 0,
+            key: String::new(),
+            message: format!("cannot read the scene file: {e}"),
+        }])
+    })?;
+    parse_scene(path, &text)
+}
+
+/// Check a scene given as text; `path` locates it (messages, relative file names).
+pub fn parse_scene(path: &Path, text: &str) -> Result<Scene, Problems> {
+    let loc = Locator::new(path, text);
+    let file = parse_structure(&loc, text)?;
+    let mut checker = Checker {
+        loc: &loc,
+        problems: Vec::new(),
+        base: path.parent().map(Path::to_path_buf).unwrap_or_default(),
+    };
+    let scene = checker.scene(path, file);
+    let mut problems = checker.problems;
+    problems.sort_by_key(|p| (std::cmp::Reverse(p.severity), p.line, p.column));
+    match scene {
+        Some(mut scene) if !problems.iter().any(|p| p.severity == Severity::Error) => {
+            scene.warnings = problems;
+            Ok(scene)
+        }
+        _ => Err(Problems(problems)),
+    }
+}
+
+/// serde pass. An unknown key alone on its line is blanked out (same length, so spans stay
+/// valid) and parsing resumes, so every unknown key is reported at once.
+fn parse_structure(loc: &Locator<'_>, text: &str) -> Result<SceneFile, Problems> {
+    let mut work = text.to_owned();
+    let mut problems = Vec::new();
+    for _ in 0..64 {
+        match toml::from_str::<SceneFile>(&work) {
+            Ok(file) if problems.is_empty() => return Ok(file),
+            Ok(_) => break,
+            Err(e) => {
+                let span = e.span();
+                let message = e.message().trim().to_owned();
+                let (line_range, key) = span
+                    .as_ref()
+                    .map(|s| line_of(&work, s.start))
+                    .map_or((None, String::new()), |(r, k)| (Some(r), k));
+                problems.push(loc.at_span(Severity::Error, span.clone(), key, message.clone()));
+                let Some(range) = line_range else { break };
+                let line = &work[range.clone()];
+                let resumable = message.starts_with("unknown field")
+                    && line.contains('=')
+                    && !line.contains('{')
+                    && !line.trim_start().starts_with('[')
+                    && line.matches('[').count() == line.matches(']').count()
+                    && !line.contains("\"\"\"");
+                if !resumable {
+                    break;
+                }
+                work.replace_range(range.clone(), &" ".repeat(range.len()));
+            }
+        }
+    }
+    Err(Problems(problems))
+}
+
+/// The byte range of the line holding `offset` and the key written on it (text before `=`).
+fn line_of(text: &str, offset: usize) -> (std::ops::Range<usize>, String) {
+    let offset = offset.min(text.len());
+    let start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
+    let end = text[offset..].find('\n').map_or(text.len(), |i| offset + i);
+    let line = &text[start..end];
+    let key = line
+        .split_once('=')
+        .map(|(k, _)| k.trim().trim_matches('"').to_owned())
+        .unwrap_or_default();
+    (start..end, key)
+}
+
+struct Checker<'a, 'b> {
+    loc: &'a Locator<'b>,
+    problems: Vec<Problem>,
+    base: PathBuf,
+}
+
+/// Map the law crate's parameter names to the scene file's keys.
+fn key_for(name: &str) -> &str {
+    match name {
+        "youngs_modulus" => "youngs_pa",
+        "poisson_ratio" => "poisson_ratio",
+        "density" => "density_kg_per_m3",
+        "q_c" => "critical_line_load_n_per_m",
+        "theta_ratio" => "hardening_ratio",
+        "yield_stress" => "yield_pressure_pa",
+        "mu" => "friction",
+        "gamma_n" => "damping_gamma_n_per_m_s",
+        "eta" => "damping_eta",
+        "mu_r" => "rolling_friction",
+        other => other,
+    }
+}
+
+impl Checker<'_, '_> {
+    fn error(&mut self, path: &KeyPath, message: impl Into<String>) {
+        let p = self.loc.problem(Severity::Error, path, message);
+        self.problems.push(p);
+    }
+
+    fn warn(&mut self, path: &KeyPath, message: impl Into<String>) {
+        let p = self.loc.problem(Severity::Warning, path, message);
+        self.problems.push(p);
+    }
+
+    /// A law-crate error on the table at `table`.
+    fn contact_error(&mut self, table: &KeyPath, e: ContactError) {
+        let name = match &e {
+            ContactError::NotFinite { name, .. }
+            | ContactError::OutOfRange { name, .. }
+            | ContactError::TooFew { name, .. }
+            | ContactError::InvalidTable { name, .. } => *name,
+        };
+        self.error(&table.key(key_for(name)), e.to_string());
+    }
+
+    fn finite(&mut self, path: &KeyPath, v: f64) -> Option<f64> {
+        if v.is_finite() {
+            Some(v)
+        } else {
+            self.error(path, format!("must be a finite number, got {v}"));
+            None
+        }
+    }
+
+    fn positive(&mut self, path: &KeyPath, v: f64) -> Option<f64> {
+        let v = self.finite(path, v)?;
+        if v > 0.0 {
+            Some(v)
+        } else {
+            self.error(path, format!("= {v} is outside the allowed range (0, inf)"));
+            None
+        }
+    }
+
+    fn non_negative(&mut self, path: &KeyPath, v: f64) -> Option<f64> {
+        let v = self.finite(path, v)?;
+        if v >= 0.0 {
+            Some(v)
+        } else {
+            self.error(path, format!("= {v} is outside the allowed range [0, inf)"));
+            None
+        }
+    }
+
+    fn vector(&mut self, path: &KeyPath, v: [f64; 3]) -> Option<Vector3<f64>> {
+        if v.iter().all(|c| c.is_finite()) {
+            Some(Vector3::from(v))
+        } else {
+            self.error(
+                path,
+                format!("every component must be a finite number, got {v:?}"),
+            );
+            None
+        }
+    }
+
+    fn unit(&mut self, path: &KeyPath, v: [f64; 3]) -> Option<Vector3<f64>> {
+        let v = self.vector(path, v)?;
+        let n = v.norm();
+        if n > 0.0 {
+            Some(v / n)
+        } else {
+            self.error(path, "must be a non-zero vector");
+            None
+        }
+    }
+
+    fn require<T: Copy>(
+        &mut self,
+        table: &KeyPath,
+        key: &str,
+        v: Option<T>,
+        why: &str,
+    ) -> Option<T> {
+        if v.is_none() {
+            self.error(table, format!("missing key `{key}` ({why})"));
+        }
+        v
+    }
+
+    fn unused(&mut self, table: &KeyPath, keys: &[(&str, bool)], why: &str) {
+        for (key, given) in keys {
+            if *given {
+                self.error(
+                    &table.key(key),
+                    format!("this key is not used {why}: remove it"),
+                );
+            }
+        }
+    }
+
+    fn read_file(&mut self, path: &KeyPath, name: &str) -> PathBuf {
+        let p = PathBuf::from(name);
+        let p = if p.is_absolute() {
+            p
+        } else {
+            self.base.join(p)
+        };
+        if !p.exists() {
+            self.error(path, format!("file `{}` not found", p.display()));
+        }
+        p
+    }
+
+    fn scene(&mut self, path: &Path, file: SceneFile) -> Option<Scene> {
+        let root = KeyPath::root();
+        let run = root.key("run");
+        let r = &file.run;
+        if r.name.trim().is_empty()
+            || r.name.contains(['/', '\\'])
+            || r.name.chars().any(char::is_control)
+        {
+            self.error(
+                &run.key("name"),
+                "must be a non-empty file-name-safe string (no `/`)",
+            );
+        }
+        let duration = self.positive(&run.key("duration_s"), r.duration_s);
+        if duration.is_some_and(|d| d > 1e9) {
+            self.error(
+                &run.key("duration_s"),
+                "is outside the allowed range (0, 1e9] s",
+            );
+        }
+        let output = self.positive(&run.key("output_interval_s"), r.output_interval_s);
+        if let (Some(o), Some(d)) = (output, duration) {
+            if o > d {
+                self.warn(
+                    &run.key("output_interval_s"),
+                    format!("= {o} s is longer than the run ({d} s): only the first and last frames are written"),
+                );
+            }
+        }
+        let checkpoint = r
+            .checkpoint_interval_s
+            .and_then(|c| self.positive(&run.key("checkpoint_interval_s"), c));
+        let energy = match r.energy_interval_s {
+            Some(e) => self.positive(&run.key("energy_interval_s"), e),
+            None => output.map(|o| o / 10.0),
+        };
+        let max_speed_given = r
+            .max_speed_m_per_s
+            .and_then(|v| self.positive(&run.key("max_speed_m_per_s"), v));
+        let steps_per_contact = match r.steps_per_contact {
+            Some(s) => {
+                let s = self.positive(&run.key("steps_per_contact"), s);
+                if s.is_some_and(|s| s < MIN_STEPS_HARD) {
+                    self.error(
+                        &run.key("steps_per_contact"),
+                        format!("is outside the allowed range [{MIN_STEPS_HARD}, inf)"),
+                    );
+                }
+                s
+            }
+            None => Some(mdr_rapier::timestep::MIN_STEPS_PER_CONTACT),
+        };
+        if r.discharge_height_m.is_some() && r.headline != Headline::Hopper {
+            self.error(
+                &run.key("discharge_height_m"),
+                "is used only with headline = \"hopper\"",
+            );
+        }
+        let discharge = r
+            .discharge_height_m
+            .and_then(|h| self.finite(&run.key("discharge_height_m"), h));
+
+        let gravity = match &file.gravity {
+            Some(g) => self.vector(
+                &root.key("gravity").key("acceleration_m_per_s2"),
+                g.acceleration_m_per_s2,
+            ),
+            None => Some(Vector3::zeros()),
+        };
+
+        // Materials (ranges checked by the law crate).
+        let mut materials: Vec<(String, Material)> = Vec::new();
+        let mut materials_ok = true;
+        for (i, m) in file.material.iter().enumerate() {
+            let table = root.key("material").index(i);
+            if materials.iter().any(|(n, _)| n == &m.name) {
+                self.error(
+                    &table.key("name"),
+                    format!("material `{}` is defined twice", m.name),
+                );
+            }
+            match Material::new(m.youngs_pa, m.poisson_ratio, m.density_kg_per_m3) {
+                Ok(mat) => materials.push((m.name.clone(), mat)),
+                Err(e) => {
+                    materials_ok = false;
+                    self.contact_error(&table, e);
+                }
+            }
+        }
+        if file.material.is_empty() {
+            self.error(
+                &root,
+                "missing `[[material]]`: at least one material is required",
+            );
+        }
+        let material_index = |checker: &mut Self, path: &KeyPath, name: &str| -> Option<usize> {
+            let i = materials.iter().position(|(n, _)| n == name);
+            if i.is_none() && materials_ok {
+                let known: Vec<&str> = materials.iter().map(|(n, _)| n.as_str()).collect();
+                checker.error(
+                    path,
+                    format!("unknown material `{name}` (defined: {})", known.join(", ")),
+                );
+            }
+            i
+        };
+
+        let contact = self.contact(&file.contact);
+
+        // Particles.
+        let mut rng = ChaCha8Rng::seed_from_u64(r.seed);
+        let mut particles: Vec<ParticleInit> = Vec::new();
+        let mut total: u64 = 0;
+        for (g, group) in file.particles.iter().enumerate() {
+            let table = root.key("particles").index(g);
+            let material = material_index(self, &table.key("material"), &group.material);
+            let velocity = match group.velocity_m_per_s {
+                Some(v) => self.vector(&table.key("velocity_m_per_s"), v),
+                None => Some(Vector3::zeros()),
+            };
+            let placed = self.place_group(&table, group, &mut rng, &mut total);
+            if let (Some(material), Some(velocity), Some(placed)) = (material, velocity, placed) {
+                particles.extend(placed.into_iter().map(|(p, r, v)| ParticleInit {
+                    position: p,
+                    radius: r,
+                    velocity: v.unwrap_or(velocity),
+                    material,
+                    group: g,
+                }));
+            }
+        }
+        if file.particles.is_empty() {
+            self.error(&root, "missing `[[particles]]`: the scene has no particles");
+        }
+
+        // Walls.
+        let mut walls_out = Vec::new();
+        for (w, wall) in file.walls.iter().enumerate() {
+            let table = root.key("walls").index(w);
+            let material = material_index(self, &table.key("material"), &wall.material);
+            if let (Some(wall_out), Some(material)) = (self.wall(&table, wall, w), material) {
+                walls_out.push(Wall {
+                    material,
+                    ..wall_out
+                });
+            }
+        }
+
+        // Placement against placement and walls.
+        if !particles.is_empty() && self.problems.iter().all(|p| p.severity != Severity::Error) {
+            self.check_overlaps(&root, &particles, &walls_out);
+        }
+
+        // Time step.
+        let (Some(duration), Some(output), Some(energy), Some(gravity), Some(contact), Some(spc)) = (
+            duration,
+            output,
+            energy,
+            gravity,
+            contact,
+            steps_per_contact,
+        ) else {
+            return None;
+        };
+        if particles.is_empty() || self.problems.iter().any(|p| p.severity == Severity::Error) {
+            return None;
+        }
+        let max_speed = max_speed_given.unwrap_or_else(|| estimate_max_speed(&particles, &gravity));
+        let contact_time = shortest_contact_time(&particles, &walls_out, &materials, max_speed)?;
+        let (dt, dt_auto) = match r.dt_s {
+            TimeStep::Auto(_) => {
+                if max_speed_given.is_none() {
+                    self.warn(
+                        &run.key("dt_s"),
+                        format!(
+                            "dt_s = \"auto\" without `max_speed_m_per_s`: assuming {max_speed:.3} m/s \
+                             (initial speeds + free fall over the scene's height)"
+                        ),
+                    );
+                }
+                (contact_time / spc, true)
+            }
+            TimeStep::Seconds(dt) => {
+                let dt = self.positive(&run.key("dt_s"), dt)?;
+                (dt, false)
+            }
+        };
+        if r.coupling == CouplingMode::Force {
+            let steps = contact_time / dt;
+            if steps < MIN_STEPS_HARD {
+                self.error(
+                    &run.key("dt_s"),
+                    format!(
+                        "= {dt:.3e} s is far too large: the shortest contact (Hertz time {contact_time:.3e} s \
+                         at {max_speed:.3} m/s) would take {steps:.2} steps; allowed (0, {:.3e}] s, \
+                         recommended {:.3e} s or dt_s = \"auto\"",
+                        contact_time / MIN_STEPS_HARD,
+                        contact_time / mdr_rapier::timestep::MIN_STEPS_PER_CONTACT
+                    ),
+                );
+                return None;
+            }
+            if steps < mdr_rapier::timestep::MIN_STEPS_PER_CONTACT {
+                self.warn(
+                    &run.key("dt_s"),
+                    format!(
+                        "time step {dt:.3e} s resolves a {contact_time:.3e} s contact with {steps:.1} steps \
+                         (fewer than {}): restitution and energy books lose accuracy",
+                        mdr_rapier::timestep::MIN_STEPS_PER_CONTACT
+                    ),
+                );
+            }
+        }
+        let steps = duration / dt;
+        if steps > MAX_STEPS {
+            self.error(
+                &run.key("duration_s"),
+                format!("the run would take {steps:.3e} steps (allowed at most {MAX_STEPS:.0e}): shorten it or enlarge dt_s"),
+            );
+            return None;
+        }
+        let work = steps * particles.len() as f64;
+        if work > 1e12 {
+            self.warn(
+                &run.key("duration_s"),
+                format!("the run is {work:.2e} particle-steps: hours to days of computing"),
+            );
+        }
+        if energy < dt {
+            self.warn(
+                &run.key("energy_interval_s"),
+                "is shorter than the time step: one row per step",
+            );
+        }
+        Some(Scene {
+            file: path.to_path_buf(),
+            source: file.clone(),
+            name: r.name.clone(),
+            seed: r.seed,
+            duration,
+            dt,
+            dt_auto,
+            max_speed,
+            contact_time,
+            output_interval: output,
+            checkpoint_interval: checkpoint,
+            energy_interval: energy,
+            coupling: r.coupling,
+            headline: r.headline,
+            contact_network: r.contact_network,
+            discharge_height: discharge,
+            gravity,
+            materials,
+            contact,
+            particles,
+            walls: walls_out,
+            warnings: Vec::new(),
+        })
+    }
+
+    fn contact(&mut self, c: &ContactSection) -> Option<ContactSpec> {
+        let table = KeyPath::root().key("contact");
+        let why = |law: &str| format!("by normal = \"{law}\"");
+        let normal = match c.normal {
+            NormalLawName::Mdr => {
+                self.unused(
+                    &table,
+                    &[("yield_pressure_pa", c.yield_pressure_pa.is_some())],
+                    &why("mdr"),
+                );
+                let q = self.require(
+                    &table,
+                    "critical_line_load_n_per_m",
+                    c.critical_line_load_n_per_m,
+                    "required by normal = \"mdr\"",
+                );
+                let h = self.require(
+                    &table,
+                    "hardening_ratio",
+                    c.hardening_ratio,
+                    "required by normal = \"mdr\"",
+                );
+                match (q, h) {
+                    (Some(q), Some(h)) => match MdrElastoPlastic::new(q, h) {
+                        Ok(_) => Some(NormalSpec::Mdr {
+                            critical_line_load: q,
+                            hardening_ratio: h,
+                        }),
+                        Err(e) => {
+                            self.contact_error(&table, e);
+                            None
+                        }
+                    },
+                    _ => None,
+                }
+            }
+            NormalLawName::Hertz => {
+                self.unused(
+                    &table,
+                    &[
+                        (
+                            "critical_line_load_n_per_m",
+                            c.critical_line_load_n_per_m.is_some(),
+                        ),
+                        ("hardening_ratio", c.hardening_ratio.is_some()),
+                        ("yield_pressure_pa", c.yield_pressure_pa.is_some()),
+                    ],
+                    &why("hertz"),
+                );
+                Some(NormalSpec::Hertz)
+            }
+            NormalLawName::Thornton => {
+                self.unused(
+                    &table,
+                    &[
+                        (
+                            "critical_line_load_n_per_m",
+                            c.critical_line_load_n_per_m.is_some(),
+                        ),
+                        ("hardening_ratio", c.hardening_ratio.is_some()),
+                    ],
+                    &why("thornton"),
+                );
+                let p = self.require(
+                    &table,
+                    "yield_pressure_pa",
+                    c.yield_pressure_pa,
+                    "required by normal = \"thornton\"",
+                )?;
+                match Thornton::new(p) {
+                    Ok(_) => Some(NormalSpec::Thornton { yield_pressure: p }),
+                    Err(e) => {
+                        self.contact_error(&table, e);
+                        None
+                    }
+                }
+            }
+        };
+        let tangential = c.tangential.unwrap_or(TangentialLawName::None);
+        let friction = match (tangential, c.friction) {
+            (TangentialLawName::None, Some(mu)) if mu != 0.0 => {
+                self.error(
+                    &table.key("friction"),
+                    "friction needs tangential = \"mindlin\" (tangential is \"none\")",
+                );
+                None
+            }
+            (TangentialLawName::Mindlin, None) => {
+                self.require(
+                    &table,
+                    "friction",
+                    None::<f64>,
+                    "required by tangential = \"mindlin\"",
+                );
+                None
+            }
+            (_, mu) => {
+                let mu = mu.unwrap_or(0.0);
+                match Mindlin::new(mu) {
+                    Ok(_) => Some(mu),
+                    Err(e) => {
+                        self.contact_error(&table, e);
+                        None
+                    }
+                }
+            }
+        };
+        let damping = match c.damping {
+            DampingLawName::None => {
+                self.unused(
+                    &table,
+                    &[
+                        (
+                            "damping_gamma_n_per_m_s",
+                            c.damping_gamma_n_per_m_s.is_some(),
+                        ),
+                        ("damping_eta", c.damping_eta.is_some()),
+                    ],
+                    "by damping = \"none\"",
+                );
+                Some(DampingSpec::None)
+            }
+            DampingLawName::HertzianViscous => {
+                self.unused(
+                    &table,
+                    &[("damping_eta", c.damping_eta.is_some())],
+                    "by damping = \"hertzian_viscous\"",
+                );
+                let g = self.require(
+                    &table,
+                    "damping_gamma_n_per_m_s",
+                    c.damping_gamma_n_per_m_s,
+                    "required by damping = \"hertzian_viscous\"",
+                )?;
+                match HertzianViscous::new(g) {
+                    Ok(_) => Some(DampingSpec::HertzianViscous(g)),
+                    Err(e) => {
+                        self.contact_error(&table, e);
+                        None
+                    }
+                }
+            }
+            DampingLawName::StiffnessViscous => {
+                self.unused(
+                    &table,
+                    &[(
+                        "damping_gamma_n_per_m_s",
+                        c.damping_gamma_n_per_m_s.is_some(),
+                    )],
+                    "by damping = \"stiffness_viscous\"",
+                );
+                let eta = self.require(
+                    &table,
+                    "damping_eta",
+                    c.damping_eta,
+                    "required by damping = \"stiffness_viscous\"",
+                )?;
+                match StiffnessViscous::new(eta) {
+                    Ok(_) => Some(DampingSpec::StiffnessViscous(eta)),
+                    Err(e) => {
+                        self.contact_error(&table, e);
+                        None
+                    }
+                }
+            }
+        };
+        let rolling = match c.rolling_friction {
+            Some(mu_r) => match EpsdRolling::new(mu_r) {
+                Ok(_) => Some(mu_r),
+                Err(e) => {
+                    self.contact_error(&table, e);
+                    None
+                }
+            },
+            None => Some(0.0),
+        };
+        Some(ContactSpec {
+            normal: normal?,
+            friction: friction?,
+            damping: damping?,
+            rolling_friction: rolling?,
+        })
+    }
+
+    fn place_group(
+        &mut self,
+        table: &KeyPath,
+        g: &ParticleGroup,
+        rng: &mut ChaCha8Rng,
+        total: &mut u64,
+    ) -> Option<Vec<placement::ReadSphere>> {
+        let is_file = matches!(g.placement, PlacementKind::Csv | PlacementKind::Lammps);
+        let count = match g.count {
+            Some(0) => {
+                self.error(
+                    &table.key("count"),
+                    "= 0 is outside the allowed range [1, 1000000]: a group needs particles",
+                );
+                None
+            }
+            Some(n) if n > MAX_PARTICLES || total.saturating_add(n) > MAX_PARTICLES => {
+                self.error(
+                    &table.key("count"),
+                    format!("= {n} is outside the allowed range [1, {MAX_PARTICLES}] (whole scene at most {MAX_PARTICLES})"),
+                );
+                None
+            }
+            Some(n) => Some(n),
+            None if is_file => Some(MAX_PARTICLES),
+            None => {
+                self.error(
+                    table,
+                    "missing key `count` (required by placement = \"lattice\" / \"random\")",
+                );
+                None
+            }
+        };
+        let law = if is_file {
+            self.unused(
+                table,
+                &[
+                    ("radius_m", g.radius_m.is_some()),
+                    ("size_distribution", g.size_distribution.is_some()),
+                    ("radius_min_m", g.radius_min_m.is_some()),
+                    ("radius_max_m", g.radius_max_m.is_some()),
+                    ("radius_std_m", g.radius_std_m.is_some()),
+                    ("region_min_m", g.region_min_m.is_some()),
+                    ("region_max_m", g.region_max_m.is_some()),
+                    ("gap_fraction", g.gap_fraction.is_some()),
+                    ("jitter_fraction", g.jitter_fraction.is_some()),
+                ],
+                "when the particles are read from a file (radii and positions come from it)",
+            );
+            None
+        } else {
+            self.unused(
+                table,
+                &[
+                    ("file", g.file.is_some()),
+                    ("length_scale_m", g.length_scale_m.is_some()),
+                ],
+                "by placement = \"lattice\" / \"random\"",
+            );
+            self.radius_law(table, g)
+        };
+        let mut out = None;
+        match g.placement {
+            PlacementKind::Lattice | PlacementKind::Random => {
+                if g.placement == PlacementKind::Random {
+                    self.unused(
+                        table,
+                        &[
+                            ("gap_fraction", g.gap_fraction.is_some()),
+                            ("jitter_fraction", g.jitter_fraction.is_some()),
+                        ],
+                        "by placement = \"random\"",
+                    );
+                }
+                let lo = self
+                    .require(
+                        table,
+                        "region_min_m",
+                        g.region_min_m,
+                        "required by lattice/random placement",
+                    )
+                    .and_then(|v| self.vector(&table.key("region_min_m"), v));
+                let hi = self
+                    .require(
+                        table,
+                        "region_max_m",
+                        g.region_max_m,
+                        "required by lattice/random placement",
+                    )
+                    .and_then(|v| self.vector(&table.key("region_max_m"), v));
+                if let (Some(lo), Some(hi)) = (lo, hi) {
+                    if (0..3).any(|c| hi[c] <= lo[c]) {
+                        self.error(
+                            &table.key("region_max_m"),
+                            format!(
+                                "must exceed region_min_m in every component ({lo:?} vs {hi:?})"
+                            ),
+                        );
+                        return None;
+                    }
+                }
+                let gap = g.gap_fraction.map_or(Some(0.01), |v| {
+                    self.non_negative(&table.key("gap_fraction"), v)
+                });
+                let jitter = match g.jitter_fraction {
+                    Some(v) => {
+                        let v = self.non_negative(&table.key("jitter_fraction"), v);
+                        if v.is_some_and(|v| v > 1.0) {
+                            self.error(
+                                &table.key("jitter_fraction"),
+                                "is outside the allowed range [0, 1]",
+                            );
+                            None
+                        } else {
+                            v
+                        }
+                    }
+                    None => Some(0.0),
+                };
+                let (Some(lo), Some(hi), Some(law), Some(count), Some(gap), Some(jitter)) =
+                    (lo, hi, law, count, gap, jitter)
+                else {
+                    return None;
+                };
+                let placed = if g.placement == PlacementKind::Lattice {
+                    placement::lattice(lo, hi, &law, count as usize, gap, jitter, rng)
+                } else {
+                    placement::random_fill(lo, hi, &law, count as usize, rng)
+                };
+                match placed {
+                    Ok(p) => {
+                        out = Some(p.into_iter().map(|(p, r)| (p, r, None)).collect::<Vec<_>>())
+                    }
+                    Err(e) => self.error(&table.key("count"), e),
+                }
+            }
+            PlacementKind::Csv | PlacementKind::Lammps => {
+                let file = self.require(
+                    table,
+                    "file",
+                    g.file.as_deref(),
+                    "required when reading particles from a file",
+                )?;
+                let path = self.read_file(&table.key("file"), file);
+                if !path.exists() {
+                    return None;
+                }
+                let read = if g.placement == PlacementKind::Csv {
+                    self.unused(
+                        table,
+                        &[("length_scale_m", g.length_scale_m.is_some())],
+                        "by placement = \"csv\" (the CSV is in metres)",
+                    );
+                    placement::read_csv(&path)
+                } else {
+                    let scale = match g.length_scale_m {
+                        Some(s) => self.positive(&table.key("length_scale_m"), s)?,
+                        None => 1.0,
+                    };
+                    placement::read_lammps(&path, scale)
+                        .map(|v| v.into_iter().map(|(p, r)| (p, r, None)).collect())
+                };
+                match read {
+                    Ok(mut p) => {
+                        if p.is_empty() {
+                            self.error(&table.key("file"), "the file holds no particles");
+                            return None;
+                        }
+                        let limit = count.unwrap_or(MAX_PARTICLES) as usize;
+                        if p.len() > limit {
+                            if g.count.is_none() {
+                                self.error(
+                                    &table.key("file"),
+                                    format!("the file holds {} particles, more than the allowed {MAX_PARTICLES}", p.len()),
+                                );
+                                return None;
+                            }
+                            p.truncate(limit);
+                        }
+                        out = Some(p);
+                    }
+                    Err(e) => self.error(&table.key("file"), e),
+                }
+            }
+        }
+        if let Some(p) = &out {
+            *total = total.saturating_add(p.len() as u64);
+        }
+        out
+    }
+
+    fn radius_law(&mut self, table: &KeyPath, g: &ParticleGroup) -> Option<RadiusLaw> {
+        let dist = g.size_distribution.unwrap_or(SizeDistribution::Mono);
+        let pos = |c: &mut Self, key: &str, v: Option<f64>, why: &str| -> Option<f64> {
+            let v = c.require(table, key, v, why)?;
+            c.positive(&table.key(key), v)
+        };
+        match dist {
+            SizeDistribution::Mono => {
+                self.unused(
+                    table,
+                    &[
+                        ("radius_min_m", g.radius_min_m.is_some()),
+                        ("radius_max_m", g.radius_max_m.is_some()),
+                        ("radius_std_m", g.radius_std_m.is_some()),
+                    ],
+                    "by size_distribution = \"mono\"",
+                );
+                pos(
+                    self,
+                    "radius_m",
+                    g.radius_m,
+                    "required by size_distribution = \"mono\"",
+                )
+                .map(RadiusLaw::Mono)
+            }
+            SizeDistribution::Uniform => {
+                self.unused(
+                    table,
+                    &[
+                        ("radius_m", g.radius_m.is_some()),
+                        ("radius_std_m", g.radius_std_m.is_some()),
+                    ],
+                    "by size_distribution = \"uniform\"",
+                );
+                let min = pos(
+                    self,
+                    "radius_min_m",
+                    g.radius_min_m,
+                    "required by size_distribution = \"uniform\"",
+                );
+                let max = pos(
+                    self,
+                    "radius_max_m",
+                    g.radius_max_m,
+                    "required by size_distribution = \"uniform\"",
+                );
+                let (min, max) = (min?, max?);
+                if max < min {
+                    self.error(
+                        &table.key("radius_max_m"),
+                        format!("= {max} must be ≥ radius_min_m = {min}"),
+                    );
+                    return None;
+                }
+                Some(RadiusLaw::Uniform { min, max })
+            }
+            SizeDistribution::Normal => {
+                let why = "required by size_distribution = \"normal\"";
+                let mean = pos(self, "radius_m", g.radius_m, why);
+                let std = pos(self, "radius_std_m", g.radius_std_m, why);
+                let min = pos(self, "radius_min_m", g.radius_min_m, why);
+                let max = pos(self, "radius_max_m", g.radius_max_m, why);
+                let (mean, std, min, max) = (mean?, std?, min?, max?);
+                if !(min <= mean && mean <= max) {
+                    self.error(
+                        &table.key("radius_m"),
+                        format!(
+                            "= {mean} must lie in [radius_min_m, radius_max_m] = [{min}, {max}]"
+                        ),
+                    );
+                    return None;
+                }
+                Some(RadiusLaw::Normal {
+                    mean,
+                    std,
+                    min,
+                    max,
+                })
+            }
+        }
+    }
+
+    fn wall(&mut self, table: &KeyPath, w: &WallSection, index: usize) -> Option<Wall> {
+        let kind = format!("{:?}", w.kind).to_lowercase();
+        let why = format!("by a wall of kind {kind}");
+        let all = [
+            ("point_m", w.point_m.is_some()),
+            ("normal", w.normal.is_some()),
+            ("min_m", w.min_m.is_some()),
+            ("max_m", w.max_m.is_some()),
+            ("open_top", w.open_top.is_some()),
+            ("thickness_m", w.thickness_m.is_some()),
+            ("center_m", w.center_m.is_some()),
+            ("axis", w.axis.is_some()),
+            ("radius_m", w.radius_m.is_some()),
+            ("length_m", w.length_m.is_some()),
+            ("capped", w.capped.is_some()),
+            ("segments", w.segments.is_some()),
+            ("outer_radius_m", w.outer_radius_m.is_some()),
+            ("orifice_diameter_m", w.orifice_diameter_m.is_some()),
+            ("file", w.file.is_some()),
+            ("scale", w.scale.is_some()),
+            ("offset_m", w.offset_m.is_some()),
+        ];
+        let used: &[&str] = match w.kind {
+            WallKind::Plane => &["point_m", "normal"],
+            WallKind::Box => &["min_m", "max_m", "open_top", "thickness_m"],
+            WallKind::Cylinder => &[
+                "center_m",
+                "axis",
+                "radius_m",
+                "length_m",
+                "capped",
+                "segments",
+                "thickness_m",
+            ],
+            WallKind::Mesh => &["file", "scale", "offset_m"],
+            WallKind::OrificePlate => &[
+                "center_m",
+                "outer_radius_m",
+                "orifice_diameter_m",
+                "thickness_m",
+                "segments",
+            ],
+        };
+        let unused: Vec<(&str, bool)> = all
+            .iter()
+            .filter(|(k, _)| !used.contains(k))
+            .copied()
+            .collect();
+        self.unused(table, &unused, &why);
+        let req = format!("required {why}");
+        let vec_req = |c: &mut Self, key: &str, v: Option<[f64; 3]>| -> Option<Vector3<f64>> {
+            let v = c.require(table, key, v, &req)?;
+            c.vector(&table.key(key), v)
+        };
+        let pos_req = |c: &mut Self, key: &str, v: Option<f64>| -> Option<f64> {
+            let v = c.require(table, key, v, &req)?;
+            c.positive(&table.key(key), v)
+        };
+        let segments = match w.segments {
+            Some(s) if !(3..=4096).contains(&s) => {
+                self.error(
+                    &table.key("segments"),
+                    format!("= {s} is outside the allowed range [3, 4096]"),
+                );
+                return None;
+            }
+            Some(s) => s,
+            None => 48,
+        };
+        let thickness = match w.thickness_m {
+            Some(t) => Some(self.positive(&table.key("thickness_m"), t)?),
+            None => None,
+        };
+        let pieces = match w.kind {
+            WallKind::Plane => {
+                let point = vec_req(self, "point_m", w.point_m);
+                let normal = self
+                    .require(table, "normal", w.normal, &req)
+                    .and_then(|n| self.unit(&table.key("normal"), n));
+                vec![WallPiece::HalfSpace {
+                    point: point?,
+                    normal: normal?,
+                }]
+            }
+            WallKind::Box => {
+                let (lo, hi) = (
+                    vec_req(self, "min_m", w.min_m)?,
+                    vec_req(self, "max_m", w.max_m)?,
+                );
+                if (0..3).any(|c| hi[c] <= lo[c]) {
+                    self.error(&table.key("max_m"), "must exceed min_m in every component");
+                    return None;
+                }
+                let t = thickness.unwrap_or_else(|| (hi - lo).min() / 10.0);
+                walls::box_container(lo, hi, t, w.open_top.unwrap_or(true))
+            }
+            WallKind::Cylinder => {
+                let center = vec_req(self, "center_m", w.center_m);
+                let axis = match w.axis {
+                    Some(a) => self.unit(&table.key("axis"), a),
+                    None => Some(Vector3::z()),
+                };
+                let radius = pos_req(self, "radius_m", w.radius_m);
+                let length = pos_req(self, "length_m", w.length_m);
+                let (center, axis, radius, length) = (center?, axis?, radius?, length?);
+                walls::cylinder_container(
+                    center,
+                    axis,
+                    radius,
+                    length,
+                    thickness.unwrap_or(radius / 5.0),
+                    segments,
+                    w.capped.unwrap_or(false),
+                )
+            }
+            WallKind::OrificePlate => {
+                let center = vec_req(self, "center_m", w.center_m);
+                let outer = pos_req(self, "outer_radius_m", w.outer_radius_m);
+                let hole = pos_req(self, "orifice_diameter_m", w.orifice_diameter_m);
+                let (center, outer, hole) = (center?, outer?, hole?);
+                if hole / 2.0 >= outer {
+                    self.error(
+                        &table.key("orifice_diameter_m"),
+                        format!("= {hole} must be smaller than the plate's diameter 2 × outer_radius_m = {}", 2.0 * outer),
+                    );
+                    return None;
+                }
+                walls::orifice_plate(
+                    center,
+                    outer,
+                    hole,
+                    thickness.unwrap_or(outer / 10.0),
+                    segments,
+                )
+            }
+            WallKind::Mesh => {
+                let file = self.require(table, "file", w.file.as_deref(), &req)?;
+                let path = self.read_file(&table.key("file"), file);
+                let scale = match w.scale {
+                    Some(s) => self.positive(&table.key("scale"), s)?,
+                    None => 1.0,
+                };
+                let offset = match w.offset_m {
+                    Some(o) => self.vector(&table.key("offset_m"), o)?,
+                    None => Vector3::zeros(),
+                };
+                if !path.exists() {
+                    return None;
+                }
+                match walls::read_mesh(&path, scale, offset) {
+                    Ok(piece) => vec![piece],
+                    Err(e) => {
+                        self.error(&table.key("file"), e);
+                        return None;
+                    }
+                }
+            }
+        };
+        let angular_velocity = match w.angular_velocity_rad_per_s {
+            Some(v) => Some(self.vector(&table.key("angular_velocity_rad_per_s"), v)?),
+            None => None,
+        };
+        if w.rotation_center_m.is_some() && angular_velocity.is_none() {
+            self.error(
+                &table.key("rotation_center_m"),
+                "is used only with angular_velocity_rad_per_s: remove it",
+            );
+        }
+        if angular_velocity.is_some() && w.kind == WallKind::Plane {
+            self.error(
+                &table.key("angular_velocity_rad_per_s"),
+                "a plane cannot rotate (use a box or a mesh)",
+            );
+            return None;
+        }
+        let origin = match w.rotation_center_m {
+            Some(c) => self.vector(&table.key("rotation_center_m"), c)?,
+            None => Vector3::zeros(),
+        };
+        // Pieces are stored relative to the wall body's origin.
+        let pieces = pieces.into_iter().map(|p| p.translated(&-origin)).collect();
+        Some(Wall {
+            index,
+            material: 0,
+            pieces,
+            origin,
+            angular_velocity,
+        })
+    }
+
+    fn check_overlaps(&mut self, root: &KeyPath, particles: &[ParticleInit], walls: &[Wall]) {
+        let spheres: Vec<(Vector3<f64>, f64)> =
+            particles.iter().map(|p| (p.position, p.radius)).collect();
+        let pairs = placement::overlapping_pairs(&spheres, OVERLAP_TOLERANCE, 6);
+        for (i, j, overlap) in &pairs {
+            let (a, b) = (&particles[*i], &particles[*j]);
+            self.error(
+                &root.key("particles").index(b.group),
+                format!(
+                    "initial placement overlaps: particle {i} (group {}) and particle {j} (group {}) \
+                     overlap by {overlap:.3e} m, more than {}% of the smaller radius",
+                    a.group,
+                    b.group,
+                    OVERLAP_TOLERANCE * 100.0
+                ),
+            );
+        }
+        let mut reported = 0;
+        'walls: for wall in walls {
+            for piece in &wall.pieces {
+                for (k, p) in particles.iter().enumerate() {
+                    let d = piece.signed_distance(&(p.position - wall.origin));
+                    if d < p.radius * (1.0 - OVERLAP_TOLERANCE) {
+                        self.error(
+                            &root.key("walls").index(wall.index),
+                            format!(
+                                "initial placement: particle {k} (group {}, centre {:?} m, radius {:.3e} m) \
+                                 overlaps this wall by {:.3e} m",
+                                p.group,
+                                p.position.as_slice(),
+                                p.radius,
+                                p.radius - d
+                            ),
+                        );
+                        reported += 1;
+                        if reported >= 6 {
+                            break 'walls;
+                        }
+                        continue 'walls;
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl WallPiece {
+    /// The same piece moved by `shift` (m).
+    pub fn translated(self, shift: &Vector3<f64>) -> Self {
+        match self {
+            WallPiece::HalfSpace { point, normal } => WallPiece::HalfSpace {
+                point: point + shift,
+                normal,
+            },
+            WallPiece::Cuboid {
+                center,
+                rotation,
+                half_extents,
+            } => WallPiece::Cuboid {
+                center: center + shift,
+                rotation,
+                half_extents,
+            },
+            WallPiece::ConvexHull { points } => WallPiece::ConvexHull {
+                points: points.into_iter().map(|p| p + shift).collect(),
+            },
+            WallPiece::TriMesh { vertices, indices } => WallPiece::TriMesh {
+                vertices: vertices.into_iter().map(|p| p + shift).collect(),
+                indices,
+            },
+        }
+    }
+}
+
+/// Initial speeds plus the free-fall speed over the particles' vertical extent (along gravity),
+/// at least 0.1 m/s.
+fn estimate_max_speed(particles: &[ParticleInit], gravity: &Vector3<f64>) -> f64 {
+    let v0 = particles
+        .iter()
+        .map(|p| p.velocity.norm())
+        .fold(0.0, f64::max);
+    let g = gravity.norm();
+    let fall = if g > 0.0 {
+        let dir = gravity / g;
+        let (lo, hi) = particles
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                let h = p.position.dot(&dir);
+                (lo.min(h), hi.max(h))
+            });
+        (2.0 * g * (hi - lo).max(0.0)).sqrt()
+    } else {
+        0.0
+    };
+    (2.0 * v0 + fall).max(0.1)
+}
+
+/// Shortest Hertz contact time (s) at `speed` among the smallest sphere of each material against
+/// every other material (sphere and wall).
+fn shortest_contact_time(
+    particles: &[ParticleInit],
+    walls: &[Wall],
+    materials: &[(String, Material)],
+    speed: f64,
+) -> Option<f64> {
+    let mut smallest: Vec<Option<f64>> = vec![None; materials.len()];
+    for p in particles {
+        let s = &mut smallest[p.material];
+        *s = Some(s.map_or(p.radius, |r: f64| r.min(p.radius)));
+    }
+    let mut t = f64::INFINITY;
+    for (i, ri) in smallest.iter().enumerate() {
+        let Some(ri) = ri else { continue };
+        for (j, rj) in smallest.iter().enumerate() {
+            let Some(rj) = rj else { continue };
+            if let Ok(pair) =
+                ContactPair::sphere_on_sphere(*ri, &materials[i].1, *rj, &materials[j].1)
+            {
+                t = t.min(pair.hertz_contact_time(speed));
+            }
+        }
+        for w in walls {
+            if let Ok(pair) =
+                ContactPair::sphere_on_half_space(*ri, &materials[i].1, &materials[w.material].1)
+            {
+                t = t.min(pair.hertz_contact_time(speed));
+            }
+        }
+    }
+    t.is_finite().then_some(t)
+}
