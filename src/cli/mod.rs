@@ -2,4 +2,5 @@
 
 pub mod impact;
 pub mod sim;
+pub mod sim_ring;
 pub mod sim_run;

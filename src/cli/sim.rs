@@ -19,6 +19,9 @@ pub enum SimCommand {
     /// Head-on impact of two free spheres in rapier (`--v0` is the relative approach speed);
     /// prints `v0_m_per_s,e_n,steps`.
     Pair(PairArgs),
+    /// A planetary-ring shearing box (REBOUND's shearing sheet) with the MDR, Bridges or a
+    /// constant restitution law.
+    Ring(super::sim_ring::RingArgs),
     /// A granular scene from a TOML file (scenes/*.toml): VTK frames, energy books, plots,
     /// checkpoints; `--resume CHECKPOINT` continues a run.
     Run(super::sim_run::RunArgs),
@@ -29,6 +32,7 @@ pub fn run(cmd: SimCommand) -> anyhow::Result<()> {
     match cmd {
         SimCommand::Drop(args) => run_drop(&args),
         SimCommand::Pair(args) => run_pair(&args),
+        SimCommand::Ring(args) => super::sim_ring::run_ring(&args),
         SimCommand::Run(args) => super::sim_run::run(&args),
     }
 }

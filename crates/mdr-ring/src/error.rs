@@ -30,6 +30,9 @@ pub enum RingError {
     /// A contact-law parameter was rejected by the law crate.
     #[error(transparent)]
     Contact(#[from] mdr_contact::ContactError),
+    /// A restitution-law parameter was rejected by the plugin.
+    #[error(transparent)]
+    Coupling(#[from] mdr_rapier::CouplingError),
     /// Writing an output file failed.
     #[error("cannot write `{path}`: {source}")]
     Io {

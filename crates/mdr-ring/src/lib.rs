@@ -12,7 +12,8 @@
 //!   [`mdr_rapier::restitution_law`], re-exported here as [`law`];
 //! - [`hooks`], [`world`]: rapier collision step with ghost images and the restitution hook;
 //! - [`gravity`]: optional direct-sum self-gravity;
-//! - [`diagnostics`], [`run`], [`output`]: measurements, the time loop, CSV/JSON/VTK/SVG.
+//! - [`diagnostics`], [`run`], [`output`]: measurements, the time loop, CSV/JSON/VTK/SVG;
+//! - [`app`]: one run from options to files (used by `mdr-dem sim ring`).
 //!
 //! ```no_run
 //! use mdr_ring::prelude::*;
@@ -23,6 +24,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod app;
 pub mod boundary;
 pub mod diagnostics;
 pub mod error;

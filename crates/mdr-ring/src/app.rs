@@ -1,0 +1,262 @@
+//! One ring run from options to files, shared by `mdr-dem sim ring` and the examples: pick the
+//! law, run, and write the time series (`timeseries.csv`), the summary (`summary.json`), the
+//! equilibration plot (`equilibration.svg`), the law's `e(v)` next to Bridges'
+//! (`restitution.svg`) and VTK frames (`frames/ring_NNNN.vtk`).
+
+use crate::diagnostics::{Sample, Summary};
+use crate::error::Result;
+use crate::law::{BridgesLaw, ConstantRestitution, ImpactPair, MdrRestitution, RestitutionLaw};
+use crate::output::{
+    write_equilibration_svg, write_json, write_panels_svg, write_samples_csv, write_vtk_frame,
+    Curve, Panel,
+};
+use crate::particles::Population;
+use crate::run::{RingConfig, RingSimulation};
+use plotters::style::{BLACK, BLUE, GREEN, RED};
+use serde::Serialize;
+use std::path::PathBuf;
+
+/// The restitution law of a run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LawChoice {
+    /// MDR elasto-plastic law (energy route).
+    Mdr(MdrRestitution),
+    /// Bridges et al. (1984).
+    Bridges(BridgesLaw),
+    /// A constant ε.
+    Constant(ConstantRestitution),
+}
+
+impl LawChoice {
+    /// `mdr`, `bridges` or `constant`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            LawChoice::Mdr(l) => l.name(),
+            LawChoice::Bridges(l) => l.name(),
+            LawChoice::Constant(l) => l.name(),
+        }
+    }
+
+    /// The first-impact `e(v)` of `pair`.
+    pub fn first_impact(&self, pair: &ImpactPair, speed: f64) -> f64 {
+        match self {
+            LawChoice::Mdr(l) => l.first_impact(pair, speed),
+            LawChoice::Bridges(l) => l.first_impact(pair, speed),
+            LawChoice::Constant(l) => l.first_impact(pair, speed),
+        }
+    }
+}
+
+/// The parameters of the law, for the record of the run.
+#[derive(Debug, Clone, Serialize)]
+pub struct LawRecord {
+    /// `mdr`, `bridges` or `constant`.
+    pub name: &'static str,
+    /// Constant ε (constant law).
+    pub eps: Option<f64>,
+    /// Young's modulus (Pa, MDR).
+    pub youngs_modulus_pa: Option<f64>,
+    /// Poisson's ratio (MDR).
+    pub poisson_ratio: Option<f64>,
+    /// `q_c` (N/m, MDR).
+    pub critical_line_load_n_per_m: Option<f64>,
+    /// `Θ/E*` (MDR).
+    pub hardening_ratio: Option<f64>,
+}
+
+impl From<&LawChoice> for LawRecord {
+    fn from(law: &LawChoice) -> Self {
+        let mut record = LawRecord {
+            name: law.name(),
+            eps: None,
+            youngs_modulus_pa: None,
+            poisson_ratio: None,
+            critical_line_load_n_per_m: None,
+            hardening_ratio: None,
+        };
+        match law {
+            LawChoice::Mdr(l) => {
+                record.youngs_modulus_pa = Some(l.material().youngs_modulus());
+                record.poisson_ratio = Some(l.material().poisson_ratio());
+                record.critical_line_load_n_per_m = Some(l.model().critical_line_load());
+                if let mdr_contact::normal::Hardening::Ratio(r) = l.model().hardening() {
+                    record.hardening_ratio = Some(r);
+                }
+            }
+            LawChoice::Constant(l) => record.eps = Some(l.value()),
+            LawChoice::Bridges(_) => {}
+        }
+        record
+    }
+}
+
+/// Everything a run needs.
+#[derive(Debug, Clone)]
+pub struct RunOptions {
+    /// Ring settings.
+    pub config: RingConfig,
+    /// Restitution law.
+    pub law: LawChoice,
+    /// Length of the run in orbits.
+    pub orbits: f64,
+    /// Output directory (None: no files).
+    pub out: Option<PathBuf>,
+    /// Interval between VTK frames in orbits (None: no frames).
+    pub frame_orbits: Option<f64>,
+    /// Print a progress line every orbit to stderr.
+    pub progress: bool,
+}
+
+/// What a run reports: its settings and the second-half averages.
+#[derive(Debug, Clone, Serialize)]
+pub struct RunReport {
+    /// Second-half averages (the keys of `--json`).
+    #[serde(flatten)]
+    pub summary: Summary,
+    /// The law and its parameters.
+    pub law: LawRecord,
+    /// Seed.
+    pub seed: u64,
+    /// Orbits run.
+    pub orbits: f64,
+    /// Box side (m).
+    pub box_m: f64,
+    /// Surface density (kg/m²).
+    pub surface_density: f64,
+    /// Self-gravity on.
+    pub self_gravity: bool,
+    /// The time series (not serialised; written as CSV).
+    #[serde(skip)]
+    pub samples: Vec<Sample>,
+}
+
+/// Run and write the outputs.
+pub fn run(options: &RunOptions) -> Result<RunReport> {
+    match options.law {
+        LawChoice::Mdr(law) => run_with(options, law),
+        LawChoice::Bridges(law) => run_with(options, law),
+        LawChoice::Constant(law) => run_with(options, law),
+    }
+}
+
+fn run_with<L: RestitutionLaw>(options: &RunOptions, law: L) -> Result<RunReport> {
+    let mut ring = RingSimulation::new(options.config, law)?;
+    let frames_dir = options.out.as_ref().map(|d| d.join("frames"));
+    let frame_every = options
+        .frame_orbits
+        .map(|f| (f / options.config.sample_orbits).round().max(1.0) as u64);
+    let mut frame_error = None;
+    let mut index = 0u64;
+    if let (Some(dir), Some(_)) = (&frames_dir, frame_every) {
+        write_vtk_frame(
+            &dir.join("ring_0000.vtk"),
+            ring.particles(),
+            "ring t = 0 orbits",
+        )?;
+    }
+    let progress = options.progress;
+    let result = ring.run(options.orbits, |sample, particles| {
+        index += 1;
+        if progress && index % 10 == 0 {
+            eprintln!(
+                "orbit {:6.1}  c {:.3} mm/s  z_rms {:.2} m  FF0 {:.3}  collisions {}  wall {:.1} s",
+                sample.t_orbits,
+                sample.c * 1e3,
+                sample.z_rms,
+                sample.filling_factor_z0,
+                sample.collisions,
+                sample.wall_s
+            );
+        }
+        if let (Some(dir), Some(every)) = (&frames_dir, frame_every) {
+            if index % every == 0 && frame_error.is_none() {
+                let path = dir.join(format!("ring_{:04}.vtk", index / every));
+                let title = format!("ring t = {:.2} orbits", sample.t_orbits);
+                if let Err(e) = write_vtk_frame(&path, particles, &title) {
+                    frame_error = Some(e);
+                }
+            }
+        }
+    })?;
+    if let Some(e) = frame_error {
+        return Err(e);
+    }
+    let surface_density = ring.particles().total_mass() / ring.domain().area();
+    let report = RunReport {
+        summary: result.summary,
+        law: LawRecord::from(&options.law),
+        seed: options.config.seed,
+        orbits: options.orbits,
+        box_m: options.config.box_size,
+        surface_density,
+        self_gravity: options.config.gravity.is_some(),
+        samples: result.samples,
+    };
+    if let Some(dir) = &options.out {
+        write_samples_csv(&dir.join("timeseries.csv"), &report.samples)?;
+        write_json(&dir.join("summary.json"), &report)?;
+        write_equilibration_svg(
+            &dir.join("equilibration.svg"),
+            &[(options.law.name().to_string(), &report.samples)],
+        )?;
+        write_restitution_svg(&dir.join("restitution.svg"), &options.law)?;
+    }
+    Ok(report)
+}
+
+/// `e(v)` of `law` for first impacts of equal pairs of 1, 1.6 and 4 m particles (ρ = 400 kg/m³)
+/// next to the Bridges law, 10 µm/s to 3 cm/s.
+pub fn write_restitution_svg(path: &std::path::Path, law: &LawChoice) -> Result<()> {
+    let speeds: Vec<f64> = (0..=120)
+        .map(|k| 1e-5 * 10f64.powf(3.5 * k as f64 / 120.0))
+        .collect();
+    let pair = |r: f64| {
+        let m = 400.0 * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
+        ImpactPair {
+            radius1: r,
+            radius2: r,
+            mass1: m,
+            mass2: m,
+        }
+    };
+    let bridges = BridgesLaw::default();
+    let mut curves = vec![Curve {
+        label: "Bridges et al. 1984".to_string(),
+        points: speeds.iter().map(|&v| (v * 1e3, bridges.at(v))).collect(),
+        color: &BLACK,
+    }];
+    if !matches!(law, LawChoice::Bridges(_)) {
+        let colors = [&BLUE, &RED, &GREEN];
+        for (k, r) in [1.0, 1.6, 4.0].into_iter().enumerate() {
+            curves.push(Curve {
+                label: format!("{} (two {r} m particles)", law.name()),
+                points: speeds
+                    .iter()
+                    .map(|&v| (v * 1e3, law.first_impact(&pair(r), v)))
+                    .collect(),
+                color: colors[k],
+            });
+            if matches!(law, LawChoice::Constant(_)) {
+                break;
+            }
+        }
+    }
+    write_panels_svg(
+        path,
+        &[Panel {
+            title: "coefficient of restitution of a first impact".to_string(),
+            x_label: "impact speed [mm/s]".to_string(),
+            y_label: "e".to_string(),
+            curves,
+            log_x: true,
+        }],
+    )
+}
+
+/// The surface density of a population, for reports (kg/m²; None for a fixed count).
+pub fn population_density(population: Population) -> Option<f64> {
+    match population {
+        Population::SurfaceDensity(s) => Some(s),
+        Population::Count(_) => None,
+    }
+}
