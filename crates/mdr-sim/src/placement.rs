@@ -115,7 +115,8 @@ pub fn lattice(
         if room < 0.0 {
             0
         } else {
-            (room / spacing).floor() as usize + 1
+            // Saturating: a huge region must not overflow (the count limit applies anyway).
+            ((room / spacing).floor() as usize).saturating_add(1)
         }
     };
     let (nx, ny, nz) = (fit(0), fit(1), fit(2));
@@ -400,7 +401,14 @@ impl Grid {
         let (x, y, z) = self.key(p);
         (-1..=1)
             .flat_map(move |dx| (-1..=1).flat_map(move |dy| (-1..=1).map(move |dz| (dx, dy, dz))))
-            .filter_map(move |(dx, dy, dz)| self.cells.get(&(x + dx, y + dy, z + dz)))
+            .filter_map(move |(dx, dy, dz)| {
+                // Saturating: a centre at an absurd coordinate must not overflow.
+                self.cells.get(&(
+                    x.saturating_add(dx),
+                    y.saturating_add(dy),
+                    z.saturating_add(dz),
+                ))
+            })
             .flatten()
             .copied()
     }

@@ -56,7 +56,7 @@ density_kg_per_m3 = 2500.0
 
 [contact]
 normal = "mdr"
-critical_line_load_n_per_m = 300.0
+critical_line_load_n_per_m = 100.0
 hardening_ratio = 0.37
 {tangential}
 

@@ -97,6 +97,7 @@ fn parse_structure(loc: &Locator<'_>, text: &str) -> Result<SceneFile, Problems>
             }
         }
     }
+    problems.sort_by_key(|p| (p.line, p.column));
     Err(Problems(problems))
 }
 

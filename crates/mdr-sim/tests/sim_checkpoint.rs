@@ -1,0 +1,162 @@
+//! Checkpoint and restart: a run stopped at a checkpoint and resumed gives bit-identical particle
+//! states to the uninterrupted run; damaged or foreign checkpoints are refused whole.
+
+mod common;
+
+use mdr_sim::checkpoint::CheckpointError;
+use mdr_sim::{run_scene, scene::validate::parse_scene, RunOptions, SimError};
+
+fn scene_text() -> String {
+    // Friction and rolling resistance on, so every kind of per-contact history is exercised.
+    common::column(3, 3, 0.03, 0.5, "")
+        .replace("friction = 0.5", "friction = 0.5\nrolling_friction = 0.05")
+}
+
+#[test]
+fn resumed_run_is_bit_identical_to_the_uninterrupted_run() {
+    let dir = common::temp_dir("resume");
+    let text = scene_text();
+    let path = common::write(&dir, "column.toml", &text);
+    let scene = parse_scene(&path, &text).expect("valid scene");
+    let total = scene.total_steps();
+    let whole = run_scene(
+        &scene,
+        &RunOptions::new(dir.join("a")).quiet(true).no_frames(true),
+    )
+    .expect("uninterrupted run");
+    assert_eq!(whole.step, total);
+
+    let stop = total / 2 + 7;
+    let first = run_scene(
+        &scene,
+        &RunOptions::new(dir.join("b"))
+            .quiet(true)
+            .no_frames(true)
+            .stop_at_step(Some(stop)),
+    )
+    .expect("first half");
+    assert!(first.stopped_early);
+    assert_eq!(first.step, stop);
+    let checkpoint = first.checkpoint.expect("a checkpoint at the stop");
+    let resumed = run_scene(
+        &scene,
+        &RunOptions::new(dir.join("b"))
+            .quiet(true)
+            .no_frames(true)
+            .resume(Some(checkpoint)),
+    )
+    .expect("second half");
+    assert_eq!(resumed.step, total);
+    assert_eq!(resumed.particles.len(), whole.particles.len());
+    for (i, (a, b)) in whole.particles.iter().zip(&resumed.particles).enumerate() {
+        let bits = |r: &mdr_sim::run::BodyRecord| {
+            r.translation
+                .iter()
+                .chain(&r.rotation)
+                .chain(&r.linvel)
+                .chain(&r.angvel)
+                .map(|v| v.to_bits())
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(bits(a), bits(b), "particle {i} differs after the restart");
+    }
+    // The books continue as well.
+    assert_eq!(whole.energy.len(), resumed.energy.len());
+    for (a, b) in whole.energy.iter().zip(&resumed.energy) {
+        assert_eq!(a.balance_j.to_bits(), b.balance_j.to_bits());
+        assert_eq!(a.plastic_j.to_bits(), b.plastic_j.to_bits());
+    }
+    // Contacts happened, so histories mattered.
+    assert!(whole.energy.iter().any(|r| r.contacts > 0));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn damaged_and_foreign_checkpoints_are_refused() {
+    let dir = common::temp_dir("refuse");
+    let text = scene_text().replace("duration_s = 0.03", "duration_s = 0.002");
+    let path = common::write(&dir, "column.toml", &text);
+    let scene = parse_scene(&path, &text).expect("valid scene");
+    let run = run_scene(
+        &scene,
+        &RunOptions::new(dir.join("a")).quiet(true).no_frames(true),
+    )
+    .expect("run");
+    let good = run.checkpoint.expect("final checkpoint");
+    let bytes = std::fs::read(&good).unwrap();
+    let resume = |p: &std::path::Path| {
+        run_scene(
+            &scene,
+            &RunOptions::new(dir.join("r"))
+                .quiet(true)
+                .no_frames(true)
+                .resume(Some(p.into())),
+        )
+    };
+
+    let mut flipped = bytes.clone();
+    let mid = flipped.len() / 2;
+    flipped[mid] ^= 1;
+    let p = common::write(&dir, "flipped.mdrck", "");
+    std::fs::write(&p, &flipped).unwrap();
+    let e = resume(&p).unwrap_err();
+    assert!(
+        matches!(e, SimError::Checkpoint(CheckpointError::Checksum { .. })),
+        "{e}"
+    );
+    assert!(e.to_string().contains("corrupted"));
+
+    std::fs::write(&p, &bytes[..bytes.len() - 5]).unwrap();
+    let e = resume(&p).unwrap_err();
+    assert!(
+        matches!(e, SimError::Checkpoint(CheckpointError::Length { .. })),
+        "{e}"
+    );
+
+    let mut version = bytes.clone();
+    version[8] = 2;
+    std::fs::write(&p, &version).unwrap();
+    let e = resume(&p).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            SimError::Checkpoint(CheckpointError::Version { found: 2, .. })
+        ),
+        "{e}"
+    );
+
+    // A checkpoint of another scene (other seed, so other placement): refused.
+    let other_text = text.replace("seed = 5", "seed = 6");
+    let other_path = common::write(&dir, "other.toml", &other_text);
+    let other = parse_scene(&other_path, &other_text).unwrap();
+    let e = run_scene(
+        &other,
+        &RunOptions::new(dir.join("o"))
+            .quiet(true)
+            .no_frames(true)
+            .resume(Some(good.clone())),
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            SimError::Checkpoint(CheckpointError::Incompatible { .. })
+        ),
+        "{e}"
+    );
+
+    // A longer duration is a legitimate restart.
+    let longer_text = text.replace("duration_s = 0.002", "duration_s = 0.003");
+    let longer_path = common::write(&dir, "longer.toml", &longer_text);
+    let longer = parse_scene(&longer_path, &longer_text).unwrap();
+    let cont = run_scene(
+        &longer,
+        &RunOptions::new(dir.join("l"))
+            .quiet(true)
+            .no_frames(true)
+            .resume(Some(good)),
+    )
+    .expect("extending a run");
+    assert_eq!(cont.step, longer.total_steps());
+    std::fs::remove_dir_all(&dir).ok();
+}

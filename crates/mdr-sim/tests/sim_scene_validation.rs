@@ -1,0 +1,251 @@
+//! Malformed and extreme scene files: each gives a clear error (file, line, key, allowed range)
+//! or a warning, never a panic. Includes a seeded mutation sweep over a valid scene.
+
+mod common;
+
+use mdr_sim::scene::validate::parse_scene;
+use mdr_sim::scene::{Problems, Severity};
+use std::path::Path;
+
+fn good() -> String {
+    common::column(2, 2, 0.01, 0.3, "")
+}
+
+fn problems(text: &str) -> Problems {
+    match parse_scene(Path::new("scene.toml"), text) {
+        Ok(scene) => Problems(scene.warnings),
+        Err(p) => p,
+    }
+}
+
+/// The first error mentioning `key`; panics with all problems when there is none.
+fn error_on(text: &str, key: &str) -> mdr_sim::scene::Problem {
+    let p = problems(text);
+    let found = p
+        .errors()
+        .find(|e| e.key.contains(key) || e.message.contains(key))
+        .cloned();
+    found.unwrap_or_else(|| panic!("no error about `{key}`; got:\n{p}"))
+}
+
+fn line_of(text: &str, needle: &str) -> usize {
+    text.lines()
+        .position(|l| l.contains(needle))
+        .expect("needle")
+        + 1
+}
+
+#[test]
+fn the_reference_scene_is_valid() {
+    let p = problems(&good());
+    assert!(!p.has_errors(), "{p}");
+}
+
+#[test]
+fn nan_and_negative_sizes_name_key_line_and_range() {
+    let text = good().replace("radius_m = 0.002", "radius_m = nan");
+    let e = error_on(&text, "radius_m");
+    assert_eq!(e.line, line_of(&text, "radius_m = nan"));
+    assert!(e.message.contains("finite"), "{e}");
+
+    let text = good().replace("radius_m = 0.002", "radius_m = -0.002");
+    let e = error_on(&text, "radius_m");
+    assert!(e.message.contains("(0, inf)"), "{e}");
+    assert_eq!(e.key, "particles[0].radius_m");
+    assert_eq!(e.line, line_of(&text, "radius_m = -0.002"));
+    assert!(e.to_string().starts_with("scene.toml:"), "{e}");
+}
+
+#[test]
+fn zero_and_huge_counts_are_refused() {
+    let e = error_on(&good().replace("count = 8", "count = 0"), "count");
+    assert!(e.message.contains("[1, 1000000]"), "{e}");
+    let e = error_on(
+        &good().replace("count = 8", "count = 1000000000000"),
+        "count",
+    );
+    assert!(e.message.contains("[1, 1000000]"), "{e}");
+    let e = error_on(&good().replace("count = 8", "count = -3"), "count");
+    assert!(e.line > 0, "{e}");
+}
+
+#[test]
+fn material_parameters_are_checked_by_the_law_crate() {
+    let text = good().replace("poisson_ratio = 0.25", "poisson_ratio = 0.7");
+    let e = error_on(&text, "poisson_ratio");
+    assert!(e.message.contains("(-1, 0.5]"), "{e}");
+    assert_eq!(e.line, line_of(&text, "poisson_ratio = 0.7"));
+    let e = error_on(
+        &good().replace("hardening_ratio = 0.37", "hardening_ratio = 1.5"),
+        "hardening_ratio",
+    );
+    assert!(e.message.contains("[0, 1]"), "{e}");
+    let e = error_on(
+        &good().replace("friction = 0.3", "friction = -1.0"),
+        "friction",
+    );
+    assert!(e.message.contains("[0, inf)"), "{e}");
+}
+
+#[test]
+fn every_unknown_key_is_reported_at_once() {
+    let text = good()
+        .replace("seed = 5", "seed = 5\nspeed_of_light = 3e8")
+        .replace("count = 8", "count = 8\nradius = 0.1");
+    let p = problems(&text);
+    let unknown: Vec<_> = p
+        .errors()
+        .filter(|e| e.message.contains("unknown field"))
+        .collect();
+    assert_eq!(unknown.len(), 2, "{p}");
+    assert_eq!(unknown[0].line, line_of(&text, "speed_of_light"));
+    assert_eq!(unknown[1].line, line_of(&text, "radius = 0.1"));
+    assert!(
+        unknown[1].message.contains("radius_m"),
+        "the message lists the allowed keys: {p}"
+    );
+}
+
+#[test]
+fn keys_that_do_not_belong_to_the_chosen_kind_are_errors() {
+    let text = good().replace(
+        "normal = [0.0, 0.0, 1.0]",
+        "normal = [0.0, 0.0, 1.0]\nradius_m = 0.1",
+    );
+    let e = error_on(&text, "walls[0].radius_m");
+    assert!(e.message.contains("not used"), "{e}");
+    let e = error_on(
+        &good().replace("tangential = \"mindlin\"\n", ""),
+        "friction",
+    );
+    assert!(e.message.contains("mindlin"), "{e}");
+}
+
+#[test]
+fn overlapping_placement_is_refused() {
+    let dir = common::temp_dir("overlap");
+    std::fs::write(
+        dir.join("bed.csv"),
+        "x_m,y_m,z_m,radius_m\n0,0,0.01,0.002\n0.003,0,0.01,0.002\n0.02,0,0.01,0.002\n",
+    )
+    .unwrap();
+    let text = good()
+        .replace("count = 8\n", "")
+        .replace("radius_m = 0.002\n", "")
+        .replace(
+            "placement = \"lattice\"",
+            "placement = \"csv\"\nfile = \"bed.csv\"",
+        )
+        .lines()
+        .filter(|l| {
+            !l.starts_with("region_") && !l.starts_with("gap_") && !l.starts_with("jitter_")
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    let path = common::write(&dir, "scene.toml", &text);
+    let err = parse_scene(&path, &text).unwrap_err();
+    let e = err
+        .errors()
+        .find(|e| e.message.contains("overlap"))
+        .expect("overlap error");
+    assert!(
+        e.message.contains("particle 0") && e.message.contains("particle 1"),
+        "{e}"
+    );
+    // A particle inside the floor is refused too.
+    std::fs::write(
+        dir.join("bed.csv"),
+        "x_m,y_m,z_m,radius_m\n0,0,0.001,0.002\n",
+    )
+    .unwrap();
+    let err = parse_scene(&path, &text).unwrap_err();
+    assert!(err.errors().any(|e| e.key == "walls[0]"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_far_too_large_step_is_an_error_and_a_coarse_one_a_warning() {
+    let text = good().replace("dt_s = \"auto\"", "dt_s = 1e-3");
+    let e = error_on(&text, "dt_s");
+    assert!(e.message.contains("far too large"), "{e}");
+    assert_eq!(e.line, line_of(&text, "dt_s = 1e-3"));
+    // Hertz time here is ~2e-4 s: 20 steps per contact is allowed with a warning.
+    let text = good().replace("dt_s = \"auto\"", "dt_s = 1e-5");
+    let p = problems(&text);
+    assert!(!p.has_errors(), "{p}");
+    assert!(p.warnings().any(|w| w.key == "run.dt_s"), "{p}");
+}
+
+#[test]
+fn structure_errors_have_lines_too() {
+    let p = problems(&good().replace("[contact]", "[contact]\nnormal2 = 1"));
+    assert!(p.has_errors());
+    let p = problems("this is not toml = = =");
+    assert!(p.errors().next().unwrap().line > 0, "{p}");
+    let p = problems("");
+    assert!(p.has_errors(), "an empty file is refused");
+    let p = problems(&good().replace("normal = \"mdr\"", "normal = \"elastic\""));
+    assert!(p.errors().next().unwrap().line > 0, "{p}");
+    let p = problems(&good().replace("[[particles]]", "[[particles_]]"));
+    assert!(p.has_errors(), "{p}");
+}
+
+/// Seeded mutation sweep: replace one number of a valid scene by an extreme value, or drop or
+/// duplicate one line; every variant parses to a scene or to problems, never a panic.
+#[test]
+fn mutated_scenes_never_panic() {
+    let base = good();
+    let lines: Vec<&str> = base.lines().collect();
+    let extremes = [
+        "nan",
+        "inf",
+        "-inf",
+        "0",
+        "-0.0",
+        "1e308",
+        "-1e308",
+        "1e-320",
+        "-1",
+        "18446744073709551615",
+        "\"text\"",
+        "[]",
+        "[1.0]",
+        "true",
+    ];
+    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    let mut variants = 0;
+    for _ in 0..400 {
+        let i = (next() % lines.len() as u64) as usize;
+        let mut out: Vec<String> = lines.iter().map(|s| s.to_string()).collect();
+        match next() % 3 {
+            0 => {
+                if let Some((k, _)) = lines[i].split_once('=') {
+                    let v = extremes[(next() % extremes.len() as u64) as usize];
+                    out[i] = format!("{k}= {v}");
+                } else {
+                    continue;
+                }
+            }
+            1 => {
+                out.remove(i);
+            }
+            _ => out.insert(i, lines[i].to_owned()),
+        }
+        let text = out.join("\n");
+        let result = std::panic::catch_unwind(|| problems(&text));
+        assert!(result.is_ok(), "panic on variant:\n{text}");
+        variants += 1;
+        let p = result.unwrap();
+        for e in p.errors() {
+            assert!(!e.message.is_empty());
+        }
+    }
+    assert!(variants > 200);
+    let _ = Severity::Error;
+}
