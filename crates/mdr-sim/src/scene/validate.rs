@@ -300,6 +300,21 @@ impl Checker<'_, '_> {
             }
             None => Some(mdr_rapier::timestep::MIN_STEPS_PER_CONTACT),
         };
+        if r.coupling == CouplingMode::Restitution {
+            let c = &file.contact;
+            if c.normal != NormalLawName::Mdr {
+                self.error(
+                    &root.key("contact").key("normal"),
+                    "restitution coupling needs normal = \"mdr\" (its restitution comes from the MDR energy route)",
+                );
+            }
+            if c.damping != DampingLawName::None || c.rolling_friction.is_some_and(|m| m > 0.0) {
+                self.warn(
+                    &root.key("contact"),
+                    "restitution coupling ignores damping and rolling resistance (only e_n(v) and μ enter the impulses)",
+                );
+            }
+        }
         if r.discharge_height_m.is_some() && r.headline != Headline::Hopper {
             self.error(
                 &run.key("discharge_height_m"),
@@ -416,7 +431,8 @@ impl Checker<'_, '_> {
             return None;
         }
         let max_speed = max_speed_given.unwrap_or_else(|| estimate_max_speed(&particles, &gravity));
-        let contact_time = shortest_contact_time(&particles, &walls_out, &materials, max_speed)?;
+        let shortest = shortest_contact_pair(&particles, &walls_out, &materials)?;
+        let contact_time = shortest.hertz_contact_time(max_speed);
         let (dt, dt_auto) = match r.dt_s {
             TimeStep::Auto(_) => {
                 if max_speed_given.is_none() {
@@ -428,7 +444,14 @@ impl Checker<'_, '_> {
                         ),
                     );
                 }
-                (contact_time / spc, true)
+                // The plugin's helper: Hertz contact time of the shortest pair / steps.
+                match mdr_rapier::stable_time_step(&shortest, max_speed, spc) {
+                    Ok(advice) => (advice.time_step, true),
+                    Err(e) => {
+                        self.error(&run.key("dt_s"), e.to_string());
+                        return None;
+                    }
+                }
             }
             TimeStep::Seconds(dt) => {
                 let dt = self.positive(&run.key("dt_s"), dt)?;
@@ -1252,37 +1275,45 @@ fn estimate_max_speed(particles: &[ParticleInit], gravity: &Vector3<f64>) -> f64
     (2.0 * v0 + fall).max(0.1)
 }
 
-/// Shortest Hertz contact time (s) at `speed` among the smallest sphere of each material against
-/// every other material (sphere and wall).
-fn shortest_contact_time(
+/// The pair with the shortest Hertz contact time (the time scales as `(m²/(R E*²))^{1/5}` at any
+/// speed): the smallest sphere of each material against every material, sphere or wall.
+fn shortest_contact_pair(
     particles: &[ParticleInit],
     walls: &[Wall],
     materials: &[(String, Material)],
-    speed: f64,
-) -> Option<f64> {
+) -> Option<ContactPair> {
     let mut smallest: Vec<Option<f64>> = vec![None; materials.len()];
     for p in particles {
         let s = &mut smallest[p.material];
         *s = Some(s.map_or(p.radius, |r: f64| r.min(p.radius)));
     }
-    let mut t = f64::INFINITY;
+    let mut best: Option<(f64, ContactPair)> = None;
+    let mut consider = |pair: Result<ContactPair, ContactError>| {
+        if let Ok(pair) = pair {
+            let t = pair.hertz_contact_time(1.0);
+            if best.is_none_or(|(b, _)| t < b) {
+                best = Some((t, pair));
+            }
+        }
+    };
     for (i, ri) in smallest.iter().enumerate() {
         let Some(ri) = ri else { continue };
         for (j, rj) in smallest.iter().enumerate() {
             let Some(rj) = rj else { continue };
-            if let Ok(pair) =
-                ContactPair::sphere_on_sphere(*ri, &materials[i].1, *rj, &materials[j].1)
-            {
-                t = t.min(pair.hertz_contact_time(speed));
-            }
+            consider(ContactPair::sphere_on_sphere(
+                *ri,
+                &materials[i].1,
+                *rj,
+                &materials[j].1,
+            ));
         }
         for w in walls {
-            if let Ok(pair) =
-                ContactPair::sphere_on_half_space(*ri, &materials[i].1, &materials[w.material].1)
-            {
-                t = t.min(pair.hertz_contact_time(speed));
-            }
+            consider(ContactPair::sphere_on_half_space(
+                *ri,
+                &materials[i].1,
+                &materials[w.material].1,
+            ));
         }
     }
-    t.is_finite().then_some(t)
+    best.map(|(_, pair)| pair)
 }
