@@ -7,11 +7,11 @@
 //! - plain rapier on the same scene (rigid contacts, 1 and 4 solver iterations).
 //!
 //! Run: `cargo bench --bench granular` (add `-- --cells 13,13,15 --steps 200` to change the
-//! size). A benchmark, not a test: it prints a table and asserts nothing about time.
+//! size, `--force-only` to time force mode alone, e.g. under `perf record`). A benchmark, not a test: it prints a table and asserts nothing about time.
 
 use mdr_contact::normal::MdrState;
-use mdr_rapier::prelude::*;
 use mdr_rapier::prelude::ContactPair;
+use mdr_rapier::prelude::*;
 use mdr_rapier::rapier::prelude::*;
 use mdr_rapier::rapier::rayon;
 use std::time::Instant;
@@ -75,20 +75,34 @@ fn base_world() -> PhysicsWorld {
     world
 }
 
+/// Accumulated milliseconds.
 #[derive(Default)]
 struct Split {
     total: f64,
     plugin: f64,
-    collision: f64,
-    narrow: f64,
-    solver: f64,
+    phases: [f64; 6],
+    /// Process CPU time (all threads) over the timed steps, ms.
+    cpu: f64,
 }
 
-fn add_counters(split: &mut Split, world: &PhysicsWorld) {
-    let c = &world.physics_pipeline.counters;
-    split.collision += c.stages.collision_detection_time.time_ms();
-    split.narrow += c.cd.narrow_phase_time.time_ms();
-    split.solver += c.stages.solver_time.time_ms();
+/// CPU time (user + system, all threads) of this process so far, in ms, from `/proc/self/stat`
+/// (10 ms resolution). Unlike wall time it does not grow when other processes share the cores.
+fn cpu_ms() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    let fields: Vec<&str> = stat
+        .rsplit(')')
+        .next()
+        .unwrap_or("")
+        .split_whitespace()
+        .collect();
+    let ticks = |i: usize| {
+        fields
+            .get(i)
+            .and_then(|x| x.parse::<f64>().ok())
+            .unwrap_or(0.0)
+    };
+    // Fields 14 and 15 of stat (utime, stime) are 11 and 12 after the command name.
+    (ticks(11) + ticks(12)) * 10.0
 }
 
 fn force_mode(cells: [usize; 3], warmup: usize, steps: usize) -> (usize, usize, Split) {
@@ -116,6 +130,7 @@ fn force_mode(cells: [usize; 3], warmup: usize, steps: usize) -> (usize, usize, 
     }
     let mut split = Split::default();
     let mut contacts = 0;
+    let cpu0 = cpu_ms();
     for _ in 0..steps {
         let t0 = Instant::now();
         stepper
@@ -127,9 +142,20 @@ fn force_mode(cells: [usize; 3], warmup: usize, steps: usize) -> (usize, usize, 
         let t2 = Instant::now();
         split.plugin += (t1 - t0).as_secs_f64() * 1e3;
         split.total += (t2 - t0).as_secs_f64() * 1e3;
-        add_counters(&mut split, &world);
+        let t = stepper.last_report().timings;
+        for (acc, x) in split.phases.iter_mut().zip([
+            t.candidates,
+            t.geometry,
+            t.merge,
+            t.kernel,
+            t.reduction,
+            t.apply,
+        ]) {
+            *acc += x * 1e3;
+        }
         contacts += stepper.contacts().len();
     }
+    split.cpu = cpu_ms() - cpu0;
     (centres.len(), contacts / steps, split)
 }
 
@@ -166,6 +192,7 @@ fn rapier_mode(
     }
     let mut split = Split::default();
     let mut contacts = 0;
+    let cpu0 = cpu_ms();
     for _ in 0..steps {
         let t0 = Instant::now();
         if hooks_on {
@@ -174,13 +201,13 @@ fn rapier_mode(
             world.step();
         }
         split.total += t0.elapsed().as_secs_f64() * 1e3;
-        add_counters(&mut split, &world);
         contacts += world
             .narrow_phase
             .contact_pairs()
             .filter(|p| p.has_any_active_contact())
             .count();
     }
+    split.cpu = cpu_ms() - cpu0;
     (contacts / steps, split)
 }
 
@@ -233,18 +260,43 @@ fn main() {
     let (n, contacts, f) = force_mode(cells, 50, steps);
     let per = |x: f64| x / steps as f64;
     println!("\n{n} spheres, dt = {:.3e} s", time_step());
-    println!("| setup | ms/step | particle-steps/s | touching contacts |");
-    println!("|---|---|---|---|");
+    println!("| setup | wall ms/step | CPU ms/step (all threads) | particle-steps/s (wall) | touching contacts |");
+    println!("|---|---|---|---|---|");
     println!(
-        "| force mode (MDR + Mindlin + damping) | {:.2} | {:.3e} | {} |",
+        "| force mode (MDR + Mindlin + damping) | {:.2} | {:.1} | {:.3e} | {} |",
         per(f.total),
+        per(f.cpu),
         n as f64 / (per(f.total) * 1e-3),
         contacts
     );
+    let split = || {
+        println!("\nforce mode, where the time goes (ms/step):");
+        println!(
+            "  rapier step (broad + narrow phase, integration): {:.2}",
+            per(f.total - f.plugin)
+        );
+        println!("  plugin force pass: {:.2}, of which", per(f.plugin));
+        let names = [
+            "candidates",
+            "geometry + sort",
+            "history merge",
+            "law kernel",
+            "reduction",
+            "apply",
+        ];
+        for (name, x) in names.iter().zip(f.phases) {
+            println!("    {name}: {:.2}", per(x));
+        }
+    };
+    if args.iter().any(|a| a == "--force-only") {
+        split();
+        return;
+    }
     let (c_hooks, h) = rapier_mode(cells, true, 4, steps);
     println!(
-        "| restitution mode (hook on every pair, 4 iterations) | {:.2} | {:.3e} | {} |",
+        "| restitution mode (hook on every pair, 4 iterations) | {:.2} | {:.1} | {:.3e} | {} |",
         per(h.total),
+        per(h.cpu),
         n as f64 / (per(h.total) * 1e-3),
         c_hooks
     );
@@ -252,36 +304,21 @@ fn main() {
     for it in [1, 4] {
         let (c, p) = rapier_mode(cells, false, it, steps);
         if it == 4 {
-            plain_total = per(p.total);
+            plain_total = per(p.cpu);
         }
         println!(
-            "| plain rapier, rigid contacts, {it} iteration(s) | {:.2} | {:.3e} | {} |",
+            "| plain rapier, rigid contacts, {it} iteration(s) | {:.2} | {:.1} | {:.3e} | {} |",
             per(p.total),
+            per(p.cpu),
             n as f64 / (per(p.total) * 1e-3),
             c
         );
     }
-    println!("\nforce mode, where the time goes (ms/step):");
     println!(
-        "  plugin force pass (candidates, geometry, history merge, law, reduction, apply): {:.2}",
-        per(f.plugin)
+        "hook overhead over plain rapier (4 iterations): {:.0} ns CPU per touching contact per step",
+        (per(h.cpu) - plain_total) * 1e6 / c_hooks.max(1) as f64
     );
-    println!(
-        "  rapier step: {:.2} (collision detection {:.2}, of which narrow phase {:.2}; solver/integration {:.2})",
-        per(f.total - f.plugin),
-        per(f.collision),
-        per(f.narrow),
-        per(f.solver)
-    );
-    println!(
-        "restitution mode: narrow phase {:.2} ms/step (hooked pairs are never recycled), solver {:.2}",
-        per(h.narrow),
-        per(h.solver)
-    );
-    println!(
-        "hook overhead over plain rapier (4 iterations): {:.0} ns per touching contact per step",
-        (per(h.total) - plain_total) * 1e6 / c_hooks.max(1) as f64
-    );
+    split();
     let (fresh, early) = energy_route_cost();
     println!("energy route alone: {fresh:.0} ns per first impact, {early:.1} ns per elastic re-impact check");
 }

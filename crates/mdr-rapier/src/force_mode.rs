@@ -27,6 +27,7 @@ use mdr_contact::ContactPair;
 use nalgebra::Vector3;
 use rapier3d_f64::prelude::*;
 use rayon::prelude::*;
+use std::time::Instant;
 
 /// One touching pair in force mode: who, the law bound to the pair, its history, the geometry
 /// and the wrench of the current step.
@@ -87,6 +88,26 @@ pub struct StepReport {
     /// distance in one step, i.e. a new contact could be seen one step late: reduce `dt` or raise
     /// the prediction distance.
     pub prediction_distance_ok: bool,
+    /// Wall-clock time of each phase of the plugin's force pass.
+    pub timings: PhaseTimings,
+}
+
+/// Wall-clock seconds spent in each phase of one force pass (for profiling; not used by the
+/// physics).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PhaseTimings {
+    /// Collecting candidate pairs from the narrow phase.
+    pub candidates: f64,
+    /// Exact geometry of the candidates (parallel) and sorting them by key.
+    pub geometry: f64,
+    /// Merging the touching pairs into the history store.
+    pub merge: f64,
+    /// The per-pair kernel (parallel): law updates and wrenches.
+    pub kernel: f64,
+    /// Per-body reduction in key order.
+    pub reduction: f64,
+    /// Writing forces and torques to rapier's bodies.
+    pub apply: f64,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -183,6 +204,7 @@ where
 
     /// The history store, mutably: restoring per-contact histories from a checkpoint
     /// (used by `mdr-sim`; the entries' keys must stay sorted).
+    #[allow(clippy::type_complexity)]
     pub fn contacts_mut(
         &mut self,
     ) -> &mut ContactStore<ForceContact<N::Law, T::Law, D::Law, R::Law>> {
@@ -263,6 +285,7 @@ where
         narrow_phase: &NarrowPhase,
         dt: f64,
     ) -> Result<()> {
+        let t0 = Instant::now();
         let particles = &self.particles;
         self.candidates.clear();
         for pair in narrow_phase.contact_pairs() {
@@ -293,10 +316,12 @@ where
                 contact: None,
             });
         }
+        let t1 = Instant::now();
         self.candidates.par_iter_mut().for_each(|c| {
             c.contact = candidate_geometry(particles, colliders, c.sphere, c.other);
         });
         self.candidates.par_sort_unstable_by_key(|c| c.key);
+        let t2 = Instant::now();
 
         let (created0, removed0) = (self.store.created(), self.store.removed());
         let model = &self.model;
@@ -348,7 +373,9 @@ where
             removed: self.store.removed() - removed0,
             max_speed: 0.0,
             prediction_distance_ok: true,
+            timings: PhaseTimings::default(),
         };
+        let t3 = Instant::now();
 
         self.store.entries_mut().par_iter_mut().for_each(|entry| {
             let kinematics = kinematics(bodies, entry.body1, entry.body2, &entry.contact);
@@ -361,6 +388,7 @@ where
             );
         });
 
+        let t4 = Instant::now();
         // Deterministic reduction: entries are sorted by key, each body sums in that order.
         for entry in self.store.entries() {
             let w = &entry.wrench;
@@ -373,12 +401,22 @@ where
                 }
             }
         }
+        let t5 = Instant::now();
+        self.report.timings = PhaseTimings {
+            candidates: (t1 - t0).as_secs_f64(),
+            geometry: (t2 - t1).as_secs_f64(),
+            merge: (t3 - t2).as_secs_f64(),
+            kernel: (t4 - t3).as_secs_f64(),
+            reduction: (t5 - t4).as_secs_f64(),
+            apply: 0.0,
+        };
         Ok(())
     }
 
     /// Step 5: replace the user forces of every registered dynamic body by the contact wrenches
     /// of [`ForceModeStepper::compute_forces`].
     pub fn apply_forces(&mut self, bodies: &mut RigidBodySet) {
+        let started = Instant::now();
         let mut max_speed2: f64 = 0.0;
         for particle in self.particles.iter() {
             let Some(handle) = particle.body else {
@@ -415,6 +453,7 @@ where
             }
         }
         self.report.max_speed = max_speed2.sqrt();
+        self.report.timings.apply = started.elapsed().as_secs_f64();
     }
 }
 

@@ -60,7 +60,7 @@ pub mod timestep;
 pub use rapier3d_f64 as rapier;
 
 pub use error::{CouplingError, Result};
-pub use force_mode::{ForceModeStepper, StepReport};
+pub use force_mode::{ForceModeStepper, PhaseTimings, StepReport};
 pub use particles::{MaterialHandle, Particle, ParticleSet, ParticleShape, SphereBuilder};
 pub use restitution::{ImpactHistory, RestitutionHooks};
 pub use scenario::{CouplingMode, ImpactScene, SceneOutcome, Target};

@@ -59,19 +59,37 @@ impl<E: Keyed> ContactStore<E> {
     /// an existing entry with the same key is kept and passed to `keep` with the item (its
     /// history survives), a missing one is made by `create`; entries whose key is absent are
     /// dropped (the pair separated).
-    pub fn merge<C>(
+    ///
+    /// When the touching pairs are exactly the stored ones (the common case in a quasi-static
+    /// bed) the entries are updated in place and nothing moves.
+    pub fn merge<C, I>(
         &mut self,
-        touching: impl IntoIterator<Item = C>,
+        touching: I,
         key_of: impl Fn(&C) -> PairKey,
         mut create: impl FnMut(C) -> Result<E>,
         mut keep: impl FnMut(&mut E, C),
-    ) -> Result<()> {
+    ) -> Result<()>
+    where
+        I: IntoIterator<Item = C>,
+        I::IntoIter: Clone,
+    {
         let Self {
             entries,
             scratch,
             created,
             removed,
         } = self;
+        let touching = touching.into_iter();
+        if touching
+            .clone()
+            .map(|c| key_of(&c))
+            .eq(entries.iter().map(|e| e.key()))
+        {
+            for (entry, item) in entries.iter_mut().zip(touching) {
+                keep(entry, item);
+            }
+            return Ok(());
+        }
         scratch.clear();
         let mut old = entries.drain(..).peekable();
         for item in touching {
