@@ -4,7 +4,7 @@
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let scene_path = args.next().ok_or("usage: run_scene SCENE.toml [OUT_DIR]")?;
-    let scene = mdr_sim::load_scene(scene_path.as_ref())?;
+    let scene = mdr_sim::load_scene(scene_path.as_ref()).map_err(|p| p.to_string())?;
     for w in &scene.warnings {
         eprintln!("{w}");
     }

@@ -47,10 +47,13 @@ pub fn load_scene(path: &Path) -> Result<Scene, Problems> {
 /// Check a scene given as text; `path` locates it (messages, relative file names).
 pub fn parse_scene(path: &Path, text: &str) -> Result<Scene, Problems> {
     let loc = Locator::new(path, text);
-    let file = parse_structure(&loc, text)?;
+    let (file, structural) = parse_structure(&loc, text);
+    let Some(file) = file else {
+        return Err(Problems(structural));
+    };
     let mut checker = Checker {
         loc: &loc,
-        problems: Vec::new(),
+        problems: structural,
         base: path.parent().map(Path::to_path_buf).unwrap_or_default(),
     };
     let scene = checker.scene(path, file);
@@ -66,14 +69,14 @@ pub fn parse_scene(path: &Path, text: &str) -> Result<Scene, Problems> {
 }
 
 /// serde pass. An unknown key alone on its line is blanked out (same length, so spans stay
-/// valid) and parsing resumes, so every unknown key is reported at once.
-fn parse_structure(loc: &Locator<'_>, text: &str) -> Result<SceneFile, Problems> {
+/// valid) and parsing resumes, so every unknown key is reported at once, and the values are
+/// still checked. Returns the parsed file (if any) and the structural problems.
+fn parse_structure(loc: &Locator<'_>, text: &str) -> (Option<SceneFile>, Vec<Problem>) {
     let mut work = text.to_owned();
     let mut problems = Vec::new();
     for _ in 0..64 {
         match toml::from_str::<SceneFile>(&work) {
-            Ok(file) if problems.is_empty() => return Ok(file),
-            Ok(_) => break,
+            Ok(file) => return (Some(file), problems),
             Err(e) => {
                 let span = e.span();
                 let message = e.message().trim().to_owned();
@@ -98,7 +101,7 @@ fn parse_structure(loc: &Locator<'_>, text: &str) -> Result<SceneFile, Problems>
         }
     }
     problems.sort_by_key(|p| (p.line, p.column));
-    Err(Problems(problems))
+    (None, problems)
 }
 
 /// The byte range of the line holding `offset` and the key written on it (text before `=`).
