@@ -2,7 +2,7 @@
 //!
 //! - column collapse: run-out distance and final height (compared with the axisymmetric
 //!   run-out scaling of Lube, Huppert, Sparks & Hallworth, J. Fluid Mech. 508, 175 (2004));
-//! - hopper: steady mass flow rate (compared with the Beverloo correlation
+//! - hopper: steady mass flow rate, fitted over the second half of the run (compared with the Beverloo correlation
 //!   `W = C ρ_b √g (D − k d)^{5/2}`, Beverloo, Leniger & van de Velde, Chem. Eng. Sci. 15, 260
 //!   (1961), with `C = 0.58`, `k = 1.5`, `ρ_b = 0.6 ρ_p`);
 //! - rotating drum: dynamic angle of repose of the free surface;
@@ -345,10 +345,13 @@ impl Tracker {
                     .map(|p| scene.materials[p.material].1.sphere_mass(p.radius))
                     .sum();
                 let final_mass = samples.last().map_or(0.0, |s| s.values[0]);
+                // Steady discharge: the second half of the run, once the flow has started and
+                // while the hopper is not yet nearly empty.
+                let t_end = samples.last().map_or(0.0, |s| s.time);
                 let window: Vec<(f64, f64)> = samples
                     .iter()
                     .map(|s| (s.time, s.values[0]))
-                    .filter(|(_, m)| *m >= 0.2 * final_mass && *m <= 0.8 * final_mass)
+                    .filter(|(t, m)| *t >= 0.5 * t_end && *m > 0.0 && *m <= 0.9 * total)
                     .collect();
                 let rate = linear_fit(&window).map_or(f64::NAN, |(_, slope)| slope);
                 r.push("orifice_diameter_m", orifice);
@@ -359,7 +362,7 @@ impl Tracker {
                 r.push("ratio_to_beverloo", rate / beverloo);
                 r.text = format!(
                     "hopper discharge: D = {orifice:.4e} m, d = {d:.4e} m (D/d = {:.2}), discharged {:.1} % of the mass\n  \
-                     steady mass flow rate W = {rate:.4e} kg/s (fit over 20–80 % of the discharged mass, {} samples)\n  \
+                     steady mass flow rate W = {rate:.4e} kg/s (fit over the second half of the run, {} samples)\n  \
                      Beverloo W = C ρ_b √g (D − k d)^{{5/2}} = {beverloo:.4e} kg/s (C = {BEVERLOO_C}, k = {BEVERLOO_K}, \
                      ρ_b = {BULK_SOLID_FRACTION} ρ_p); ratio {:.3}",
                     orifice / d,
