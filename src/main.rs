@@ -21,6 +21,8 @@ enum Command {
     /// Simulations in rapier: single drops, pairs, scenes, rings.
     #[command(subcommand)]
     Sim(cli::sim::SimCommand),
+    /// Verification suite: the Chung & Ooi (2011) benchmark tests with reference plots.
+    Verify(cli::verify::VerifyArgs),
 }
 
 fn main() -> std::process::ExitCode {
@@ -29,6 +31,7 @@ fn main() -> std::process::ExitCode {
         None => cli::impact::run_default(),
         Some(Command::Impact(cmd)) => cli::impact::run(cmd),
         Some(Command::Sim(cmd)) => cli::sim::run(cmd),
+        Some(Command::Verify(args)) => cli::verify::run(args),
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

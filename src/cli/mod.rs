@@ -4,3 +4,4 @@ pub mod impact;
 pub mod sim;
 pub mod sim_ring;
 pub mod sim_run;
+pub mod verify;
