@@ -21,6 +21,9 @@ enum Command {
     /// Simulations in rapier: single drops, pairs, scenes, rings.
     #[command(subcommand)]
     Sim(cli::sim::SimCommand),
+    /// Throughput benchmarks: the fast force-mode path on a settled bed, side by side with LAMMPS.
+    #[command(subcommand)]
+    Bench(cli::bench::BenchCommand),
     /// Verification suite: the Chung & Ooi (2011) benchmark tests with reference plots.
     Verify(cli::verify::VerifyArgs),
 }
@@ -31,6 +34,7 @@ fn main() -> std::process::ExitCode {
         None => cli::impact::run_default(),
         Some(Command::Impact(cmd)) => cli::impact::run(cmd),
         Some(Command::Sim(cmd)) => cli::sim::run(cmd),
+        Some(Command::Bench(cmd)) => cli::bench::run(cmd),
         Some(Command::Verify(args)) => cli::verify::run(args),
     };
     match result {

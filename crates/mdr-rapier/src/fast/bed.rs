@@ -110,7 +110,10 @@ impl Bed {
                     continue;
                 }
                 if words.len() < 7 {
-                    return Err(bad(k + 1, format!("atom line has {} fields, expected 7", words.len())));
+                    return Err(bad(
+                        k + 1,
+                        format!("atom line has {} fields, expected 7", words.len()),
+                    ));
                 }
                 let v: Vec<f64> = words[2..7]
                     .iter()
@@ -143,7 +146,10 @@ impl Bed {
         bed.hi = hi;
         match count {
             Some(c) if c == bed.len() => Ok(bed),
-            Some(c) => Err(bad(0, format!("header says {c} atoms, found {}", bed.len()))),
+            Some(c) => Err(bad(
+                0,
+                format!("header says {c} atoms, found {}", bed.len()),
+            )),
             None => Err(bad(0, "no `N atoms` header line".into())),
         }
     }
@@ -324,7 +330,9 @@ pub fn settled_bed(spec: &BedSpec) -> Result<Bed, BedError> {
         grain,
     )?;
     for p in &bed.position {
-        stepper.insert_sphere(SphereBuilder::new(0.5, grain).translation(Vector::new(p.x, p.y, p.z)))?;
+        stepper.insert_sphere(
+            SphereBuilder::new(0.5, grain).translation(Vector::new(p.x, p.y, p.z)),
+        )?;
     }
     let mut stepper = stepper.skin(0.1)?;
     for _ in 0..spec.settle_steps {

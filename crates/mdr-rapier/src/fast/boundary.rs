@@ -163,8 +163,9 @@ impl Boundary {
     pub fn near_box(&self, position: &Vector3<f64>, margin: f64) -> bool {
         match self {
             Boundary::Open => true,
-            Boundary::PeriodicXY { lo, hi } => (0..2)
-                .all(|k| position[k] >= lo[k] - margin && position[k] < hi[k] + margin),
+            Boundary::PeriodicXY { lo, hi } => {
+                (0..2).all(|k| position[k] >= lo[k] - margin && position[k] < hi[k] + margin)
+            }
         }
     }
 }

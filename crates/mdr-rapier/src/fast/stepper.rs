@@ -41,11 +41,8 @@ use rayon::prelude::*;
 /// Pairs per parallel work item of the force loops.
 const CHUNK: usize = 2048;
 
-type Law<N, T, D> = ContactLaw<
-    <N as NormalModel>::Law,
-    <T as TangentialModel>::Law,
-    <D as DampingModel>::Law,
->;
+type Law<N, T, D> =
+    ContactLaw<<N as NormalModel>::Law, <T as TangentialModel>::Law, <D as DampingModel>::Law>;
 /// The pair history of a stepper's laws.
 pub type FastHistory<N, T, R> = PairHistory<
     StateOf<<N as NormalModel>::Law, <T as TangentialModel>::Law>,
@@ -483,18 +480,16 @@ where
                     continue;
                 };
                 let aabb = co.compute_aabb();
-                let inside = (0..3).all(|d| x[d] >= aabb.mins[d] - reach && x[d] <= aabb.maxs[d] + reach);
+                let inside =
+                    (0..3).all(|d| x[d] >= aabb.mins[d] - reach && x[d] <= aabb.maxs[d] + reach);
                 if inside && co.shape().distance_to_point(co.position(), x, true) < reach {
                     self.surface_candidates.push((i as u32, k as u32));
                 }
             }
         }
         std::mem::swap(&mut self.surface_pairs, &mut self.old_surface_pairs);
-        self.surface_pairs.rebuild_from(
-            &self.surface_candidates,
-            n,
-            &mut self.old_surface_pairs,
-        );
+        self.surface_pairs
+            .rebuild_from(&self.surface_candidates, n, &mut self.old_surface_pairs);
         self.max_displacement = 0.0;
         self.needs_build = false;
         self.rebuilds += 1;
@@ -513,15 +508,15 @@ where
         if rebuilt {
             self.rebuild(&world.bodies, &world.colliders)?;
         }
-        self.sphere_wrenches(dt);
-        self.surface_wrenches(&world.bodies, &world.colliders, dt);
+        let sphere_contacts = self.sphere_wrenches(dt);
+        let surface_contacts = self.surface_wrenches(&world.bodies, &world.colliders, dt);
         let gravity = to_na(world.gravity);
         self.max_displacement = self.integrate(&gravity, dt).sqrt();
         self.apply_reactions(&mut world.bodies);
         world.step();
         self.report = FastStepReport {
-            sphere_contacts: self.pairs.touching(),
-            surface_contacts: self.surface_pairs.active.iter().filter(|&&a| a).count(),
+            sphere_contacts,
+            surface_contacts,
             neighbour_pairs: self.pairs.len(),
             rebuilt,
             max_displacement: self.max_displacement,
@@ -529,8 +524,8 @@ where
         Ok(self.report)
     }
 
-    /// Step 2: sphere–sphere pairs.
-    fn sphere_wrenches(&mut self, dt: f64) {
+    /// Step 2: sphere–sphere pairs. Returns the number of touching pairs.
+    fn sphere_wrenches(&mut self, dt: f64) -> usize {
         let offsets = self.boundary.offsets();
         let p = &self.particles;
         let laws = &self.sphere_laws;
@@ -550,8 +545,9 @@ where
             .zip(wrench.par_chunks_mut(CHUNK))
             .zip(active.par_chunks_mut(CHUNK))
             .enumerate()
-            .for_each(|(c, ((history, wrench), active))| {
+            .map(|(c, ((history, wrench), active))| {
                 let base = c * CHUNK;
+                let mut touching = 0;
                 for k in 0..history.len() {
                     let q = base + k;
                     let (i, j) = (pi[q] as usize, pj[q] as usize);
@@ -568,6 +564,7 @@ where
                         }
                         Some(contact) => {
                             active[k] = true;
+                            touching += 1;
                             let kinematics = ContactKinematics {
                                 overlap: contact.overlap,
                                 normal: contact.normal,
@@ -578,18 +575,25 @@ where
                                 linvel2: p.linvel[j] + offset.velocity,
                                 angvel2: p.angvel[j],
                             };
-                            let (law, rolling) = &laws
-                                [p.species[i] as usize * ns + p.species[j] as usize];
+                            let (law, rolling) =
+                                &laws[p.species[i] as usize * ns + p.species[j] as usize];
                             wrench[k] =
                                 evaluate_pair(law, rolling, &mut history[k], &kinematics, dt);
                         }
                     }
                 }
-            });
+                touching
+            })
+            .sum()
     }
 
-    /// Step 3: particle–surface pairs.
-    fn surface_wrenches(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet, dt: f64) {
+    /// Step 3: particle–surface pairs. Returns the number of touching pairs.
+    fn surface_wrenches(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        dt: f64,
+    ) -> usize {
         let p = &self.particles;
         let laws = &self.surface_laws;
         let surfaces = &self.surfaces;
@@ -608,8 +612,9 @@ where
             .zip(wrench.par_chunks_mut(CHUNK))
             .zip(active.par_chunks_mut(CHUNK))
             .enumerate()
-            .for_each(|(c, ((history, wrench), active))| {
+            .map(|(c, ((history, wrench), active))| {
                 let base = c * CHUNK;
+                let mut touching = 0;
                 for k in 0..history.len() {
                     let q = base + k;
                     let (i, s) = (particle[q] as usize, surface[q] as usize);
@@ -625,6 +630,7 @@ where
                         continue;
                     };
                     active[k] = true;
+                    touching += 1;
                     let (linvel2, angvel2, arm2) = match surf.body.and_then(|h| bodies.get(h)) {
                         Some(b2) => (
                             to_na(b2.linvel()),
@@ -646,7 +652,9 @@ where
                     let (law, rolling) = &laws[p.species[i] as usize * nsurf + s];
                     wrench[k] = evaluate_pair(law, rolling, &mut history[k], &kinematics, dt);
                 }
-            });
+                touching
+            })
+            .sum()
     }
 
     /// Step 4: sum each particle's wrenches in a fixed order and integrate it. Returns the
@@ -684,8 +692,8 @@ where
                             torque += sp.wrench[s].torque1;
                         }
                     }
-                    for &e in
-                        &pairs.second[pairs.second_start[i] as usize..pairs.second_start[i + 1] as usize]
+                    for &e in &pairs.second
+                        [pairs.second_start[i] as usize..pairs.second_start[i + 1] as usize]
                     {
                         let e = e as usize;
                         if pairs.active[e] {

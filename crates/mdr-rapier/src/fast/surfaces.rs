@@ -107,7 +107,10 @@ impl<H: Default> SurfacePairs<H> {
 pub(crate) fn surface_displacement(surface: &FastSurface, now: &Pose) -> f64 {
     let before = &surface.pose_at_build;
     let dt = (now.translation - before.translation).length();
-    let angle = (now.rotation * before.rotation.inverse()).to_axis_angle().1.abs();
+    let angle = (now.rotation * before.rotation.inverse())
+        .to_axis_angle()
+        .1
+        .abs();
     if angle == 0.0 {
         dt
     } else {

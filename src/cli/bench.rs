@@ -1,0 +1,343 @@
+//! `mdr-dem bench …`: throughput benchmarks (issue 6). `bench bed` runs the fast force-mode path
+//! on the settled 10,000-sphere bed of `../shared/bench/lammps/` with the system of that
+//! directory's `in.bench` (`hertzhist`), or with the MDR law; see `docs/performance.md`.
+
+use anyhow::{bail, Context};
+use clap::{Args, Subcommand, ValueEnum};
+use mdr_contact::damping::HertzianViscous;
+use mdr_contact::model::ContactModel;
+use mdr_contact::normal::{Hertz, MdrElastoPlastic, NormalLaw, NormalModel};
+use mdr_contact::tangential::Mindlin;
+use mdr_contact::Material;
+use mdr_rapier::fast::bed::{settled_bed, Bed, BedSpec};
+use mdr_rapier::fast::rayon;
+use mdr_rapier::fast::{Boundary, FastForceStepper};
+use mdr_rapier::rapier::prelude::*;
+use mdr_rapier::SphereBuilder;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// `bench` subcommands.
+#[derive(Debug, Subcommand)]
+pub enum BenchCommand {
+    /// Throughput of the fast force-mode path on a settled bed (LAMMPS `gran/hertz/history`
+    /// system: `kn = 2e5`, `γn = 50`, `μ = 0.5`, floor `z = 0`, x/y periodic, `g = 1`,
+    /// `dt = 1e-4`): particle-steps per second, ms per step, contacts per particle, peak memory.
+    Bed(BedArgs),
+    /// Generate a settled bed by lattice + settling and write it as a LAMMPS data file.
+    MakeBed(MakeBedArgs),
+}
+
+/// Contact law of `bench bed`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum LawArg {
+    /// Hertz (`E* = 1.5e5` ⇔ `kn = 2e5`).
+    Hertz,
+    /// The MDR elasto-plastic law (`q_c` from `--qc`, `Θ = 0.37 E*`).
+    Mdr,
+}
+
+/// Flags of `bench bed`.
+#[derive(Debug, Args)]
+pub struct BedArgs {
+    /// LAMMPS data file of the bed (default: `../shared/bench/lammps/settled.data` next to the
+    /// repository).
+    #[arg(long)]
+    pub data: Option<PathBuf>,
+    /// Contact law.
+    #[arg(long, value_enum, default_value_t = LawArg::Hertz)]
+    pub law: LawArg,
+    /// Timed steps.
+    #[arg(long, default_value_t = 10_000)]
+    pub steps: usize,
+    /// Untimed warm-up steps (as `nwarm` of in.bench).
+    #[arg(long, default_value_t = 2_000)]
+    pub warmup: usize,
+    /// Worker threads.
+    #[arg(long, default_value_t = 1)]
+    pub threads: usize,
+    /// Repeat the bed `tile × tile` times in x and y (scaling runs).
+    #[arg(long, default_value_t = 1)]
+    pub tile: usize,
+    /// MDR critical line load `q_c` (force/length, reduced units) for `--law mdr`.
+    #[arg(long, default_value_t = 10.0)]
+    pub qc: f64,
+    /// Neighbour skin (as LAMMPS `neighbor 0.1 bin`).
+    #[arg(long, default_value_t = 0.1)]
+    pub skin: f64,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Flags of `bench make-bed`.
+#[derive(Debug, Args)]
+pub struct MakeBedArgs {
+    /// Number of spheres.
+    #[arg(long, default_value_t = 1000)]
+    pub count: usize,
+    /// Settling steps (dt = 1e-4).
+    #[arg(long, default_value_t = 40_000)]
+    pub settle_steps: usize,
+    /// Worker threads.
+    #[arg(long, default_value_t = 2)]
+    pub threads: usize,
+    /// Seed of the lattice jitter.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Output LAMMPS data file.
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// Dispatch a `bench` subcommand.
+pub fn run(cmd: BenchCommand) -> anyhow::Result<()> {
+    match cmd {
+        BenchCommand::Bed(args) => run_bed(&args),
+        BenchCommand::MakeBed(args) => {
+            let pool = rayon_pool(args.threads)?;
+            let spec = BedSpec {
+                count: args.count,
+                settle_steps: args.settle_steps,
+                seed: args.seed,
+                ..BedSpec::default()
+            };
+            let bed = pool.install(|| settled_bed(&spec))?;
+            bed.write_lammps(&args.out)?;
+            println!("wrote {} spheres to {}", bed.len(), args.out.display());
+            Ok(())
+        }
+    }
+}
+
+fn rayon_pool(threads: usize) -> anyhow::Result<rayon::ThreadPool> {
+    if threads == 0 {
+        bail!("--threads = 0 is outside the allowed range [1, inf)");
+    }
+    Ok(rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()?)
+}
+
+/// The shared reference bed, looked for next to the repository (compile-time location) and then
+/// upwards from the working directory.
+fn default_data() -> anyhow::Result<PathBuf> {
+    let rel = Path::new("shared/bench/lammps/settled.data");
+    let mut tried = Vec::new();
+    let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut candidates: Vec<PathBuf> = repo.ancestors().skip(1).map(|a| a.join(rel)).collect();
+    if let Ok(cwd) = std::env::current_dir() {
+        candidates.extend(cwd.ancestors().map(|a| a.join(rel)));
+    }
+    for c in candidates {
+        if c.is_file() {
+            return Ok(c);
+        }
+        tried.push(c.display().to_string());
+    }
+    bail!(
+        "the reference bed `../shared/bench/lammps/settled.data` was not found (looked at {}); \
+         pass --data PATH",
+        tried.join(", ")
+    )
+}
+
+/// Peak resident set size (MB) from `VmHWM` in /proc/self/status; 0 where unavailable.
+fn peak_rss_mb() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM:"))
+                .and_then(|l| l.split_whitespace().nth(1))
+                .and_then(|kb| kb.parse::<f64>().ok())
+        })
+        .map_or(0.0, |kb| kb / 1024.0)
+}
+
+/// CPU time (user + system, all threads) of this process so far (s), from /proc/self/stat
+/// (clock ticks of 1/100 s, the Linux USER_HZ); `None` where unavailable.
+fn process_cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    let rest = stat.rsplit_once(") ")?.1;
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    let utime: f64 = fields.get(11)?.parse().ok()?;
+    let stime: f64 = fields.get(12)?.parse().ok()?;
+    Some((utime + stime) / 100.0)
+}
+
+/// Figures of one `bench bed` run.
+#[derive(Debug, serde::Serialize)]
+struct BedFigures {
+    particle_steps_per_s: f64,
+    ms_per_step: f64,
+    contacts_per_particle: f64,
+    peak_rss_mb: f64,
+    threads: usize,
+    /// Particle-steps per CPU second of the timed loop (all threads): per-core throughput that
+    /// does not depend on how much of the machine other jobs take.
+    particle_steps_per_cpu_s: f64,
+    cpu_seconds: f64,
+    wall_seconds: f64,
+    law: &'static str,
+    particles: usize,
+    steps: usize,
+    rebuilds: u64,
+    floor_contacts: usize,
+    plastic_contact_fraction: f64,
+    stepper_bytes_per_particle: f64,
+}
+
+fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
+    let path = match &args.data {
+        Some(p) => p.clone(),
+        None => default_data()?,
+    };
+    if args.tile == 0 {
+        bail!("--tile = 0 is outside the allowed range [1, inf)");
+    }
+    let bed = Bed::read_lammps(&path).with_context(|| format!("reading {}", path.display()))?;
+    let bed = if args.tile > 1 {
+        bed.tiled(args.tile, args.tile)
+    } else {
+        bed
+    };
+    let pool = rayon_pool(args.threads)?;
+    let figures = pool.install(|| match args.law {
+        LawArg::Hertz => timed_run(Hertz, "hertz", &bed, args),
+        LawArg::Mdr => timed_run(
+            MdrElastoPlastic::new(args.qc, 0.37).map_err(anyhow::Error::from)?,
+            "mdr",
+            &bed,
+            args,
+        ),
+    })?;
+    if args.json {
+        println!("{}", serde_json::to_string(&figures)?);
+    } else {
+        println!(
+            "bench bed: {} spheres, law {}, {} threads, {} timed steps after {} warm-up steps",
+            figures.particles, figures.law, figures.threads, figures.steps, args.warmup
+        );
+        println!(
+            "  {:.3} M particle-steps/s, {:.3} ms/step",
+            figures.particle_steps_per_s / 1e6,
+            figures.ms_per_step
+        );
+        println!(
+            "  {:.3} M particle-steps per CPU second ({:.2} CPU s in {:.2} s)",
+            figures.particle_steps_per_cpu_s / 1e6,
+            figures.cpu_seconds,
+            figures.wall_seconds
+        );
+        println!(
+            "  {:.3} contacts per particle (sphere-sphere, as LAMMPS contact/atom), {} floor contacts",
+            figures.contacts_per_particle, figures.floor_contacts
+        );
+        if figures.law == "mdr" {
+            println!(
+                "  {:.1} % of sphere-sphere contacts plastic (d_max > u_c)",
+                100.0 * figures.plastic_contact_fraction
+            );
+        }
+        println!(
+            "  peak RSS {:.1} MB; stepper buffers {:.0} bytes per particle; {} neighbour-list builds",
+            figures.peak_rss_mb, figures.stepper_bytes_per_particle, figures.rebuilds
+        );
+    }
+    Ok(())
+}
+
+fn timed_run<N>(
+    normal: N,
+    law_name: &'static str,
+    bed: &Bed,
+    args: &BedArgs,
+) -> anyhow::Result<BedFigures>
+where
+    N: NormalModel,
+    N::Law: Clone,
+{
+    let boundary = Boundary::periodic_xy((bed.lo[0], bed.hi[0]), (bed.lo[1], bed.hi[1]))?;
+    let model = ContactModel::new(normal)
+        .with_tangential(Mindlin::new(0.5)?)
+        .with_damping(HertzianViscous::new(50.0)?);
+    let mut stepper = FastForceStepper::new(model, boundary).skin(args.skin)?;
+    let grain = stepper.insert_material(Material::new(1.0, 0.3, 1.0)?);
+    // kn = 2e5 ⇔ (4/3) E* = kn; LAMMPS NULL kt = 2/7 kn and k_t = 2 G* a ⇔ G* = kt / 2.
+    stepper.set_pair_moduli(grain, grain, 1.5e5, 2.0e5 / 7.0)?;
+    let mut world = PhysicsWorld::default();
+    world.gravity = Vector::new(0.0, 0.0, -1.0);
+    stepper.configure(&mut world.integration_parameters, 1e-4)?;
+    stepper.insert_surface(
+        &mut world,
+        ColliderBuilder::new(SharedShape::halfspace(Vector::Z)),
+        None,
+        grain,
+    )?;
+    for (i, p) in bed.position.iter().enumerate() {
+        let material = grain;
+        if (bed.diameter[i] - 1.0).abs() > 1e-12 || (bed.density[i] - 1.0).abs() > 1e-12 {
+            bail!(
+                "sphere {} has diameter {} and density {}: `bench bed` expects the reference bed \
+                 (diameter 1, density 1)",
+                i + 1,
+                bed.diameter[i],
+                bed.density[i]
+            );
+        }
+        stepper.insert_sphere(
+            SphereBuilder::new(0.5 * bed.diameter[i], material)
+                .translation(Vector::new(p.x, p.y, p.z)),
+        )?;
+    }
+    for _ in 0..args.warmup {
+        stepper.step(&mut world)?;
+    }
+    let rebuilds0 = stepper.rebuilds();
+    let cpu0 = process_cpu_seconds();
+    let start = Instant::now();
+    for _ in 0..args.steps {
+        stepper.step(&mut world)?;
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    let cpu_seconds = match (cpu0, process_cpu_seconds()) {
+        (Some(a), Some(b)) => b - a,
+        _ => f64::NAN,
+    };
+    let report = stepper.last_report();
+    let n = bed.len();
+    let pairs = stepper.pairs();
+    let (mut touching, mut plastic) = (0usize, 0usize);
+    for q in 0..pairs.len() {
+        if pairs.active[q] {
+            touching += 1;
+            let law = stepper.sphere_law(pairs.i[q] as usize, pairs.j[q] as usize);
+            let state = &pairs.history[q].contact.normal;
+            if law.normal.max_overlap(state) > law.normal.yield_overlap() {
+                plastic += 1;
+            }
+        }
+    }
+    Ok(BedFigures {
+        particle_steps_per_s: (n * args.steps) as f64 / seconds,
+        ms_per_step: 1e3 * seconds / args.steps.max(1) as f64,
+        contacts_per_particle: 2.0 * report.sphere_contacts as f64 / n as f64,
+        peak_rss_mb: peak_rss_mb(),
+        threads: args.threads,
+        particle_steps_per_cpu_s: (n * args.steps) as f64 / cpu_seconds,
+        cpu_seconds,
+        wall_seconds: seconds,
+        law: law_name,
+        particles: n,
+        steps: args.steps,
+        rebuilds: stepper.rebuilds() - rebuilds0,
+        floor_contacts: report.surface_contacts,
+        plastic_contact_fraction: if touching > 0 {
+            plastic as f64 / touching as f64
+        } else {
+            0.0
+        },
+        stepper_bytes_per_particle: stepper.memory_bytes() as f64 / n as f64,
+    })
+}
