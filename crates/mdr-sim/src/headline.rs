@@ -234,6 +234,10 @@ impl Tracker {
             if !*touched {
                 if touching {
                     *touched = true;
+                } else if vn > 0.0 && *before > 0.0 {
+                    // Restitution mode: the impulse reverses the velocity within one step.
+                    *touched = true;
+                    *rebound = Some(vn);
                 } else {
                     *before = -vn;
                 }

@@ -195,7 +195,6 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
         }
         Inserter::Restitution(mut h) => {
             world.integration_parameters.dt = scene.dt;
-            world.integration_parameters.max_ccd_substeps = 0;
             world.integration_parameters.normalized_max_linear_velocity = f64::MAX;
             world.integration_parameters.normalized_prediction_distance =
                 prediction_distance(scene) / world.integration_parameters.length_unit;

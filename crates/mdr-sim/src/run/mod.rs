@@ -154,9 +154,13 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunSummary, SimE
 impl<'a> Sim<'a> {
     fn new(scene: &'a Scene) -> Result<Self, SimError> {
         let mut built = build(scene)?;
-        // Candidate pairs for the first step (a restart does the same, so both see the same
-        // touching pairs).
-        built.world.detect_collisions(&(), &());
+        // Force mode: candidate pairs for the first step (a restart does the same, so both see
+        // the same touching pairs). Restitution mode leaves detection to rapier's step: a
+        // detection pass before the first step would consume the bodies' change flags before
+        // the island manager activates them.
+        if matches!(built.coupling, Coupling::Force(_)) {
+            built.world.detect_collisions(&(), &());
+        }
         // The placement used its own generator; the run's generator continues the seed's
         // stream after it (kept in the checkpoint for any later random input).
         let rng = ChaCha8Rng::seed_from_u64(scene.seed.wrapping_add(1));
@@ -220,7 +224,9 @@ impl<'a> Sim<'a> {
         for (h, record) in handles.iter().zip(&data.bodies) {
             record.apply(&mut sim.built.world.bodies[*h]);
         }
-        sim.built.world.detect_collisions(&(), &());
+        if matches!(sim.built.coupling, Coupling::Force(_)) {
+            sim.built.world.detect_collisions(&(), &());
+        }
         sim.restore_contacts(&data)?;
         sim.step = data.step;
         sim.books = data.books;
