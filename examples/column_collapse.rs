@@ -6,7 +6,7 @@
 //! (defaults: `column_frames`, 1.5 s). Open `OUT_DIR/frame_*.vtk` in ParaView as a series and
 //! show the points as spheres ("Point Gaussian", scale by `radius`).
 //!
-//! The material is soft (E = 5 MPa, glass-like density) so the run takes minutes, not hours: the
+//! The material is soft (E = 1 MPa, glass-like density) so the run takes minutes, not hours: the
 //! time step follows the Hertz contact time, which grows as E*^(-2/5).
 
 use mdr_rapier::prelude::*;
@@ -19,7 +19,7 @@ use vtkio::model::{
     VertexNumbers, Vtk,
 };
 
-const SIDE: usize = 12;
+const SIDE: usize = 10;
 const LAYERS: usize = 20;
 const RADIUS: f64 = 2.0e-3;
 
@@ -29,7 +29,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let end_time: f64 = args.next().map_or(Ok(1.5), |s| s.parse())?;
     std::fs::create_dir_all(&out)?;
 
-    let material = Material::new(5.0e6, 0.3, 2500.0)?;
+    let material = Material::new(1.0e6, 0.3, 2500.0)?;
     let model = ContactModel::new(MdrElastoPlastic::new(5.0e2, 0.37)?)
         .with_tangential(Mindlin::new(0.5)?)
         .with_damping(StiffnessViscous::new(0.2)?);

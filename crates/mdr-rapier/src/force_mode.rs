@@ -71,6 +71,16 @@ where
     }
 }
 
+/// The history store of a force-mode stepper with these sub-models.
+pub type ForceStore<N, T, D, R> = ContactStore<
+    ForceContact<
+        <N as NormalModel>::Law,
+        <T as TangentialModel>::Law,
+        <D as DampingModel>::Law,
+        <R as RollingModel>::Law,
+    >,
+>;
+
 /// What happened during one step.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct StepReport {
@@ -129,7 +139,7 @@ pub struct ForceModeStepper<
     model: ContactModel<N, T, D>,
     rolling: R,
     particles: ParticleSet,
-    store: ContactStore<ForceContact<N::Law, T::Law, D::Law, R::Law>>,
+    store: ForceStore<N, T, D, R>,
     candidates: Vec<Candidate>,
     /// Force and torque accumulators by body arena index.
     wrenches: Vec<(Vector3<f64>, Vector3<f64>)>,
@@ -198,16 +208,13 @@ where
     }
 
     /// The history store (one entry per touching pair).
-    pub fn contacts(&self) -> &ContactStore<ForceContact<N::Law, T::Law, D::Law, R::Law>> {
+    pub fn contacts(&self) -> &ForceStore<N, T, D, R> {
         &self.store
     }
 
     /// The history store, mutably: restoring per-contact histories from a checkpoint
     /// (used by `mdr-sim`; the entries' keys must stay sorted).
-    #[allow(clippy::type_complexity)]
-    pub fn contacts_mut(
-        &mut self,
-    ) -> &mut ContactStore<ForceContact<N::Law, T::Law, D::Law, R::Law>> {
+    pub fn contacts_mut(&mut self) -> &mut ForceStore<N, T, D, R> {
         &mut self.store
     }
 

@@ -369,7 +369,7 @@ impl PhysicsHooks for RestitutionHooks {
                 approach = (v1 - v2).dot(n);
             }
         }
-        if !(approach > 0.0) {
+        if approach.is_nan() || approach <= 0.0 {
             // Separating or resting: rapier applies no bounce.
             return;
         }

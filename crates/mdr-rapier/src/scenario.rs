@@ -143,8 +143,10 @@ impl ImpactScene {
             // Hard spheres: any step; take the contact time so the flight is a few steps.
             CouplingMode::Restitution => pair.hertz_contact_time(vn),
         };
-        let mut world = PhysicsWorld::default();
-        world.gravity = Vector::ZERO;
+        let mut world = PhysicsWorld {
+            gravity: Vector::ZERO,
+            ..PhysicsWorld::default()
+        };
         world.integration_parameters.length_unit = 2.0 * self.radius;
         // Start 2.5 steps of flight apart: the first contact falls inside a step.
         let gap = 2.5 * vn * dt;

@@ -18,8 +18,10 @@ fn halfspace(normal: Vector, point: Vector) -> ColliderBuilder {
 fn hundred_elastic_bounces_conserve_energy_and_free_history() {
     let radius = 0.635e-2;
     let gap = 2.0e-4;
-    let mut world = PhysicsWorld::default();
-    world.gravity = Vector::ZERO;
+    let mut world = PhysicsWorld {
+        gravity: Vector::ZERO,
+        ..PhysicsWorld::default()
+    };
     world.integration_parameters.length_unit = 2.0 * radius;
     let mut stepper = ForceModeStepper::new(ContactModel::new(MdrElastoPlastic::elastic()));
     let steel = stepper

@@ -9,8 +9,10 @@ use rapier3d_f64::prelude::*;
 const R: f64 = 0.635e-2;
 
 fn world_with_floor() -> (PhysicsWorld, RestitutionHooks, MaterialHandle) {
-    let mut world = PhysicsWorld::default();
-    world.gravity = Vector::ZERO;
+    let mut world = PhysicsWorld {
+        gravity: Vector::ZERO,
+        ..PhysicsWorld::default()
+    };
     world.integration_parameters.length_unit = 2.0 * R;
     world.integration_parameters.dt = 1.0e-5;
     world.integration_parameters.normalized_max_linear_velocity = f64::MAX;
