@@ -43,7 +43,7 @@ rows, work = run("in.pair", dict(E=E, nu=nu, rho=rho, R=R, v=v, dt=dt, nsteps=3 
 f = [abs(r[0]) for r in rows]
 tc = sum(1 for x in f if x > 0) * dt
 fmax = max(f)
-en = -(rows[-1][2] - rows[-1][1]) / v
+en = (rows[-1][2] - rows[-1][1]) / v
 tc_o, f_o, en_o, _, _ = ours["pair"]
 row("glass pair 20 m/s", "contact time (s)", tc_o, tc)
 row("glass pair 20 m/s", "peak force (N)", f_o, fmax)

@@ -3,7 +3,21 @@
 use crate::error::{Result, VerifyError};
 use crate::report::{Figure, Style};
 use plotters::prelude::*;
+use plotters::style::{register_font, FontStyle};
 use std::path::{Path, PathBuf};
+use std::sync::Once;
+
+// The workspace's embedded font (shipped with mdr-impact): plotters' `ab_glyph` backend has no
+// system fonts.
+static FONT: &[u8] = include_bytes!("../../mdr-impact/assets/DejaVuSans.ttf");
+
+fn register_embedded_font() {
+    static REGISTER: Once = Once::new();
+    REGISTER.call_once(|| {
+        // A failure would be a packaging error; plotters then reports the missing font.
+        let _ = register_font("sans-serif", FontStyle::Normal, FONT);
+    });
+}
 
 const COLOURS: [RGBColor; 6] = [
     RGBColor(0, 0, 0),
@@ -46,6 +60,7 @@ fn bounds(figure: &Figure) -> ((f64, f64), (f64, f64)) {
 
 /// Write `figure` as `dir/<name>.svg` (temporary file, then rename) and return the path.
 pub fn write_svg(figure: &Figure, dir: &Path) -> Result<PathBuf> {
+    register_embedded_font();
     std::fs::create_dir_all(dir).map_err(|e| plot_error(dir, e))?;
     let path = dir.join(format!("{}.svg", figure.name));
     let temporary = dir.join(format!(".{}.svg.tmp", figure.name));
