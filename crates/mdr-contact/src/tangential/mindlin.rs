@@ -13,6 +13,21 @@ use nalgebra::Vector3;
 pub struct Mindlin {
     friction_coefficient: f64,
     rescale_on_unloading: bool,
+    form: MindlinForm,
+}
+
+/// How the stored tangential state turns into a force when the contact radius changes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum MindlinForm {
+    /// `F_t = −k_t(a) ξ`: the whole stored displacement is carried by the current stiffness, so a
+    /// growing contact stiffens the old displacement too (LAMMPS `tangential mindlin`).
+    #[default]
+    Displacement,
+    /// `ΔF_t = −k_t(a) Δξ`: springs entering a growing contact start unstretched, exactly as in the
+    /// MDR spring bed while every spring sticks (LAMMPS `tangential mindlin_force`). The stored
+    /// displacement is then the equivalent `ξ = −F_t / k_t(a)`.
+    Force,
 }
 
 impl Mindlin {
@@ -22,7 +37,14 @@ impl Mindlin {
         Ok(Self {
             friction_coefficient: non_negative("mu", friction_coefficient)?,
             rescale_on_unloading: true,
+            form: MindlinForm::Displacement,
         })
+    }
+
+    /// Choose the [`MindlinForm`] (default [`MindlinForm::Displacement`]).
+    pub fn form(mut self, form: MindlinForm) -> Self {
+        self.form = form;
+        self
     }
 
     /// Whether to rescale the stored displacement by `a/a_prev` when the contact shrinks, so that
@@ -45,6 +67,7 @@ impl TangentialModel for Mindlin {
             effective_shear_modulus: pair.effective_shear_modulus(),
             friction_coefficient: self.friction_coefficient,
             rescale_on_unloading: self.rescale_on_unloading,
+            form: self.form,
         })
     }
 }
@@ -66,6 +89,7 @@ pub struct MindlinLaw {
     effective_shear_modulus: f64,
     friction_coefficient: f64,
     rescale_on_unloading: bool,
+    form: MindlinForm,
 }
 
 impl MindlinLaw {
@@ -100,8 +124,25 @@ impl TangentialLaw for MindlinLaw {
                 xi *= (old_len2 / new_len2).sqrt();
             }
         }
-        if self.rescale_on_unloading && a < state.contact_radius {
-            xi *= a / state.contact_radius;
+        let previous_radius = state.contact_radius;
+        if previous_radius > 0.0 {
+            let shrinking_rescaled = self.rescale_on_unloading && a < previous_radius;
+            match self.form {
+                // F = k(a) ξ: rescaling ξ by a/a_prev on unloading keeps the released energy below
+                // the stored one.
+                MindlinForm::Displacement => {
+                    if shrinking_rescaled {
+                        xi *= a / previous_radius;
+                    }
+                }
+                // Keep the force k(a_prev) ξ (scaled by a/a_prev on unloading when rescaling) and
+                // store it as the equivalent displacement at the new stiffness.
+                MindlinForm::Force => {
+                    if !shrinking_rescaled {
+                        xi *= previous_radius / a;
+                    }
+                }
+            }
         }
         let du = input.displacement_increment - n * n.dot(&input.displacement_increment);
         xi += du;

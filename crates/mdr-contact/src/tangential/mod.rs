@@ -5,7 +5,7 @@
 mod mindlin;
 mod spring_bed;
 
-pub use mindlin::{Mindlin, MindlinLaw, MindlinState};
+pub use mindlin::{Mindlin, MindlinForm, MindlinLaw, MindlinState};
 pub use spring_bed::{SpringBedTangential, SpringBedTangentialState};
 
 use crate::error::Result;
