@@ -31,9 +31,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     let material = Material::new(1.0e6, 0.3, 2500.0)?;
     let model = ContactModel::new(MdrElastoPlastic::new(5.0e2, 0.37)?)
-        .with_tangential(Mindlin::new(0.5)?)
+        .with_tangential(Mindlin::new(0.3)?)
         .with_damping(StiffnessViscous::new(0.2)?);
-    let mut stepper = ForceModeStepper::new(model).with_rolling(EpsdRolling::new(0.1)?);
+    let mut stepper = ForceModeStepper::new(model).with_rolling(EpsdRolling::new(0.05)?);
     let m = stepper.particles_mut().insert_material(material);
     let mut world = PhysicsWorld::default();
     world.integration_parameters.length_unit = 2.0 * RADIUS;
@@ -48,10 +48,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for layer in 0..LAYERS {
         for i in 0..SIDE {
             for k in 0..SIDE {
+                // Alternate layers sit over the hollows of the layer below (a square column of
+                // stacked spheres with friction would stand), plus a small random jitter.
+                let shift = if layer % 2 == 1 { 0.5 * spacing } else { 0.0 };
+                let jitter = 0.02 * RADIUS;
                 let centre = Vector::new(
-                    -half + spacing * (i as f64 + 0.5),
+                    -half + spacing * (i as f64 + 0.25) + shift + rng.random_range(-jitter..jitter),
                     RADIUS + spacing * layer as f64 + 1e-4,
-                    -half + spacing * (k as f64 + 0.5),
+                    -half + spacing * (k as f64 + 0.25) + shift + rng.random_range(-jitter..jitter),
                 );
                 let r = RADIUS * rng.random_range(0.95..1.0);
                 let sphere = SphereBuilder::new(r, m).translation(centre);
