@@ -1,0 +1,290 @@
+//! The fast force-mode path against the plain path (rapier narrow phase + rapier integration):
+//! same trajectories to round-off on a small bed in a box of rapier colliders with a dynamic lid;
+//! determinism for 1 and 2 threads; periodic images; LAMMPS data files.
+
+use mdr_rapier::fast::bed::{lattice_bed, Bed, BedSpec};
+use mdr_rapier::fast::rayon::ThreadPoolBuilder;
+use mdr_rapier::fast::{Boundary, FastForceStepper};
+use mdr_rapier::prelude::*;
+use mdr_rapier::rapier::prelude::*;
+
+/// Bench units: E* = 1.5e5 for two grains (E = 2.73e5, ν = 0.3), density 1, diameter 1.
+fn grain() -> Material {
+    let nu: f64 = 0.3;
+    Material::new(1.5e5 * 2.0 * (1.0 - nu * nu), nu, 1.0).unwrap()
+}
+
+fn model() -> ContactModel<Hertz, Mindlin, HertzianViscous> {
+    ContactModel::new(Hertz)
+        .with_tangential(Mindlin::new(0.5).unwrap())
+        .with_damping(HertzianViscous::new(50.0).unwrap())
+}
+
+/// Floor, four walls and a dynamic lid (in this collider order), then 4 × 4 × 4 spheres on a
+/// jittered lattice with random velocities.
+struct Scene {
+    surfaces: Vec<(ColliderBuilder, Option<usize>)>,
+    spheres: Vec<SphereBuilder>,
+}
+
+fn scene(material: MaterialHandle) -> Scene {
+    let side = 4.4;
+    let wall = |x: f64, y: f64, hx: f64, hy: f64| {
+        ColliderBuilder::cuboid(hx, hy, 3.0).translation(Vector::new(x, y, 3.0))
+    };
+    let surfaces = vec![
+        (
+            ColliderBuilder::new(SharedShape::halfspace(Vector::Z)),
+            None,
+        ),
+        (wall(-0.5, side / 2.0, 0.5, side), None),
+        (wall(side + 0.5, side / 2.0, 0.5, side), None),
+        (wall(side / 2.0, -0.5, side, 0.5), None),
+        (wall(side / 2.0, side + 0.5, side, 0.5), None),
+        (ColliderBuilder::cuboid(0.6, 0.6, 0.1).density(1.0), Some(0)),
+    ];
+    let mut seed = 7u64;
+    let mut rnd = || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let mut spheres = Vec::new();
+    for k in 0..64 {
+        let (ix, iy, iz) = (k % 4, (k / 4) % 4, k / 16);
+        spheres.push(
+            SphereBuilder::new(0.5, material)
+                .translation(Vector::new(
+                    0.6 + 1.07 * ix as f64 + 0.04 * rnd(),
+                    0.6 + 1.07 * iy as f64 + 0.04 * rnd(),
+                    0.52 + 1.03 * iz as f64 + 0.02 * rnd(),
+                ))
+                .linvel(Vector::new(rnd(), rnd(), rnd()))
+                .angvel(Vector::new(rnd(), rnd(), rnd())),
+        );
+    }
+    Scene { surfaces, spheres }
+}
+
+fn lid_body() -> RigidBodyBuilder {
+    RigidBodyBuilder::dynamic()
+        .translation(Vector::new(2.2, 2.2, 4.25))
+        .linvel(Vector::new(0.0, 0.0, -1.0))
+        .can_sleep(false)
+}
+
+#[test]
+fn fast_path_reproduces_plain_path() {
+    let dt = 1e-4;
+    let steps = 3000;
+
+    // Plain path: spheres are rapier bodies, candidates from the narrow phase.
+    let mut plain_world = PhysicsWorld::default();
+    plain_world.gravity = Vector::new(0.0, 0.0, -1.0);
+    let mut plain = ForceModeStepper::new(model());
+    let m = plain.particles_mut().insert_material(grain());
+    plain
+        .configure(&mut plain_world.integration_parameters, dt, 0.05)
+        .unwrap();
+    let sc = scene(m);
+    let plain_lid = plain_world.insert_body(lid_body());
+    for (c, parent) in &sc.surfaces {
+        plain
+            .insert_surface(&mut plain_world, c.clone(), parent.map(|_| plain_lid), m)
+            .unwrap();
+    }
+    let plain_bodies: Vec<_> = sc
+        .spheres
+        .iter()
+        .map(|s| plain.insert_sphere(&mut plain_world, *s).unwrap().0)
+        .collect();
+
+    // Fast path: spheres in the plugin's arrays, the same rapier colliders and lid.
+    let mut fast_world = PhysicsWorld::default();
+    fast_world.gravity = Vector::new(0.0, 0.0, -1.0);
+    let mut fast = FastForceStepper::new(model(), Boundary::Open)
+        .skin(0.1)
+        .unwrap();
+    let fm = fast.insert_material(grain());
+    fast.configure(&mut fast_world.integration_parameters, dt)
+        .unwrap();
+    let fast_lid = fast_world.insert_body(lid_body());
+    for (c, parent) in &sc.surfaces {
+        fast.insert_surface(&mut fast_world, c.clone(), parent.map(|_| fast_lid), fm)
+            .unwrap();
+    }
+    for s in &sc.spheres {
+        fast.insert_sphere(*s).unwrap();
+    }
+
+    let (mut max_dx, mut max_dv) = (0.0f64, 0.0f64);
+    let (mut sphere_contacts, mut surface_contacts) = (0, 0);
+    for _ in 0..steps {
+        plain.step(&mut plain_world).unwrap();
+        let report = fast.step(&mut fast_world).unwrap();
+        sphere_contacts += report.sphere_contacts;
+        surface_contacts += report.surface_contacts;
+        let p = fast.particles();
+        for (k, h) in plain_bodies.iter().enumerate() {
+            let b = &plain_world.bodies[*h];
+            let x = b.translation();
+            let v = b.linvel();
+            max_dx = max_dx.max(
+                (x.x - p.position[k].x)
+                    .abs()
+                    .max((x.y - p.position[k].y).abs())
+                    .max((x.z - p.position[k].z).abs()),
+            );
+            max_dv = max_dv.max(
+                (v.x - p.linvel[k].x)
+                    .abs()
+                    .max((v.y - p.linvel[k].y).abs())
+                    .max((v.z - p.linvel[k].z).abs()),
+            );
+        }
+    }
+    let lid_dz = (plain_world.bodies[plain_lid].translation().z
+        - fast_world.bodies[fast_lid].translation().z)
+        .abs();
+    println!(
+        "max |Δx| = {max_dx:e}, max |Δv| = {max_dv:e}, lid |Δz| = {lid_dz:e}, rebuilds {}, \
+         sphere contacts/step {:.1}, surface contacts/step {:.1}",
+        fast.rebuilds(),
+        sphere_contacts as f64 / steps as f64,
+        surface_contacts as f64 / steps as f64
+    );
+    // The comparison must not be vacuous: contacts of both kinds, several list rebuilds, the
+    // lid came down onto the spheres.
+    assert!(sphere_contacts as f64 / steps as f64 > 3.0);
+    assert!(surface_contacts as f64 / steps as f64 > 1.0);
+    assert!(fast.rebuilds() > 2);
+    // Free fall would end at v_z = −1 − g t = −1.3: the spheres pushed the lid back.
+    assert!(fast_world.bodies[fast_lid].linvel().z > -1.2);
+    // Round-off: rapier applies the torque through its world inverse-inertia matrix and a
+    // gyroscopic correction that are exact only up to rounding for a sphere; nothing else
+    // differs. Positions are of order 1.
+    assert!(max_dx < 1e-9, "positions differ by {max_dx:e}");
+    assert!(max_dv < 1e-7, "velocities differ by {max_dv:e}");
+    assert!(lid_dz < 1e-9, "lid differs by {lid_dz:e}");
+}
+
+fn periodic_run(bed: &Bed, steps: usize) -> FastForceStepper<Hertz, Mindlin, HertzianViscous> {
+    let boundary = Boundary::periodic_xy((bed.lo[0], bed.hi[0]), (bed.lo[1], bed.hi[1])).unwrap();
+    let mut fast = FastForceStepper::new(model(), boundary).skin(0.1).unwrap();
+    let m = fast.insert_material(grain());
+    let mut world = PhysicsWorld::default();
+    world.gravity = Vector::new(0.0, 0.0, -1.0);
+    fast.configure(&mut world.integration_parameters, 1e-4)
+        .unwrap();
+    fast.insert_surface(
+        &mut world,
+        ColliderBuilder::new(SharedShape::halfspace(Vector::Z)),
+        None,
+        m,
+    )
+    .unwrap();
+    for (k, p) in bed.position.iter().enumerate() {
+        fast.insert_sphere(
+            SphereBuilder::new(0.5, m)
+                // Layers squeezed to 0.99 apart, the bottom one on the floor: contacts at once.
+                .translation(Vector::new(p.x, p.y, 0.49 + (p.z - 0.55) * 0.9))
+                .linvel(Vector::new(
+                    0.3 * ((k * 7919) % 13) as f64 / 13.0 - 0.15,
+                    0.3 * ((k * 104729) % 11) as f64 / 11.0 - 0.15,
+                    -0.5,
+                )),
+        )
+        .unwrap();
+    }
+    for _ in 0..steps {
+        fast.step(&mut world).unwrap();
+    }
+    fast
+}
+
+#[test]
+fn fast_path_is_deterministic_for_one_and_two_threads() {
+    let bed = lattice_bed(&BedSpec {
+        count: 3000,
+        ..BedSpec::default()
+    })
+    .unwrap();
+    let run = |threads| {
+        ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| periodic_run(&bed, 400))
+    };
+    let one = run(1);
+    let two = run(2);
+    assert!(one.last_report().sphere_contacts > 50);
+    assert!(one.last_report().surface_contacts > 20);
+    assert!(
+        one.pairs().len() > 2048,
+        "the pair loop must split into chunks"
+    );
+    assert_eq!(one.particles().position, two.particles().position);
+    assert_eq!(one.particles().linvel, two.particles().linvel);
+    assert_eq!(one.particles().angvel, two.particles().angvel);
+}
+
+#[test]
+fn periodic_images_push_like_open_neighbours() {
+    // Two spheres overlapping by 0.05 across the x boundary of a 6 × 6 box, and the same two
+    // spheres side by side in open space: the same forces (round-off of the image shift).
+    let run = |boundary: Boundary, x2: f64| {
+        let mut fast = FastForceStepper::new(model(), boundary).skin(0.1).unwrap();
+        let m = fast.insert_material(grain());
+        let mut world = PhysicsWorld::default();
+        world.gravity = Vector::ZERO;
+        fast.configure(&mut world.integration_parameters, 1e-4)
+            .unwrap();
+        fast.insert_sphere(SphereBuilder::new(0.5, m).translation(Vector::new(0.2, 3.0, 3.0)))
+            .unwrap();
+        fast.insert_sphere(SphereBuilder::new(0.5, m).translation(Vector::new(x2, 3.0, 3.0)))
+            .unwrap();
+        fast.step(&mut world).unwrap();
+        assert_eq!(fast.last_report().sphere_contacts, 1);
+        fast.particles().linvel[0]
+    };
+    let periodic = run(
+        Boundary::periodic_xy((0.0, 6.0), (0.0, 6.0)).unwrap(),
+        6.0 - 0.75,
+    );
+    let open = run(Boundary::Open, -0.75);
+    // Hertz: F = (4/3) E* √R δ^{3/2}, R = 1/4, δ = 0.05; Δv = F dt / m.
+    let mass = std::f64::consts::PI / 6.0;
+    let expected = 4.0 / 3.0 * 1.5e5 * 0.5 * 0.05f64.powf(1.5) * 1e-4 / mass;
+    assert!(
+        (periodic.x - expected).abs() < 1e-9 * expected,
+        "{periodic:?} vs {expected}"
+    );
+    assert!((periodic - open).norm() < 1e-12 * expected);
+}
+
+#[test]
+fn lammps_data_round_trip_and_tiling() {
+    let bed = lattice_bed(&BedSpec {
+        count: 50,
+        ..BedSpec::default()
+    })
+    .unwrap();
+    let dir = std::env::temp_dir().join(format!("mdr_fast_bed_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("bed.data");
+    bed.write_lammps(&path).unwrap();
+    let back = Bed::read_lammps(&path).unwrap();
+    assert_eq!(back.len(), 50);
+    for (a, b) in bed.position.iter().zip(&back.position) {
+        assert_eq!(a, b, "positions must round-trip exactly");
+    }
+    let tiled = back.tiled(2, 3);
+    assert_eq!(tiled.len(), 300);
+    assert!((tiled.hi[0] - 2.0 * bed.hi[0]).abs() < 1e-12);
+    assert!((tiled.hi[1] - 3.0 * bed.hi[1]).abs() < 1e-12);
+    std::fs::write(&path, "x\n\n5 atoms\n").unwrap();
+    assert!(Bed::read_lammps(&path).is_err());
+    std::fs::remove_dir_all(&dir).ok();
+}
