@@ -266,8 +266,10 @@ where
     let grain = stepper.insert_material(Material::new(1.0, 0.3, 1.0)?);
     // kn = 2e5 ⇔ (4/3) E* = kn; LAMMPS NULL kt = 2/7 kn and k_t = 2 G* a ⇔ G* = kt / 2.
     stepper.set_pair_moduli(grain, grain, 1.5e5, 2.0e5 / 7.0)?;
-    let mut world = PhysicsWorld::default();
-    world.gravity = Vector::new(0.0, 0.0, -1.0);
+    let mut world = PhysicsWorld {
+        gravity: Vector::new(0.0, 0.0, -1.0),
+        ..PhysicsWorld::default()
+    };
     stepper.configure(&mut world.integration_parameters, 1e-4)?;
     stepper.insert_surface(
         &mut world,

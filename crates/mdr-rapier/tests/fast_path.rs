@@ -80,8 +80,10 @@ fn fast_path_reproduces_plain_path() {
     let steps = 3000;
 
     // Plain path: spheres are rapier bodies, candidates from the narrow phase.
-    let mut plain_world = PhysicsWorld::default();
-    plain_world.gravity = Vector::new(0.0, 0.0, -1.0);
+    let mut plain_world = PhysicsWorld {
+        gravity: Vector::new(0.0, 0.0, -1.0),
+        ..PhysicsWorld::default()
+    };
     let mut plain = ForceModeStepper::new(model());
     let m = plain.particles_mut().insert_material(grain());
     plain
@@ -101,8 +103,10 @@ fn fast_path_reproduces_plain_path() {
         .collect();
 
     // Fast path: spheres in the plugin's arrays, the same rapier colliders and lid.
-    let mut fast_world = PhysicsWorld::default();
-    fast_world.gravity = Vector::new(0.0, 0.0, -1.0);
+    let mut fast_world = PhysicsWorld {
+        gravity: Vector::new(0.0, 0.0, -1.0),
+        ..PhysicsWorld::default()
+    };
     let mut fast = FastForceStepper::new(model(), Boundary::Open)
         .skin(0.1)
         .unwrap();
@@ -173,8 +177,10 @@ fn periodic_run(bed: &Bed, steps: usize) -> FastForceStepper<Hertz, Mindlin, Her
     let boundary = Boundary::periodic_xy((bed.lo[0], bed.hi[0]), (bed.lo[1], bed.hi[1])).unwrap();
     let mut fast = FastForceStepper::new(model(), boundary).skin(0.1).unwrap();
     let m = fast.insert_material(grain());
-    let mut world = PhysicsWorld::default();
-    world.gravity = Vector::new(0.0, 0.0, -1.0);
+    let mut world = PhysicsWorld {
+        gravity: Vector::new(0.0, 0.0, -1.0),
+        ..PhysicsWorld::default()
+    };
     fast.configure(&mut world.integration_parameters, 1e-4)
         .unwrap();
     fast.insert_surface(
@@ -237,8 +243,10 @@ fn periodic_images_push_like_open_neighbours() {
     let run = |boundary: Boundary, x2: f64| {
         let mut fast = FastForceStepper::new(model(), boundary).skin(0.1).unwrap();
         let m = fast.insert_material(grain());
-        let mut world = PhysicsWorld::default();
-        world.gravity = Vector::ZERO;
+        let mut world = PhysicsWorld {
+            gravity: Vector::ZERO,
+            ..PhysicsWorld::default()
+        };
         fast.configure(&mut world.integration_parameters, 1e-4)
             .unwrap();
         fast.insert_sphere(SphereBuilder::new(0.5, m).translation(Vector::new(0.2, 3.0, 3.0)))

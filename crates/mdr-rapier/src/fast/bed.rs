@@ -320,8 +320,10 @@ pub fn settled_bed(spec: &BedSpec) -> Result<Bed, BedError> {
     let grain = stepper.insert_material(Material::new(1.0, 0.3, 1.0).map_err(CouplingError::from)?);
     // kn = 2e5 ⇔ E* = 3/4 kn; kt = 2/7 kn ⇔ G* = kt / 2 (docs/performance.md).
     stepper.set_pair_moduli(grain, grain, 1.5e5, 2.0e5 / 7.0)?;
-    let mut world = PhysicsWorld::default();
-    world.gravity = Vector::new(0.0, 0.0, -1.0);
+    let mut world = PhysicsWorld {
+        gravity: Vector::new(0.0, 0.0, -1.0),
+        ..PhysicsWorld::default()
+    };
     stepper.configure(&mut world.integration_parameters, 1e-4)?;
     stepper.insert_surface(
         &mut world,

@@ -68,6 +68,9 @@ impl<H> PairList<H> {
     }
 }
 
+/// One search block's buffers: `(j, image)` candidates and per-particle counts.
+type BlockBuffers = (Vec<(u32, u8)>, Vec<u32>);
+
 /// The cell grid and the search buffers, kept between rebuilds.
 #[derive(Debug, Default)]
 pub struct NeighbourBuilder {
@@ -81,7 +84,7 @@ pub struct NeighbourBuilder {
     /// Fill cursors of the counting sorts.
     fill: Vec<u32>,
     /// Per block: `(j, image)` candidates and per-particle counts.
-    blocks: Vec<(Vec<(u32, u8)>, Vec<u32>)>,
+    blocks: Vec<BlockBuffers>,
 }
 
 impl NeighbourBuilder {
