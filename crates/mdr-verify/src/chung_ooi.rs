@@ -367,6 +367,14 @@ pub fn test3(resolution: Resolution) -> Result<TestReport> {
     })
 }
 
+/// Checks, figures, notes and the outcomes (per backend, per point) of an oblique sweep.
+type ObliqueStudy = (
+    Vec<Check>,
+    Vec<Figure>,
+    Vec<String>,
+    Vec<Vec<crate::CollisionOutcome>>,
+);
+
 /// One point of an oblique sweep: the abscissa and the collision.
 struct ObliquePoint {
     x: f64,
@@ -383,12 +391,7 @@ fn oblique_study(
     points: &[ObliquePoint],
     x_label: &str,
     resolution: Resolution,
-) -> Result<(
-    Vec<Check>,
-    Vec<Figure>,
-    Vec<String>,
-    Vec<Vec<crate::CollisionOutcome>>,
-)> {
+) -> Result<ObliqueStudy> {
     let mut checks = Vec::new();
     let backends = resolution.backends();
     let mut outcomes: Vec<Vec<crate::CollisionOutcome>> = vec![Vec::new(); backends.len()];

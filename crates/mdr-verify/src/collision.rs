@@ -285,8 +285,10 @@ impl Collision {
         let pair = self.pair()?;
         let vn = self.normal_speed;
         let dt = pair.hertz_contact_time(vn) / self.steps_per_contact as f64;
-        let mut world = PhysicsWorld::default();
-        world.gravity = Vector::ZERO;
+        let mut world = PhysicsWorld {
+            gravity: Vector::ZERO,
+            ..Default::default()
+        };
         world.integration_parameters.length_unit = 2.0 * self.radius;
         let model = mdr_contact::model::ContactModel::new(self.normal_law)
             .with_tangential(Mindlin::new(self.friction)?);
