@@ -13,6 +13,8 @@ struct Cli {
     command: Option<Command>,
 }
 
+// Parsed once per run: the size difference between variants costs nothing worth a Box.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Single-impact validator: e_n(v0) curves, traces, fits, oblique impacts.
