@@ -5,7 +5,7 @@
 
 use crate::error::{positive, CouplingError, Result};
 use crate::force_mode::ForceModeStepper;
-use crate::particles::SphereBuilder;
+use crate::particles::{MaterialHandle, ParticleSet, SphereBuilder};
 use crate::restitution::RestitutionHooks;
 use crate::timestep::stable_time_step;
 use mdr_contact::model::ContactModel;
@@ -158,40 +158,7 @@ impl ImpactScene {
                     ContactModel::new(self.model).with_tangential(Mindlin::new(self.friction)?);
                 let mut stepper = ForceModeStepper::new(model);
                 stepper.configure(&mut world.integration_parameters, dt, 0.2 * self.radius)?;
-                let ball_material = stepper.particles_mut().insert_material(self.material);
-                let (ball, target) = match self.target {
-                    Target::HalfSpace { material } => {
-                        let m = stepper.particles_mut().insert_material(material);
-                        stepper.insert_surface(
-                            &mut world,
-                            ColliderBuilder::new(SharedShape::halfspace(Vector::Y)),
-                            None,
-                            m,
-                        )?;
-                        let (b, _) = stepper.insert_sphere(
-                            &mut world,
-                            SphereBuilder::new(self.radius, ball_material)
-                                .translation(centre)
-                                .linvel(launch),
-                        )?;
-                        (b, None)
-                    }
-                    Target::Sphere { radius, material } => {
-                        let m = stepper.particles_mut().insert_material(material);
-                        let (t, _) = stepper.insert_sphere(
-                            &mut world,
-                            SphereBuilder::new(radius, m)
-                                .translation(Vector::new(0.0, -radius, 0.0)),
-                        )?;
-                        let (b, _) = stepper.insert_sphere(
-                            &mut world,
-                            SphereBuilder::new(self.radius, ball_material)
-                                .translation(centre)
-                                .linvel(launch),
-                        )?;
-                        (b, Some(t))
-                    }
-                };
+                let (ball, target) = self.place_bodies(&mut stepper, &mut world, centre, launch)?;
                 let max_steps = (200.0 * self.steps_per_contact) as u64 + 100;
                 let mut steps = 0;
                 let mut touched = false;
@@ -208,40 +175,7 @@ impl ImpactScene {
             }
             CouplingMode::Restitution => {
                 let mut hooks = RestitutionHooks::new(self.model, self.friction)?;
-                let ball_material = hooks.particles_mut().insert_material(self.material);
-                let (ball, target) = match self.target {
-                    Target::HalfSpace { material } => {
-                        let m = hooks.particles_mut().insert_material(material);
-                        hooks.insert_surface(
-                            &mut world,
-                            ColliderBuilder::new(SharedShape::halfspace(Vector::Y)),
-                            None,
-                            m,
-                        )?;
-                        let (b, _) = hooks.insert_sphere(
-                            &mut world,
-                            SphereBuilder::new(self.radius, ball_material)
-                                .translation(centre)
-                                .linvel(launch),
-                        )?;
-                        (b, None)
-                    }
-                    Target::Sphere { radius, material } => {
-                        let m = hooks.particles_mut().insert_material(material);
-                        let (t, _) = hooks.insert_sphere(
-                            &mut world,
-                            SphereBuilder::new(radius, m)
-                                .translation(Vector::new(0.0, -radius, 0.0)),
-                        )?;
-                        let (b, _) = hooks.insert_sphere(
-                            &mut world,
-                            SphereBuilder::new(self.radius, ball_material)
-                                .translation(centre)
-                                .linvel(launch),
-                        )?;
-                        (b, Some(t))
-                    }
-                };
+                let (ball, target) = self.place_bodies(&mut hooks, &mut world, centre, launch)?;
                 world.integration_parameters.dt = dt;
                 world.integration_parameters.normalized_max_linear_velocity = f64::MAX;
                 let mut steps = 0;
@@ -257,6 +191,45 @@ impl ImpactScene {
                 Ok(self.outcome(&world, ball, target, vn, vt, steps, dt))
             }
         }
+    }
+
+    /// Insert the target (half-space or free sphere) and the launched ball through either
+    /// coupling; returns the ball and, for a sphere target, its body.
+    fn place_bodies(
+        &self,
+        coupling: &mut impl Inserter,
+        world: &mut PhysicsWorld,
+        centre: Vector,
+        launch: Vector,
+    ) -> Result<(RigidBodyHandle, Option<RigidBodyHandle>)> {
+        let ball_material = coupling.particles_mut().insert_material(self.material);
+        let target = match self.target {
+            Target::HalfSpace { material } => {
+                let m = coupling.particles_mut().insert_material(material);
+                coupling.insert_surface(
+                    world,
+                    ColliderBuilder::new(SharedShape::halfspace(Vector::Y)),
+                    None,
+                    m,
+                )?;
+                None
+            }
+            Target::Sphere { radius, material } => {
+                let m = coupling.particles_mut().insert_material(material);
+                let (t, _) = coupling.insert_sphere(
+                    world,
+                    SphereBuilder::new(radius, m).translation(Vector::new(0.0, -radius, 0.0)),
+                )?;
+                Some(t)
+            }
+        };
+        let (ball, _) = coupling.insert_sphere(
+            world,
+            SphereBuilder::new(self.radius, ball_material)
+                .translation(centre)
+                .linvel(launch),
+        )?;
+        Ok((ball, target))
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -304,3 +277,49 @@ fn separating(
 ) -> bool {
     relative_velocity(world, ball, target).y > 0.0
 }
+
+/// What [`ImpactScene::place_bodies`] needs from a coupling: both modes register bodies the same
+/// way and differ only in how the collider is flagged (impulses off, or hooks on).
+trait Inserter {
+    fn particles_mut(&mut self) -> &mut ParticleSet;
+    fn insert_sphere(
+        &mut self,
+        world: &mut PhysicsWorld,
+        sphere: SphereBuilder,
+    ) -> Result<(RigidBodyHandle, ColliderHandle)>;
+    fn insert_surface(
+        &mut self,
+        world: &mut PhysicsWorld,
+        collider: ColliderBuilder,
+        parent: Option<RigidBodyHandle>,
+        material: MaterialHandle,
+    ) -> Result<ColliderHandle>;
+}
+
+macro_rules! impl_inserter {
+    ($($ty:ty),*) => {$(
+        impl Inserter for $ty {
+            fn particles_mut(&mut self) -> &mut ParticleSet {
+                <$ty>::particles_mut(self)
+            }
+            fn insert_sphere(
+                &mut self,
+                world: &mut PhysicsWorld,
+                sphere: SphereBuilder,
+            ) -> Result<(RigidBodyHandle, ColliderHandle)> {
+                <$ty>::insert_sphere(self, world, sphere)
+            }
+            fn insert_surface(
+                &mut self,
+                world: &mut PhysicsWorld,
+                collider: ColliderBuilder,
+                parent: Option<RigidBodyHandle>,
+                material: MaterialHandle,
+            ) -> Result<ColliderHandle> {
+                <$ty>::insert_surface(self, world, collider, parent, material)
+            }
+        }
+    )*};
+}
+
+impl_inserter!(ForceModeStepper<MdrElastoPlastic, Mindlin>, RestitutionHooks);
