@@ -169,6 +169,16 @@ fn work_along<L: NormalLaw>(law: &L, state: &mut L::State, path: &[f64]) -> f64 
     work
 }
 
+/// Bound on the trapezoid-rule error of `work_along` over `segments` ramps of at most 3e-5 m,
+/// each cut into `per_segment` steps, for curves no stiffer than Hertz at 3e-5 m
+/// (`scale` = the Hertz loading work there). Per segment the error is `h²/12 · Δ(dF/dδ)` with
+/// `dF/dδ ≤ 1.5 F/δ = 3.75 W/δ²`, i.e. `0.31 (h/δ)² W`; a factor ~3 covers the stiffer elastic
+/// unloading of a flattened (plastic) contact. An elastic load–unload cycle on unequal grids
+/// returns exactly this quadrature error, of either sign (proptest found one at −1e-8 W).
+fn quadrature_error(segments: usize, per_segment: usize, scale: f64) -> f64 {
+    segments as f64 / (per_segment as f64).powi(2) * scale
+}
+
 fn cycles() -> impl Strategy<Value = Vec<f64>> {
     prop::collection::vec(0.0f64..1.0, 1..8).prop_map(|v| {
         let mut path: Vec<f64> = v.into_iter().map(|t| t * 3e-5).collect();
@@ -194,7 +204,7 @@ proptest! {
         let mut state = MdrState::default();
         let net = work_along(&closed, &mut state, &path);
         let scale = closed.loading_work(3e-5);
-        prop_assert!(net >= -1e-9 * scale, "net work {net} < 0");
+        prop_assert!(net >= -quadrature_error(targets.len(), 4000, scale), "net work {net} < 0");
         let dissipated = closed.dissipated_work(&state);
         prop_assert!((net - dissipated).abs() <= 1e-5 * scale + 1e-4 * dissipated,
             "closed form: loop area {net} vs dissipated_work {dissipated}");
@@ -203,7 +213,7 @@ proptest! {
         let mut bed_state = SpringBedState::default();
         let path = ramp(&targets, 400);
         let net = work_along(&bed, &mut bed_state, &path);
-        prop_assert!(net >= -1e-9 * scale);
+        prop_assert!(net >= -quadrature_error(targets.len(), 400, scale), "spring bed: net work {net} < 0");
         let dissipated = bed.dissipated_work(&bed_state);
         prop_assert!((net - dissipated).abs() <= 1e-4 * scale + 1e-3 * dissipated,
             "spring bed: loop area {net} vs dissipated_work {dissipated}");
