@@ -180,7 +180,7 @@ pub struct CommonArgs {
 
 impl CommonArgs {
     /// Flags over file values.
-    fn merged(&self) -> anyhow::Result<CommonArgs> {
+    pub(crate) fn merged(&self) -> anyhow::Result<CommonArgs> {
         let Some(path) = &self.config else {
             return Ok(self.clone());
         };
@@ -255,7 +255,7 @@ fn flag_for(name: &str, target: bool) -> &'static str {
     }
 }
 
-fn contact_error(target: bool) -> impl Fn(ContactError) -> anyhow::Error {
+pub(crate) fn contact_error(target: bool) -> impl Fn(ContactError) -> anyhow::Error {
     move |e| {
         let name = match &e {
             ContactError::NotFinite { name, .. }
@@ -294,21 +294,79 @@ fn positive(flag: &str, value: f64) -> anyhow::Result<f64> {
     }
 }
 
+/// The particle and target materials of the merged flags (`--youngs`, `--poisson`, `--density`
+/// and the `--target-…` ones, each defaulting to the particle's).
+pub(crate) fn materials(a: &CommonArgs) -> anyhow::Result<(Material, Material)> {
+    let particle = Material::new(
+        a.youngs.unwrap_or(2.0e11),
+        a.poisson.unwrap_or(0.286),
+        a.density.unwrap_or(7800.0),
+    )
+    .map_err(contact_error(false))?;
+    let target = Material::new(
+        a.target_youngs.unwrap_or(particle.youngs_modulus()),
+        a.target_poisson.unwrap_or(particle.poisson_ratio()),
+        a.target_density.unwrap_or(particle.density()),
+    )
+    .map_err(contact_error(true))?;
+    Ok((particle, target))
+}
+
+/// The MDR parameters and the normal laws (`--law`, `--elastic`, `--qc`, `--theta-ratio`,
+/// `--yield-stress`) of the merged flags for `pair`, in the order given, without repeats.
+pub(crate) fn normal_laws(
+    a: &CommonArgs,
+    pair: &ContactPair,
+) -> anyhow::Result<(MdrElastoPlastic, Vec<NormalSpec>)> {
+    let mdr = MdrElastoPlastic::new(a.qc.unwrap_or(3.8e5), a.theta_ratio.unwrap_or(0.37))
+        .map_err(contact_error(false))?;
+    // Thornton's default p_y: the same yield overlap as the MDR law,
+    // δ_y = R (π p_y / (2E*))² = u_c = π q_c / (2E*).
+    let e_star = pair.effective_modulus();
+    let default_yield_stress = {
+        let u_c = mdr
+            .bind(pair)
+            .map_err(contact_error(false))?
+            .yield_overlap();
+        2.0 * e_star / std::f64::consts::PI * (u_c / pair.effective_radius()).sqrt()
+    };
+    let mut laws = Vec::new();
+    for name in a.law.clone().unwrap_or_else(|| vec![LawName::Mdr]) {
+        let spec = match (name, a.elastic) {
+            (_, true) | (LawName::Hertz, _) => NormalSpec::Hertz,
+            (LawName::Mdr, false) => NormalSpec::Mdr(mdr),
+            (LawName::Thornton, false) => NormalSpec::Thornton(
+                Thornton::new(a.yield_stress.unwrap_or(default_yield_stress))
+                    .map_err(contact_error(false))?,
+            ),
+        };
+        if !laws.contains(&spec) {
+            laws.push(spec);
+        }
+    }
+    if laws.is_empty() {
+        return Err(anyhow!(
+            "invalid value for --law: give at least one of mdr, thornton, hertz"
+        ));
+    }
+    Ok((mdr, laws))
+}
+
+/// `--mu`, default 0.2.
+pub(crate) fn friction(a: &CommonArgs) -> anyhow::Result<f64> {
+    let mu = a.mu.unwrap_or(0.2);
+    if !(mu.is_finite() && mu >= 0.0) {
+        return Err(anyhow!(
+            "invalid value for --mu: {mu} (must be a finite number ≥ 0)"
+        ));
+    }
+    Ok(mu)
+}
+
 impl Settings {
     fn resolve(args: &CommonArgs) -> anyhow::Result<Settings> {
         let a = args.merged()?;
-        let particle = Material::new(
-            a.youngs.unwrap_or(2.0e11),
-            a.poisson.unwrap_or(0.286),
-            a.density.unwrap_or(7800.0),
-        )
-        .map_err(contact_error(false))?;
-        let target_material = Material::new(
-            a.target_youngs.unwrap_or(particle.youngs_modulus()),
-            a.target_poisson.unwrap_or(particle.poisson_ratio()),
-            a.target_density.unwrap_or(particle.density()),
-        )
-        .map_err(contact_error(true))?;
+        let (particle, target_material) = materials(&a)?;
         let radius = a.radius.unwrap_or(0.635e-2);
         let (pair, half_space) = match (a.target_radius, a.target_density) {
             (None, None) => (
@@ -334,44 +392,8 @@ impl Settings {
                 ))
             }
         };
-        let mdr = MdrElastoPlastic::new(a.qc.unwrap_or(3.8e5), a.theta_ratio.unwrap_or(0.37))
-            .map_err(contact_error(false))?;
-        // Thornton's default p_y: the same yield overlap as the MDR law,
-        // δ_y = R (π p_y / (2E*))² = u_c = π q_c / (2E*).
-        let e_star = pair.effective_modulus();
-        let default_yield_stress = {
-            let u_c = mdr
-                .bind(&pair)
-                .map_err(contact_error(false))?
-                .yield_overlap();
-            2.0 * e_star / std::f64::consts::PI * (u_c / pair.effective_radius()).sqrt()
-        };
-        let elastic = a.elastic;
-        let mut laws = Vec::new();
-        for name in a.law.clone().unwrap_or_else(|| vec![LawName::Mdr]) {
-            let spec = match (name, elastic) {
-                (_, true) | (LawName::Hertz, _) => NormalSpec::Hertz,
-                (LawName::Mdr, false) => NormalSpec::Mdr(mdr),
-                (LawName::Thornton, false) => NormalSpec::Thornton(
-                    Thornton::new(a.yield_stress.unwrap_or(default_yield_stress))
-                        .map_err(contact_error(false))?,
-                ),
-            };
-            if !laws.contains(&spec) {
-                laws.push(spec);
-            }
-        }
-        if laws.is_empty() {
-            return Err(anyhow!(
-                "invalid value for --law: give at least one of mdr, thornton, hertz"
-            ));
-        }
-        let mu = a.mu.unwrap_or(0.2);
-        if !(mu.is_finite() && mu >= 0.0) {
-            return Err(anyhow!(
-                "invalid value for --mu: {mu} (must be a finite number ≥ 0)"
-            ));
-        }
+        let (mdr, laws) = normal_laws(&a, &pair)?;
+        let mu = friction(&a)?;
         let scale = positive("--scale", a.scale.unwrap_or(PAPER_SCALE))?;
         let steps = a.steps.unwrap_or(DEFAULT_STEPS_PER_CONTACT);
         if steps < 10 {

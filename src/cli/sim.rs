@@ -2,11 +2,14 @@
 //! Each subcommand parses its flags here and calls a small function; the physics lives in the
 //! library crates.
 
-use anyhow::Context;
+use super::impact::{contact_error, friction, materials, normal_laws, CommonArgs, MethodName};
+use anyhow::{anyhow, bail, Context};
 use clap::{Args, Subcommand, ValueEnum};
 use mdr_contact::normal::MdrElastoPlastic;
-use mdr_contact::Material;
-use mdr_rapier::scenario::{CouplingMode, ImpactScene, SceneOutcome, Target};
+use mdr_contact::{ContactPair, Material};
+use mdr_impact::NormalSpec;
+use mdr_rapier::scenario::{CouplingMode, ImpactScene, SceneLaw, SceneOutcome, Target};
+use mdr_rapier::CouplingError;
 use std::io::Write;
 use std::path::Path;
 
@@ -55,47 +58,16 @@ impl From<ModeArg> for CouplingMode {
     }
 }
 
-/// Material and law flags shared with `mdr-dem impact` (same names and defaults: the paper's
-/// steel ball on a steel half-space).
-#[derive(Debug, Clone, Args)]
-pub struct SimMaterialArgs {
-    /// Particle radius (m).
-    #[arg(long, default_value_t = 0.635e-2)]
-    pub radius: f64,
-    /// Particle density (kg/m³).
-    #[arg(long, default_value_t = 7800.0)]
-    pub density: f64,
-    /// Particle Young's modulus (Pa).
-    #[arg(long, default_value_t = 2.0e11)]
-    pub youngs: f64,
-    /// Particle Poisson's ratio.
-    #[arg(long, default_value_t = 0.286)]
-    pub poisson: f64,
-    /// Target Young's modulus (Pa); default: the particle's.
-    #[arg(long)]
-    pub target_youngs: Option<f64>,
-    /// Target Poisson's ratio; default: the particle's.
-    #[arg(long)]
-    pub target_poisson: Option<f64>,
-    /// Critical line load q_c (N/m), eq. (7).
-    #[arg(long, default_value_t = 3.8e5)]
-    pub qc: f64,
-    /// Hardening ratio Θ/E*, eq. (12).
-    #[arg(long, default_value_t = 0.37)]
-    pub theta_ratio: f64,
-    /// No plasticity (Hertz).
-    #[arg(long)]
-    pub elastic: bool,
-    /// Friction coefficient μ.
-    #[arg(long, default_value_t = 0.0)]
-    pub mu: f64,
-}
-
 /// Flags of `sim drop`.
 #[derive(Debug, Clone, Args)]
 pub struct DropArgs {
     /// Impact speed(s) (m/s), comma-separated.
-    #[arg(long, value_delimiter = ',', required = true)]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        required = true,
+        allow_negative_numbers = true
+    )]
     pub v0: Vec<f64>,
     /// Coupling mode.
     #[arg(long, value_enum, default_value = "force")]
@@ -103,112 +75,196 @@ pub struct DropArgs {
     /// Angle of the impact velocity from the normal (degrees).
     #[arg(long, default_value_t = 0.0)]
     pub angle: f64,
-    /// Force mode: time steps per Hertz contact time.
-    #[arg(long, default_value_t = 1000.0)]
-    pub steps_per_contact: f64,
+    /// Force mode: time steps per Hertz contact time [default: 1000] (same as --steps).
+    #[arg(long)]
+    pub steps_per_contact: Option<f64>,
     /// Output CSV file, `-` for standard output.
     #[arg(long, default_value = "-")]
     pub csv: String,
+    /// Material and law flags, as in `mdr-dem impact` (and the same `--config` file keys).
     #[command(flatten)]
-    pub material: SimMaterialArgs,
+    pub common: CommonArgs,
 }
 
-/// Flags of `sim pair`.
+/// Flags of `sim pair`. `--target-radius` and `--target-density` default to the particle's.
 #[derive(Debug, Clone, Args)]
 pub struct PairArgs {
     /// Relative approach speed(s) (m/s), comma-separated.
-    #[arg(long, value_delimiter = ',', required = true)]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        required = true,
+        allow_negative_numbers = true
+    )]
     pub v0: Vec<f64>,
     /// Coupling mode.
     #[arg(long, value_enum, default_value = "force")]
     pub mode: ModeArg,
-    /// Target sphere radius (m); default: the particle's.
+    /// Force mode: time steps per Hertz contact time [default: 1000] (same as --steps).
     #[arg(long)]
-    pub target_radius: Option<f64>,
-    /// Target sphere density (kg/m³); default: the particle's.
-    #[arg(long)]
-    pub target_density: Option<f64>,
-    /// Force mode: time steps per Hertz contact time.
-    #[arg(long, default_value_t = 1000.0)]
-    pub steps_per_contact: f64,
+    pub steps_per_contact: Option<f64>,
     /// Output CSV file, `-` for standard output.
     #[arg(long, default_value = "-")]
     pub csv: String,
+    /// Material and law flags, as in `mdr-dem impact` (and the same `--config` file keys).
     #[command(flatten)]
-    pub material: SimMaterialArgs,
+    pub common: CommonArgs,
 }
 
-impl SimMaterialArgs {
-    fn particle(&self) -> anyhow::Result<Material> {
-        Ok(Material::new(self.youngs, self.poisson, self.density)?)
-    }
+/// Default time steps per Hertz contact time in rapier (1 % accuracy needs ≳ 50; 1,000 gives
+/// e_n to ~1e-4).
+const DEFAULT_STEPS_PER_CONTACT: f64 = 1000.0;
 
-    fn target(&self, density: f64) -> anyhow::Result<Material> {
-        Ok(Material::new(
-            self.target_youngs.unwrap_or(self.youngs),
-            self.target_poisson.unwrap_or(self.poisson),
-            density,
-        )?)
-    }
+/// What `sim drop|pair` take from the common flags.
+struct SceneSettings {
+    radius: f64,
+    particle: Material,
+    target: Target,
+    law: SceneLaw,
+    friction: f64,
+    steps_per_contact: f64,
+}
 
-    fn model(&self) -> anyhow::Result<MdrElastoPlastic> {
-        Ok(if self.elastic {
-            MdrElastoPlastic::elastic()
+impl SceneSettings {
+    /// Resolve the common flags (file values under flags) for a half-space (`drop`) or a free
+    /// sphere target (`pair`, defaulting to a copy of the particle).
+    fn resolve(
+        common: &CommonArgs,
+        steps_per_contact: Option<f64>,
+        sphere_target: bool,
+    ) -> anyhow::Result<Self> {
+        let a = common.merged()?;
+        refuse_validator_only_flags(&a)?;
+        let (particle, target_material) = materials(&a)?;
+        let radius = a.radius.unwrap_or(0.635e-2);
+        let target = if sphere_target {
+            Target::Sphere {
+                radius: a.target_radius.unwrap_or(radius),
+                material: target_material,
+            }
         } else {
-            MdrElastoPlastic::new(self.qc, self.theta_ratio)?
-        })
-    }
-
-    fn scene(
-        &self,
-        target: Target,
-        speed: f64,
-        steps_per_contact: f64,
-    ) -> anyhow::Result<ImpactScene> {
-        Ok(ImpactScene {
-            radius: self.radius,
-            material: self.particle()?,
+            if a.target_radius.is_some() || a.target_density.is_some() {
+                bail!(
+                    "invalid value for --target-radius/--target-density: `sim drop` hits a \
+                     half-space; use `sim pair` for a sphere target"
+                );
+            }
+            Target::HalfSpace {
+                material: target_material,
+            }
+        };
+        let pair = match target {
+            Target::HalfSpace { material } => {
+                ContactPair::sphere_on_half_space(radius, &particle, &material)
+            }
+            Target::Sphere {
+                radius: r2,
+                material,
+            } => ContactPair::sphere_on_sphere(radius, &particle, r2, &material),
+        }
+        .map_err(contact_error(false))?;
+        let (_, laws) = normal_laws(&a, &pair)?;
+        let law = match laws.as_slice() {
+            [NormalSpec::Mdr(model)] => SceneLaw::Mdr(*model),
+            [NormalSpec::Hertz] => SceneLaw::Mdr(MdrElastoPlastic::elastic()),
+            [NormalSpec::Thornton(model)] => SceneLaw::Thornton(*model),
+            _ => bail!("invalid value for --law: `sim drop|pair` run one law at a time"),
+        };
+        let steps_per_contact = match (steps_per_contact, a.steps) {
+            (Some(_), Some(_)) => {
+                bail!("invalid value for --steps: give --steps or --steps-per-contact, not both")
+            }
+            (Some(n), None) => n,
+            (None, Some(n)) => n as f64,
+            (None, None) => DEFAULT_STEPS_PER_CONTACT,
+        };
+        if !(steps_per_contact.is_finite() && steps_per_contact >= 10.0) {
+            bail!(
+                "invalid value for --steps-per-contact: {steps_per_contact} (at least 10 steps \
+                 per contact)"
+            );
+        }
+        Ok(Self {
+            radius,
+            particle,
             target,
-            model: self.model()?,
-            friction: self.mu,
-            speed,
-            angle_degrees: 0.0,
+            law,
+            friction: friction(&a)?,
             steps_per_contact,
         })
+    }
+
+    fn scene(&self, speed: f64, angle_degrees: f64) -> ImpactScene {
+        ImpactScene {
+            radius: self.radius,
+            material: self.particle,
+            target: self.target,
+            model: self.law,
+            friction: self.friction,
+            speed,
+            angle_degrees,
+            steps_per_contact: self.steps_per_contact,
+        }
+    }
+}
+
+/// The validator's numerical options have no meaning in rapier: refuse them by name.
+fn refuse_validator_only_flags(a: &CommonArgs) -> anyhow::Result<()> {
+    if a.method == Some(MethodName::Springs) || a.springs.is_some() {
+        bail!(
+            "invalid value for --method/--springs: rapier runs the closed-form law; the spring bed \
+             is the validator's (`mdr-dem impact … --method springs`)"
+        );
+    }
+    if a.scale.is_some() {
+        bail!("invalid value for --scale: `sim` reports the model's raw e_n (no scale)");
+    }
+    Ok(())
+}
+
+/// A library error of one scene, naming the flag that caused it where there is one.
+fn scene_error(e: CouplingError) -> anyhow::Error {
+    match &e {
+        CouplingError::OutOfRange { name, .. } => {
+            let flag = match *name {
+                "v0" => "--v0",
+                "angle" => "--angle",
+                "radius" => "--radius",
+                "steps_per_contact" => "--steps-per-contact",
+                _ => return anyhow::Error::new(e),
+            };
+            anyhow!("invalid value for {flag}: {e}")
+        }
+        CouplingError::Unsupported(_) => anyhow!("invalid value for --mode/--law: {e}"),
+        _ => anyhow::Error::new(e),
     }
 }
 
 fn run_drop(args: &DropArgs) -> anyhow::Result<()> {
-    let m = &args.material;
-    let target = Target::HalfSpace {
-        material: m.target(m.density)?,
-    };
+    let settings = SceneSettings::resolve(&args.common, args.steps_per_contact, false)?;
     let rows = args
         .v0
         .iter()
         .map(|&v| {
-            let scene = ImpactScene {
-                angle_degrees: args.angle,
-                ..m.scene(target, v, args.steps_per_contact)?
-            };
-            Ok(scene.run(args.mode.into())?)
+            settings
+                .scene(v, args.angle)
+                .run(args.mode.into())
+                .map_err(scene_error)
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
     write_csv(&args.csv, &rows)
 }
 
 fn run_pair(args: &PairArgs) -> anyhow::Result<()> {
-    let m = &args.material;
-    let target = Target::Sphere {
-        radius: args.target_radius.unwrap_or(m.radius),
-        material: m.target(args.target_density.unwrap_or(m.density))?,
-    };
+    let settings = SceneSettings::resolve(&args.common, args.steps_per_contact, true)?;
     let rows = args
         .v0
         .iter()
         .map(|&v| {
-            Ok(m.scene(target, v, args.steps_per_contact)?
-                .run(args.mode.into())?)
+            settings
+                .scene(v, 0.0)
+                .run(args.mode.into())
+                .map_err(scene_error)
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
     write_csv(&args.csv, &rows)

@@ -32,6 +32,9 @@ pub enum CouplingError {
     /// The material handle does not name a material of the particle set.
     #[error("material handle {0} is not in the particle set (it holds {1} materials)")]
     UnknownMaterial(u32, usize),
+    /// A combination of options that the chosen coupling does not support.
+    #[error("unsupported: {0}")]
+    Unsupported(&'static str),
 }
 
 /// Result alias of this crate.

@@ -63,7 +63,7 @@ pub use error::{CouplingError, Result};
 pub use force_mode::{ForceModeStepper, PhaseTimings, StepReport};
 pub use particles::{MaterialHandle, Particle, ParticleSet, ParticleShape, SphereBuilder};
 pub use restitution::{ImpactHistory, RestitutionHooks};
-pub use scenario::{CouplingMode, ImpactScene, SceneOutcome, Target};
+pub use scenario::{CouplingMode, ImpactScene, SceneLaw, SceneOutcome, Target};
 pub use store::{ContactStore, PairKey};
 pub use timestep::{check_time_step, stable_time_step, TimeStepAdvice, TimeStepWarning};
 

@@ -8,9 +8,12 @@ use crate::force_mode::ForceModeStepper;
 use crate::particles::{MaterialHandle, ParticleSet, SphereBuilder};
 use crate::restitution::RestitutionHooks;
 use crate::timestep::stable_time_step;
+use mdr_contact::damping::DampingModel;
 use mdr_contact::model::ContactModel;
-use mdr_contact::normal::MdrElastoPlastic;
+use mdr_contact::normal::{MdrElastoPlastic, NormalModel, Thornton};
+use mdr_contact::rolling::RollingModel;
 use mdr_contact::tangential::Mindlin;
+use mdr_contact::tangential::TangentialModel;
 use mdr_contact::{ContactPair, Material};
 use rapier3d_f64::prelude::*;
 
@@ -21,6 +24,29 @@ pub enum CouplingMode {
     Force,
     /// Hard spheres: impulses with the law's restitution ([`RestitutionHooks`]).
     Restitution,
+}
+
+/// The normal law of a scene. Hertz is [`MdrElastoPlastic::elastic`] (the MDR law without
+/// plasticity is Hertz exactly, `docs/theory.md` §4).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SceneLaw {
+    /// The MDR elasto-plastic law (or Hertz, when elastic): both coupling modes.
+    Mdr(MdrElastoPlastic),
+    /// Thornton's (1997) elastic–perfectly-plastic law: force mode only (the restitution hook
+    /// keeps the MDR law's history).
+    Thornton(Thornton),
+}
+
+impl From<MdrElastoPlastic> for SceneLaw {
+    fn from(model: MdrElastoPlastic) -> Self {
+        SceneLaw::Mdr(model)
+    }
+}
+
+impl From<Thornton> for SceneLaw {
+    fn from(model: Thornton) -> Self {
+        SceneLaw::Thornton(model)
+    }
 }
 
 /// What the sphere hits.
@@ -50,7 +76,7 @@ pub struct ImpactScene {
     /// What it hits.
     pub target: Target,
     /// The normal law.
-    pub model: MdrElastoPlastic,
+    pub model: SceneLaw,
     /// Friction coefficient `μ`.
     pub friction: f64,
     /// Approach speed (m/s): relative speed of the two bodies.
@@ -89,7 +115,7 @@ impl ImpactScene {
             target: Target::HalfSpace {
                 material: Material::paper_steel(),
             },
-            model: MdrElastoPlastic::paper(),
+            model: SceneLaw::Mdr(MdrElastoPlastic::paper()),
             friction: 0.0,
             speed,
             angle_degrees: 0.0,
@@ -152,29 +178,19 @@ impl ImpactScene {
         let gap = 2.5 * vn * dt;
         let launch = Vector::new(vt, -vn, 0.0);
         let centre = Vector::new(0.0, self.radius + gap, 0.0);
-        match mode {
-            CouplingMode::Force => {
-                let model =
-                    ContactModel::new(self.model).with_tangential(Mindlin::new(self.friction)?);
-                let mut stepper = ForceModeStepper::new(model);
-                stepper.configure(&mut world.integration_parameters, dt, 0.2 * self.radius)?;
-                let (ball, target) = self.place_bodies(&mut stepper, &mut world, centre, launch)?;
-                let max_steps = (200.0 * self.steps_per_contact) as u64 + 100;
-                let mut steps = 0;
-                let mut touched = false;
-                for _ in 0..max_steps {
-                    let report = stepper.step(&mut world)?;
-                    if report.contacts > 0 {
-                        touched = true;
-                        steps += 1;
-                    } else if touched && separating(&world, ball, target) {
-                        break;
-                    }
-                }
-                Ok(self.outcome(&world, ball, target, vn, vt, steps, dt))
+        match (mode, self.model) {
+            (CouplingMode::Force, SceneLaw::Mdr(model)) => {
+                self.run_force(model, world, dt, centre, launch, (vn, vt))
             }
-            CouplingMode::Restitution => {
-                let mut hooks = RestitutionHooks::new(self.model, self.friction)?;
+            (CouplingMode::Force, SceneLaw::Thornton(model)) => {
+                self.run_force(model, world, dt, centre, launch, (vn, vt))
+            }
+            (CouplingMode::Restitution, SceneLaw::Thornton(_)) => Err(CouplingError::Unsupported(
+                "restitution mode takes its e(v) and history from the MDR law (or Hertz); \
+                     use force mode for Thornton's law",
+            )),
+            (CouplingMode::Restitution, SceneLaw::Mdr(model)) => {
+                let mut hooks = RestitutionHooks::new(model, self.friction)?;
                 let (ball, target) = self.place_bodies(&mut hooks, &mut world, centre, launch)?;
                 world.integration_parameters.dt = dt;
                 world.integration_parameters.normalized_max_linear_velocity = f64::MAX;
@@ -191,6 +207,35 @@ impl ImpactScene {
                 Ok(self.outcome(&world, ball, target, vn, vt, steps, dt))
             }
         }
+    }
+
+    /// Force mode with normal law `model`: step until the bodies have touched and separate.
+    fn run_force<N: NormalModel>(
+        &self,
+        model: N,
+        mut world: PhysicsWorld,
+        dt: f64,
+        centre: Vector,
+        launch: Vector,
+        (vn, vt): (f64, f64),
+    ) -> Result<SceneOutcome> {
+        let model = ContactModel::new(model).with_tangential(Mindlin::new(self.friction)?);
+        let mut stepper = ForceModeStepper::new(model);
+        stepper.configure(&mut world.integration_parameters, dt, 0.2 * self.radius)?;
+        let (ball, target) = self.place_bodies(&mut stepper, &mut world, centre, launch)?;
+        let max_steps = (200.0 * self.steps_per_contact) as u64 + 100;
+        let mut steps = 0;
+        let mut touched = false;
+        for _ in 0..max_steps {
+            let report = stepper.step(&mut world)?;
+            if report.contacts > 0 {
+                touched = true;
+                steps += 1;
+            } else if touched && separating(&world, ball, target) {
+                break;
+            }
+        }
+        Ok(self.outcome(&world, ball, target, vn, vt, steps, dt))
     }
 
     /// Insert the target (half-space or free sphere) and the launched ball through either
@@ -297,8 +342,8 @@ trait Inserter {
 }
 
 macro_rules! impl_inserter {
-    ($($ty:ty),*) => {$(
-        impl Inserter for $ty {
+    ($ty:ty $(, $g:ident : $bound:path)*) => {
+        impl<$($g: $bound),*> Inserter for $ty {
             fn particles_mut(&mut self) -> &mut ParticleSet {
                 <$ty>::particles_mut(self)
             }
@@ -319,7 +364,8 @@ macro_rules! impl_inserter {
                 <$ty>::insert_surface(self, world, collider, parent, material)
             }
         }
-    )*};
+    };
 }
 
-impl_inserter!(ForceModeStepper<MdrElastoPlastic, Mindlin>, RestitutionHooks);
+impl_inserter!(ForceModeStepper<N, T, D, R>, N: NormalModel, T: TangentialModel, D: DampingModel, R: RollingModel);
+impl_inserter!(RestitutionHooks);

@@ -4,22 +4,31 @@
 //! application, integration order and the restitution hook.
 
 use mdr_contact::normal::MdrElastoPlastic;
+use mdr_contact::normal::Thornton;
 use mdr_contact::Material;
 use mdr_impact::{Impact, NormalSpec, Route};
-use mdr_rapier::scenario::{CouplingMode, ImpactScene, Target};
+use mdr_rapier::scenario::{CouplingMode, ImpactScene, SceneLaw, Target};
 
 const SPEEDS: [f64; 3] = [0.5, 1.0, 3.0];
 
+/// The validator's name for the scene's law.
+fn spec(scene: &ImpactScene) -> NormalSpec {
+    match scene.model {
+        SceneLaw::Mdr(model) => NormalSpec::Mdr(model),
+        SceneLaw::Thornton(model) => NormalSpec::Thornton(model),
+    }
+}
+
 fn reference_restitution(scene: &ImpactScene) -> f64 {
-    Impact::new(
-        scene.pair().unwrap(),
-        NormalSpec::Mdr(scene.model),
-        scene.speed,
-    )
-    .route(Route::Energy)
-    .run()
-    .unwrap()
-    .normal_restitution
+    let route = match scene.model {
+        SceneLaw::Mdr(_) => Route::Energy,
+        SceneLaw::Thornton(_) => Route::TimeIntegration,
+    };
+    Impact::new(scene.pair().unwrap(), spec(scene), scene.speed)
+        .route(route)
+        .run()
+        .unwrap()
+        .normal_restitution
 }
 
 fn unequal_pair(speed: f64) -> ImpactScene {
@@ -63,6 +72,39 @@ fn force_mode_unequal_pair_matches_validator_within_1_percent() {
 }
 
 #[test]
+fn force_mode_thornton_law_matches_validator_within_1_percent() {
+    // p_y = 1 GPa: yield speed ≈ 0.05 m/s for the paper's steel, so every speed is plastic.
+    for v in SPEEDS {
+        let scene = ImpactScene {
+            model: Thornton::new(1.0e9).unwrap().into(),
+            ..ImpactScene::paper_drop(v)
+        };
+        check(&scene, CouplingMode::Force, 0.01);
+        check(
+            &ImpactScene {
+                model: Thornton::new(1.0e9).unwrap().into(),
+                ..unequal_pair(v)
+            },
+            CouplingMode::Force,
+            0.01,
+        );
+    }
+}
+
+#[test]
+fn restitution_mode_refuses_thornton_with_a_clear_error() {
+    let scene = ImpactScene {
+        model: Thornton::new(1.0e9).unwrap().into(),
+        ..ImpactScene::paper_drop(1.0)
+    };
+    let message = scene
+        .run(CouplingMode::Restitution)
+        .unwrap_err()
+        .to_string();
+    assert!(message.contains("force mode"), "{message}");
+}
+
+#[test]
 fn restitution_mode_matches_validator_within_half_percent() {
     for v in SPEEDS {
         check(
@@ -98,7 +140,7 @@ fn oblique_gross_sliding_matches_validator_within_2_percent() {
         ..ImpactScene::paper_drop(speed)
     };
     let outcome = scene.run(CouplingMode::Force).unwrap();
-    let reference = Impact::new(scene.pair().unwrap(), NormalSpec::Mdr(scene.model), speed)
+    let reference = Impact::new(scene.pair().unwrap(), spec(&scene), speed)
         .angle_degrees(angle)
         .friction(0.2)
         .run()
@@ -131,7 +173,7 @@ fn oblique_gross_sliding_matches_validator_within_2_percent() {
 #[test]
 fn elastic_law_gives_unit_restitution_in_both_modes() {
     let scene = ImpactScene {
-        model: MdrElastoPlastic::elastic(),
+        model: MdrElastoPlastic::elastic().into(),
         ..ImpactScene::paper_drop(1.0)
     };
     for mode in [CouplingMode::Force, CouplingMode::Restitution] {
