@@ -341,6 +341,26 @@ impl RestitutionHooks {
     }
 }
 
+/// Keep the speculative contacts of a pair approaching at `approach` whose gap does not close
+/// within the step `dt`, but move them out of reach for this step.
+///
+/// Left as they are, rapier's relax pass, which re-measures the gap after moving the bodies by
+/// the whole step and caps the approach at (remaining gap)/`dt`, brakes a pair whose gap lies
+/// between `approach·dt` and `2·approach·dt` without any impact (a pre-contact loss hard spheres
+/// do not have; with a restitution set it bounces the pair a step early instead). Dropping the
+/// contacts avoids that but leaves the manifold points' last solved impulse in place, and rapier
+/// decides whether the next impact is new, hence bouncy, from that impulse being zero: after an
+/// impact, a pair brought back within reach without a separating step in between (e.g. bodies
+/// moved by hand) then hits without a bounce. Raising each contact's `dist` by `2·approach·dt`
+/// keeps the remaining gap above `approach·dt` after the step, so the contact carries no impulse,
+/// and its zero impulse marks the next impact as new (docs/coupling.md, "Speculative contacts").
+pub fn defer_speculative_contacts(contacts: &mut SolverContacts, approach: f64, dt: f64) {
+    let margin = 2.0 * approach.max(0.0) * dt;
+    for contact in contacts.iter_mut() {
+        contact.dist += margin;
+    }
+}
+
 impl PhysicsHooks for RestitutionHooks {
     fn modify_solver_contacts(&self, ctx: &mut ContactModificationContext) {
         let bodies = ctx.bodies;
@@ -373,6 +393,11 @@ impl PhysicsHooks for RestitutionHooks {
             // Separating or resting: rapier applies no bounce.
             return;
         }
+        if closest > approach * self.dt {
+            // The gap does not close in this step: no impact yet.
+            defer_speculative_contacts(rigid.solver_contacts, approach, self.dt);
+            return;
+        }
         let key = PairKey::new(c1, c2);
         let mut slot = rigid.user_data.wrapping_sub(1);
         if *rigid.user_data == 0 || self.history.key(slot) != key {
@@ -387,11 +412,7 @@ impl PhysicsHooks for RestitutionHooks {
             1.0
         } else {
             let impact = law.impact(&state, mass, approach);
-            // Commit the plastic state only when the contact closes during this step (a
-            // speculative contact further away may still miss).
-            if closest <= approach * self.dt {
-                self.history.commit(slot, impact.state.max_overlap);
-            }
+            self.history.commit(slot, impact.state.max_overlap);
             impact.restitution
         };
         *rigid.restitution = restitution;

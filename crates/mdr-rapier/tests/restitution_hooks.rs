@@ -167,3 +167,44 @@ fn simultaneous_impacts_on_two_threads_match_the_law() {
         assert_eq!(hooks.history().len(), 400);
     });
 }
+
+/// A ball whose gap to the floor closes in the *next* step (gap between `v·dt` and `2v·dt`) is
+/// neither braked nor bounced early by rapier's speculative contact: it flies one step at full
+/// speed, bounces on contact with the law's `e_n` and the impact enters the history. Before the
+/// hook deferred such contacts, rapier bounced it a step early and the plastic state was lost.
+#[test]
+fn speculative_contact_neither_brakes_nor_bounces_early() {
+    let (law, mass) = law();
+    let speed = 1.0;
+    let expected = law.impact(&MdrState::default(), mass, speed).restitution;
+    for gap_in_steps in [1.1, 1.5, 1.9] {
+        let (mut world, mut hooks, steel) = world_with_floor();
+        let dt = world.integration_parameters.dt;
+        let (ball, _) = hooks
+            .insert_sphere(
+                &mut world,
+                SphereBuilder::new(R, steel)
+                    .translation(Vector::new(0.0, R + gap_in_steps * speed * dt, 0.0))
+                    .linvel(Vector::new(0.0, -speed, 0.0)),
+            )
+            .unwrap();
+        hooks.step(&mut world).unwrap();
+        let v1 = world.bodies[ball].linvel().y;
+        assert_eq!(
+            v1, -speed,
+            "gap {gap_in_steps} v·dt: first step changed v to {v1}"
+        );
+        hooks.step(&mut world).unwrap();
+        let e = world.bodies[ball].linvel().y / speed;
+        assert!(
+            (e - expected).abs() < 1e-6,
+            "gap {gap_in_steps} v·dt: e = {e} vs {expected}"
+        );
+        let slot = hooks.history().find(mdr_rapier::PairKey::new(
+            world.colliders.iter().next().unwrap().0,
+            world.bodies[ball].colliders()[0],
+        ));
+        let slot = slot.expect("the impact has a history entry");
+        assert!(hooks.history().state(slot).max_overlap > 0.0);
+    }
+}
