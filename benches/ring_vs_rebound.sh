@@ -9,6 +9,8 @@
 # Outputs in $OUT (default target/ring_vs_rebound): rebound_s*.json, ours_s*/ (summary.json,
 # timeseries.csv, equilibration.svg, restitution.svg), *.time (/usr/bin/time: wall, user, sys).
 # Both codes run on one core (REBOUND is serial; rapier gets RAYON_NUM_THREADS=1), at nice 10.
+# REUSE_REBOUND=DIR takes REBOUND's rebound_s*.json from an earlier run in DIR instead of running
+# it again (REBOUND does not change; then the timing ratio is not printed).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 seeds=${1:-"1 2 3 4 5"}
@@ -20,8 +22,13 @@ cargo build --release --bin mdr-dem --manifest-path "$root/Cargo.toml"
 bin=${CARGO_TARGET_DIR:-$root/target}/release/mdr-dem
 timed() { local t=$1; shift; /usr/bin/time -f "%e %U %S" -o "$t" nice -n 10 "$@"; }
 for s in $seeds; do
-  timed "$out/rebound_s$s.time" "$rebound" --grav none --orbits "$orbits" --seed "$s" \
-    --json "$out/rebound_s$s.json" > "$out/rebound_s$s.log"
+  if [ -n "${REUSE_REBOUND:-}" ]; then
+    cp "$REUSE_REBOUND/rebound_s$s.json" "$out/rebound_s$s.json"
+    rm -f "$out/rebound_s$s.time"
+  else
+    timed "$out/rebound_s$s.time" "$rebound" --grav none --orbits "$orbits" --seed "$s" \
+      --json "$out/rebound_s$s.json" > "$out/rebound_s$s.log"
+  fi
   RAYON_NUM_THREADS=1 timed "$out/ours_s$s.time" "$bin" sim ring --law bridges --orbits "$orbits" \
     --seed "$s" --out "$out/ours_s$s" --frame-orbits "$orbits" --quiet --json > "$out/ours_s$s.json"
 done
@@ -57,6 +64,9 @@ for law in ("mdr", "constant"):
     d = json.load(open(f"{out}/{law}_s{seeds[0]}.json"))
     print(f"{law}: c = {d['c_m_per_s']*1e3:.4f} mm/s, z_rms = {d['z_rms_m']:.3f} m, FF0 = {d['filling_factor_z0']:.4f}, "
           f"collisions/particle/orbit = {d['collisions_per_particle_per_orbit']:.3f}")
+import os
+if not all(os.path.exists(f"{out}/rebound_s{s}.time") for s in seeds):
+    sys.exit(0)  # REBOUND results reused: no timing comparison
 wo = [cpu(f"ours_s{s}") for s in seeds]; wr = [cpu(f"rebound_s{s}") for s in seeds]
 so, sr = sum(w for w, _ in wo), sum(w for w, _ in wr)
 co, cr = sum(c for _, c in wo), sum(c for _, c in wr)

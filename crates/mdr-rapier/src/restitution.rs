@@ -341,23 +341,26 @@ impl RestitutionHooks {
     }
 }
 
-/// Keep the speculative contacts of a pair approaching at `approach` whose gap does not close
-/// within the step `dt`, but move them out of reach for this step.
+/// Keep the contacts of a manifold that holds no impact in this step (a pair approaching at
+/// `approach > 0` whose gap does not close within the step `dt`, or a separating pair), but put
+/// them out of reach for this step, so that rapier solves them with zero impulse.
 ///
 /// Left as they are, rapier's relax pass, which re-measures the gap after moving the bodies by
-/// the whole step and caps the approach at (remaining gap)/`dt`, brakes a pair whose gap lies
-/// between `approach·dt` and `2·approach·dt` without any impact (a pre-contact loss hard spheres
-/// do not have; with a restitution set it bounces the pair a step early instead). Dropping the
-/// contacts avoids that but leaves the manifold points' last solved impulse in place, and rapier
-/// decides whether the next impact is new, hence bouncy, from that impulse being zero: after an
-/// impact, a pair brought back within reach without a separating step in between (e.g. bodies
-/// moved by hand) then hits without a bounce. Raising each contact's `dist` by `2·approach·dt`
-/// keeps the remaining gap above `approach·dt` after the step, so the contact carries no impulse,
-/// and its zero impulse marks the next impact as new (docs/coupling.md, "Speculative contacts").
+/// the whole step and caps the approach at (remaining gap)/`dt`, brakes an approaching pair whose
+/// gap lies between `approach·dt` and `2·approach·dt` without any impact (a pre-contact loss hard
+/// spheres do not have; with a restitution set it bounces the pair a step early instead).
+/// Dropping the contacts avoids that but leaves the manifold points' last solved impulse in
+/// place, and rapier decides whether the next impact is new, hence bouncy, from that impulse
+/// being zero: after an impact, a pair whose contacts are dropped until it comes back (bodies
+/// moved by hand, or a re-collision of the same pair while its manifold lives) then hits without
+/// a bounce. Each contact's `dist` is therefore lifted to `max(dist, 0) + 2·|approach|·dt`: the
+/// remaining gap after the step stays above `|approach|·dt`, an overlapping receding pair gets no
+/// position bias, and the zero impulse marks the next impact as new (docs/coupling.md,
+/// "Speculative contacts").
 pub fn defer_speculative_contacts(contacts: &mut SolverContacts, approach: f64, dt: f64) {
-    let margin = 2.0 * approach.max(0.0) * dt;
+    let margin = 2.0 * approach.abs() * dt;
     for contact in contacts.iter_mut() {
-        contact.dist += margin;
+        contact.dist = contact.dist.max(0.0) + margin;
     }
 }
 

@@ -3,6 +3,7 @@
 //! [`RestitutionLaw`] at the pair's approach speed, with the per-contact history in a
 //! thread-safe store.
 
+use mdr_rapier::restitution::defer_speculative_contacts;
 use mdr_rapier::restitution_law::{ImpactPair, RestitutionLaw};
 use rapier3d_f64::prelude::*;
 use std::collections::HashMap;
@@ -156,11 +157,12 @@ impl<L: RestitutionLaw> PhysicsHooks for RingHooks<L> {
         let entry = histories.entry(key).or_default();
         entry.1 = self.step;
         if approach <= 0.0 || !gap.is_finite() || gap > approach * self.dt {
-            // No impact in this step: drop the speculative contact. rapier would otherwise brake
-            // the approach in its relax pass (it re-measures the gap after moving the bodies by
-            // the whole step and caps the approach at that remainder over Δt), an inelastic
-            // pre-contact loss that hard spheres do not have (docs/rings.md §4).
-            manifold.solver_contacts.clear();
+            // No impact in this step: defer the contacts (solved with zero impulse). Left alone,
+            // rapier's relax pass would brake the approach (an inelastic pre-contact loss hard
+            // spheres do not have); dropped, they would keep the impulse of the pair's last impact
+            // and rapier would then take its next impact as a resting contact, with no bounce
+            // (docs/rings.md §4, docs/coupling.md "Speculative contacts").
+            defer_speculative_contacts(manifold.solver_contacts, approach, self.dt);
             return;
         }
         *manifold.restitution = self.law.restitution(&pair, &mut entry.0, approach);
