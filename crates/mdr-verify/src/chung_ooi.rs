@@ -2,8 +2,9 @@
 //! carry their tolerances; `docs/verification.md` lists the parameters, their sources and the
 //! measured errors.
 
-use crate::collision::{Backend, Collision, Target};
+use crate::collision::{Backend, Collision, CollisionOutcome, Target};
 use crate::error::{invalid, Result};
+use crate::kharaz;
 use crate::materials;
 use crate::reference::{self, HertzImpact};
 use crate::report::{Check, Figure, Series, Style, TestReport, Tolerance};
@@ -668,6 +669,11 @@ pub fn test4(resolution: Resolution) -> Result<TestReport> {
             });
         }
         let slug = case.replace(' ', "_");
+        if case == "aluminium oxide" {
+            et_series.push(measured(&kharaz::TANGENTIAL_RESTITUTION));
+            rebound_series.push(measured(&kharaz::REBOUND_ANGLE_CENTRE));
+            kharaz_comparison(m, resolution, &mut report)?;
+        }
         report.figures.push(Figure {
             name: format!("verify_test4_{slug}_et"),
             title: format!("Test 4 ({case}): tangential restitution e_t"),
@@ -684,6 +690,172 @@ pub fn test4(resolution: Resolution) -> Result<TestReport> {
         });
     }
     Ok(report)
+}
+
+fn measured(points: &[(f64, f64)]) -> Series {
+    Series {
+        label: "experiment, Kharaz, Gorham & Salman (2001)".into(),
+        points: points.to_vec(),
+        style: Style::Measured,
+    }
+}
+
+/// Impact angle (°) from which the Kharaz, Gorham & Salman (2001) points are asserted: the
+/// contact slides for the whole impact there (ψ = tan θ/μ > 1.15·3.5(1+e) at θ ≥ 28°), where the
+/// result does not depend on the tangential compliance nor on the anvil's (soda-lime glass, not
+/// rigid) stiffness. Below it the differences are measured and reported (notes), not asserted.
+/// Budget of every tolerance (docs/verification.md §3): the paper's e = 0.98 against our elastic
+/// e = 1, digitisation of the published figures (about 1 % of the axis range) and the scatter of
+/// the experiment.
+pub const KHARAZ_SLIDING_ANGLE: f64 = 28.0;
+/// e_t against experiment (absolute): e = 0.98 vs 1 moves the sliding e_t by `0.02 μ/tan θ ≤
+/// 0.004`, digitisation 0.01; measured ≤ 0.008.
+pub const KHARAZ_ET_TOLERANCE: f64 = 0.02;
+/// Spin against experiment (relative): e = 0.98 vs 1 lowers the sliding spin by 1 %; the measured
+/// spins lie 0.2–7.5 % above the gross-sliding value, which both laws reproduce within 0.5 %
+/// (an impulse identity, so the excess is experimental).
+pub const KHARAZ_SPIN_TOLERANCE: f64 = 0.08;
+/// Rebound angle of the centre against experiment (absolute, degrees): e = 0.98 vs 1 shifts it by
+/// ≤ 0.7°, digitisation ≈ 0.6°; measured ≤ 0.21°.
+pub const KHARAZ_CENTRE_ANGLE_TOLERANCE: f64 = 1.5;
+/// Rebound angle of the contact point against experiment (absolute, degrees): in sliding
+/// `tan φ' = (tan θ − 3.5 μ (1+e))/e`, so e = 0.98 vs 1 shifts it by 0.9–1.1° at 50–70°;
+/// digitisation ≈ 1°; measured ≤ 2.7° (experiment above the simulation throughout).
+pub const KHARAZ_CONTACT_ANGLE_TOLERANCE: f64 = 3.0;
+
+/// Test 4 (aluminium oxide) against the experimental points: checks in gross sliding, the
+/// stick/transition range measured and reported as notes; figures of spin (rad/s) and rebound
+/// angle of the contact point with the experiment.
+fn kharaz_comparison(m: Material, resolution: Resolution, report: &mut TestReport) -> Result<()> {
+    let backends = [
+        Backend::ValidatorMindlin,
+        Backend::ValidatorSpringBed {
+            springs: resolution.springs,
+        },
+    ];
+    let at = |angle: f64, backend: Backend| -> Result<(Collision, CollisionOutcome)> {
+        let r = angle.to_radians();
+        let c = Collision {
+            tangential_speed: 3.9 * r.sin(),
+            friction: MU_4,
+            steps_per_contact: resolution.steps_per_contact,
+            ..Collision::head_on(
+                0.0025,
+                m,
+                Target::Plane {
+                    material: materials::rigid_for(&m),
+                },
+                3.9 * r.cos(),
+            )
+        };
+        let out = c.run(backend)?;
+        Ok((c, out))
+    };
+    type Quantity = fn(&Collision, &CollisionOutcome) -> f64;
+    let e_t: Quantity = |c, o| {
+        if c.tangential_speed > 0.0 {
+            o.tangential_velocity / c.tangential_speed
+        } else {
+            1.0
+        }
+    };
+    let spin: Quantity = |_, o| o.spin;
+    let centre: Quantity = |c, o| {
+        o.tangential_velocity
+            .atan2(o.normal_restitution * c.normal_speed)
+            .to_degrees()
+    };
+    let contact: Quantity = |c, o| {
+        (o.tangential_velocity - c.radius * o.spin)
+            .atan2(o.normal_restitution * c.normal_speed)
+            .to_degrees()
+    };
+    let quantities: [(&str, &[(f64, f64)], Quantity, Tolerance); 4] = [
+        (
+            "e_t",
+            &kharaz::TANGENTIAL_RESTITUTION,
+            e_t,
+            Tolerance::Absolute(KHARAZ_ET_TOLERANCE),
+        ),
+        (
+            "spin ω' (rad/s)",
+            &kharaz::SPIN,
+            spin,
+            Tolerance::Relative(KHARAZ_SPIN_TOLERANCE),
+        ),
+        (
+            "rebound angle of the centre (°)",
+            &kharaz::REBOUND_ANGLE_CENTRE,
+            centre,
+            Tolerance::Absolute(KHARAZ_CENTRE_ANGLE_TOLERANCE),
+        ),
+        (
+            "rebound angle of the contact point (°)",
+            &kharaz::REBOUND_ANGLE_CONTACT,
+            contact,
+            Tolerance::Absolute(KHARAZ_CONTACT_ANGLE_TOLERANCE),
+        ),
+    ];
+    let mut spin_series = vec![measured(&kharaz::SPIN)];
+    let mut contact_series = vec![measured(&kharaz::REBOUND_ANGLE_CONTACT)];
+    for backend in backends {
+        let mut computed: Vec<Vec<(f64, f64)>> = Vec::new();
+        for (name, data, quantity, tolerance) in quantities {
+            let mut worst_stick: (f64, f64) = (0.0, 0.0);
+            let mut points = Vec::new();
+            for &(angle, experiment) in data {
+                let (c, out) = at(angle, backend)?;
+                let value = quantity(&c, &out);
+                points.push((angle, value));
+                if angle >= KHARAZ_SLIDING_ANGLE {
+                    report.checks.push(Check::new(
+                        format!(
+                            "{name} vs experiment (Kharaz et al. 2001), θ = {angle:.1}°, {}",
+                            backend.label()
+                        ),
+                        value,
+                        experiment,
+                        tolerance,
+                    ));
+                } else if (value - experiment).abs() > worst_stick.1.abs() {
+                    worst_stick = (angle, value - experiment);
+                }
+            }
+            report.notes.push(format!(
+                "aluminium oxide, {}: {name} − experiment below {KHARAZ_SLIDING_ANGLE}° (stick/\
+                 transition, not asserted): largest {:+.3} at θ = {:.1}°",
+                backend.label(),
+                worst_stick.1,
+                worst_stick.0
+            ));
+            computed.push(points);
+        }
+        spin_series.push(Series {
+            label: backend.label().into(),
+            points: computed[1].clone(),
+            style: Style::Points,
+        });
+        contact_series.push(Series {
+            label: backend.label().into(),
+            points: computed[3].clone(),
+            style: Style::Points,
+        });
+    }
+    report.figures.push(Figure {
+        name: "verify_test4_aluminium_oxide_spin_experiment".into(),
+        title: "Test 4 (aluminium oxide): spin after impact vs experiment".into(),
+        x_label: "impact angle (degrees)".into(),
+        y_label: "ω' (rad/s)".into(),
+        series: spin_series,
+    });
+    report.figures.push(Figure {
+        name: "verify_test4_aluminium_oxide_rebound_contact".into(),
+        title: "Test 4 (aluminium oxide): rebound angle of the contact point".into(),
+        x_label: "impact angle (degrees)".into(),
+        y_label: "atan((v_t' − R ω')/v_n') (degrees)".into(),
+        series: contact_series,
+    });
+    Ok(())
 }
 
 fn plane_case(m: Material, vt: f64, spin: f64) -> Collision {
