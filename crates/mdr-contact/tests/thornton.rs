@@ -95,7 +95,7 @@ fn liggghts_unloading_matches_its_closed_form() {
         }
     }
     // The two unloading branches differ: the LIGGGHTS one returns less energy (stiffer start,
-    // contact radius never shrinks to 0), e.g. at v = 10 v_y by about 4.6 %.
+    // contact radius never shrinks to 0), e.g. at v = 10 v_y by 5.5 %.
     assert!(liggghts_thornton_ning_restitution(10.0) < 0.96 * thornton_restitution(10.0));
 }
 
