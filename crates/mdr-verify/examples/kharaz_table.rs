@@ -28,7 +28,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         c.run(backend).map(|o| (c, o))
     };
     type Quantity = fn(&Collision, &CollisionOutcome) -> f64;
-    let quantities: [(&str, &[(f64, f64)], Quantity); 4] = [
+    type Row = (&'static str, &'static [(f64, f64)], Quantity);
+    let quantities: [Row; 4] = [
         ("e_t", &kharaz::TANGENTIAL_RESTITUTION, |c, o| {
             o.tangential_velocity / c.tangential_speed
         }),

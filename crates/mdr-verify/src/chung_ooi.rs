@@ -812,7 +812,9 @@ fn kharaz_comparison(m: Material, resolution: Resolution, report: &mut TestRepor
             .atan2(o.normal_restitution * c.normal_speed)
             .to_degrees()
     };
-    let quantities: [(&str, &[(f64, f64)], Quantity, Tolerance); 4] = [
+    /// Name, experimental points, computed quantity, tolerance.
+    type Row = (&'static str, &'static [(f64, f64)], Quantity, Tolerance);
+    let quantities: [Row; 4] = [
         (
             "e_t",
             &kharaz::TANGENTIAL_RESTITUTION,
