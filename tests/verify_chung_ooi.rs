@@ -2,7 +2,9 @@
 //! with `mdr-dem verify`). Each test's checks carry their tolerances (`mdr_verify::chung_ooi`
 //! constants, listed in `docs/verification.md`): Hertz contact time and peak force within 0.1 %,
 //! elastic `e_n` within 2·10⁻³, the gross-sliding impulse theory within 5·10⁻³ of `μ J_n`, rapier
-//! against the validator within 10⁻² of `μ J_n`, and restitution from plasticity within 5·10⁻³.
+//! against the validator within 10⁻² of `μ J_n` (plus computed geometric allowances), restitution
+//! from plasticity within 5·10⁻³, and test 4 against the Kharaz, Gorham & Salman (2001)
+//! experiment in gross sliding (e_t 0.02, spin 8 %, rebound angles 1.5°/3°).
 
 use mdr_verify::chung_ooi::{self, Resolution};
 
@@ -32,6 +34,19 @@ fn verify_test4_oblique_constant_speed_varying_angle() {
     assert_passes(4);
 }
 
+/// Test 4 is compared with the experiment: every experimental point at θ ≥ 28° is a check, for
+/// both validator laws (e_t 4, spin 4, centre angle 4, contact-point angle 7 points).
+#[test]
+fn verify_test4_checks_the_experiment() {
+    let report = chung_ooi::run(4, Resolution::ci()).expect("test runs");
+    let experimental = report
+        .checks
+        .iter()
+        .filter(|c| c.name.contains("experiment (Kharaz"))
+        .count();
+    assert_eq!(experimental, 2 * (4 + 4 + 4 + 7), "{report}");
+}
+
 #[test]
 fn verify_test5_oblique_varying_tangential_speed() {
     assert_passes(5);
@@ -48,7 +63,7 @@ fn verify_test7_identical_spheres_varying_spin() {
 }
 
 #[test]
-fn verify_test8_different_spheres_varying_tangential_speed() {
+fn verify_test8_different_spheres_varying_spin() {
     assert_passes(8);
 }
 

@@ -57,7 +57,7 @@ pub mod prelude {
     pub use crate::normal::{
         Hertz, HertzLaw, MdrElastoPlastic, MdrLaw, MdrState, NormalLaw, NormalModel,
         NormalResponse, SphereSpringBed, SpringBed, SpringBedState, Thornton, ThorntonLaw,
-        ThorntonState,
+        ThorntonState, ThorntonUnloading,
     };
     pub use crate::tangential::{
         Frictionless, Mindlin, MindlinLaw, MindlinState, SpringBedTangential,

@@ -4,17 +4,23 @@
 //! oxide sphere, R = 2.5 mm, 3.9 m/s, μ = 0.092, on a plane of the same material).
 //! With arguments `thornton P_Y E NU RHO R V...`: the restitution of the Thornton law (time
 //! integration) of a sphere on a plane of the same material at each speed, one line
-//! `v e_n yield_speed` per speed.
+//! `v e_n yield_speed` per speed; `thornton-liggghts ...` (same arguments) does the same with the
+//! unloading branch of LIGGGHTS' `thornton_ning` (`ThorntonUnloading::LiggghtsThorntonNing`).
 
 use mdr_verify::{materials, Backend, Collision, Target};
 
-fn thornton(args: &[f64]) -> Result<(), Box<dyn std::error::Error>> {
+fn thornton(
+    args: &[f64],
+    unloading: mdr_contact::normal::ThorntonUnloading,
+) -> Result<(), Box<dyn std::error::Error>> {
     let [p_y, e, nu, rho, r, speeds @ ..] = args else {
         return Err("thornton P_Y E NU RHO R V...".into());
     };
     let m = mdr_contact::Material::new(*e, *nu, *rho)?;
     let pair = mdr_contact::ContactPair::sphere_on_half_space(*r, &m, &m)?;
-    let law = mdr_impact::NormalSpec::Thornton(mdr_contact::normal::Thornton::new(*p_y)?);
+    let law = mdr_impact::NormalSpec::Thornton(
+        mdr_contact::normal::Thornton::new(*p_y)?.with_unloading(unloading),
+    );
     for &v in speeds {
         let impact = mdr_impact::Impact::new(pair, law, v).steps_per_contact(20_000);
         let out = impact.run()?;
@@ -29,12 +35,19 @@ fn thornton(args: &[f64]) -> Result<(), Box<dyn std::error::Error>> {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    if args.first().map(String::as_str) == Some("thornton") {
+    let unloading = match args.first().map(String::as_str) {
+        Some("thornton") => Some(mdr_contact::normal::ThorntonUnloading::Thornton1997),
+        Some("thornton-liggghts") => {
+            Some(mdr_contact::normal::ThorntonUnloading::LiggghtsThorntonNing)
+        }
+        _ => None,
+    };
+    if let Some(unloading) = unloading {
         let numbers = args[1..]
             .iter()
             .map(|a| a.parse::<f64>())
             .collect::<Result<Vec<_>, _>>()?;
-        return thornton(&numbers);
+        return thornton(&numbers, unloading);
     }
     let glass = materials::glass();
     let pair = Collision {

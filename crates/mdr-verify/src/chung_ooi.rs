@@ -2,8 +2,9 @@
 //! carry their tolerances; `docs/verification.md` lists the parameters, their sources and the
 //! measured errors.
 
-use crate::collision::{Backend, Collision, Target};
+use crate::collision::{Backend, Collision, CollisionOutcome, Target};
 use crate::error::{invalid, Result};
+use crate::kharaz;
 use crate::materials;
 use crate::reference::{self, HertzImpact};
 use crate::report::{Check, Figure, Series, Style, TestReport, Tolerance};
@@ -60,6 +61,9 @@ pub const ELASTIC_RESTITUTION_TOLERANCE: f64 = 2e-3;
 pub const SLIDING_TOLERANCE: f64 = 5e-3;
 /// Tolerance on the agreement of rapier and the validator with the same law, relative to `μ J_n`.
 pub const CROSS_TOLERANCE: f64 = 1e-2;
+/// Tolerance on the tangential impulse (relative to `μ J_n`) and spin change (relative) when the
+/// contact surfaces move together (test 7, counter-rotating spheres): round-off only.
+pub const NO_SLIP_TOLERANCE: f64 = 1e-6;
 /// Tolerance on the restitution obtained from plasticity (test 3, absolute).
 pub const PLASTIC_RESTITUTION_TOLERANCE: f64 = 5e-3;
 
@@ -409,6 +413,7 @@ fn oblique_study(
     let mut rigid_stick = Vec::new();
     let mut spring_vs_mindlin: f64 = 0.0;
     let mut max_geometric: f64 = 0.0;
+    let mut max_lever: f64 = 0.0;
     for p in points {
         let c = Collision {
             steps_per_contact: resolution.steps_per_contact,
@@ -446,15 +451,21 @@ fn oblique_study(
             Target::Plane { .. } => 0.0,
         };
         max_geometric = max_geometric.max(geometric);
+        // rapier applies the tangential force at the contact point in the middle of the
+        // overlap, so its lever arm about the sphere's centre is R₁ − δ/2; the validator and the
+        // theory use R₁. Relative effect on the spin change ≤ ε = δ_max/(2R₁); measured: the
+        // force-weighted mean of δ/(2R₁), 0.41 δ_max/R₁ (docs/verification.md §3).
+        let lever = 0.5 * pair.hertz_max_overlap(c.normal_speed) / c.radius;
+        max_lever = max_lever.max(lever);
         // R ω'/(μ v_n) = ω R/(μ v_n) − 5 (m*/m₁) J_t/(μ J_n(e=1)): the spin tolerance is the
         // impulse tolerance carried through this relation.
         let spin_factor = 5.0 * m_star / c.mass();
         for (k, backend) in backends.iter().enumerate() {
             let out = c.run(*backend)?;
-            let allowance = if *backend == Backend::RapierForce {
-                geometric
+            let (allowance, lever_allowance) = if *backend == Backend::RapierForce {
+                (geometric, lever)
             } else {
-                0.0
+                (0.0, 0.0)
             };
             let label = format!("{case}, x = {:.3}, {}", p.x, backend.label());
             impulse_series[k]
@@ -473,6 +484,21 @@ fn oblique_study(
                 1.0,
                 Tolerance::AtMost(1e-6 + allowance),
             ));
+            if c.slip_velocity() == 0.0 {
+                // The surfaces at the contact move together: no tangential force may arise.
+                checks.push(Check::new(
+                    format!("J_t/(μ J_n) = 0 without slip, {label}"),
+                    out.tangential_impulse / scale,
+                    0.0,
+                    Tolerance::Absolute(NO_SLIP_TOLERANCE),
+                ));
+                checks.push(Check::new(
+                    format!("ω' = ω without slip, {label}"),
+                    out.spin,
+                    c.spin,
+                    Tolerance::Relative(NO_SLIP_TOLERANCE),
+                ));
+            }
             if sliding {
                 checks.push(Check::new(
                     format!("J_t/(μ J_n) vs sliding theory, {label}"),
@@ -484,7 +510,10 @@ fn oblique_study(
                     format!("spin R ω'/(μ v_n) vs sliding theory, {label}"),
                     out.spin / spin_scale,
                     spin_of(jt_theory) / spin_scale,
-                    Tolerance::Absolute(spin_factor * (SLIDING_TOLERANCE + allowance)),
+                    Tolerance::Absolute(
+                        spin_factor * (SLIDING_TOLERANCE + allowance)
+                            + lever_allowance * ((spin_of(jt_theory) - c.spin) / spin_scale).abs(),
+                    ),
                 ));
             }
             outcomes[k].push(out);
@@ -495,7 +524,13 @@ fn oblique_study(
             format!("rapier vs validator J_t/(μ J_n), {case}, x = {:.3}", p.x),
             rapier.tangential_impulse / scale,
             mindlin.tangential_impulse / scale,
-            Tolerance::Absolute(CROSS_TOLERANCE + geometric),
+            // Shorter lever in rapier: the inertia term 1 + m R²/I = 3.5 of the slip dynamics
+            // drops by 5ε, so a stick-regime impulse changes by ≤ (5/3.5) ε |J_t|.
+            Tolerance::Absolute(
+                CROSS_TOLERANCE
+                    + geometric
+                    + 1.5 * lever * (mindlin.tangential_impulse / scale).abs(),
+            ),
         ));
         spring_vs_mindlin = spring_vs_mindlin
             .max(((springs.tangential_impulse - mindlin.tangential_impulse) / scale).abs());
@@ -540,6 +575,12 @@ fn oblique_study(
         "{case}: largest |J_t(spring bed) − J_t(Mindlin)|/(μ J_n) = {spring_vs_mindlin:.4} \
          (partial slip vs a no-microslip spring; physical, not asserted)"
     )];
+    if max_lever > 1e-3 {
+        notes.push(format!(
+            "{case}: largest δ_max/(2R₁) = {max_lever:.4}: rapier's lever-arm allowance (its spin \
+             change is up to this fraction smaller than the flat theory's)"
+        ));
+    }
     if max_geometric > 0.0 {
         notes.push(format!(
             "{case}: largest centre-line rotation allowance v_t² t_c/(2(R₁+R₂)v_n) = \
@@ -552,7 +593,7 @@ fn oblique_study(
 fn oblique_report(
     number: u8,
     title: &str,
-    cases: Vec<(&str, Vec<ObliquePoint>)>,
+    cases: Vec<(String, Vec<ObliquePoint>)>,
     x_label: &str,
     resolution: Resolution,
 ) -> Result<TestReport> {
@@ -564,7 +605,7 @@ fn oblique_report(
         notes: Vec::new(),
     };
     for (case, points) in cases {
-        let (c, f, n, _) = oblique_study(number, case, &points, x_label, resolution)?;
+        let (c, f, n, _) = oblique_study(number, &case, &points, x_label, resolution)?;
         report.checks.extend(c);
         report.figures.extend(f);
         report.notes.extend(n);
@@ -572,8 +613,10 @@ fn oblique_report(
     Ok(report)
 }
 
-/// Friction coefficient of tests 5–8.
-pub const MU_5_TO_8: f64 = 0.4;
+/// Friction coefficient of test 5.
+pub const MU_5: f64 = 0.3;
+/// Friction coefficient of tests 6–8.
+pub const MU_6_TO_8: f64 = 0.4;
 /// Friction coefficient of test 4 (Kharaz et al. 2001).
 pub const MU_4: f64 = 0.092;
 
@@ -668,6 +711,11 @@ pub fn test4(resolution: Resolution) -> Result<TestReport> {
             });
         }
         let slug = case.replace(' ', "_");
+        if case == "aluminium oxide" {
+            et_series.push(measured(&kharaz::TANGENTIAL_RESTITUTION));
+            rebound_series.push(measured(&kharaz::REBOUND_ANGLE_CENTRE));
+            kharaz_comparison(m, resolution, &mut report)?;
+        }
         report.figures.push(Figure {
             name: format!("verify_test4_{slug}_et"),
             title: format!("Test 4 ({case}): tangential restitution e_t"),
@@ -686,45 +734,212 @@ pub fn test4(resolution: Resolution) -> Result<TestReport> {
     Ok(report)
 }
 
-fn plane_case(m: Material, vt: f64, spin: f64) -> Collision {
+fn measured(points: &[(f64, f64)]) -> Series {
+    Series {
+        label: "experiment, Kharaz, Gorham & Salman (2001)".into(),
+        points: points.to_vec(),
+        style: Style::Measured,
+    }
+}
+
+/// Impact angle (°) from which the Kharaz, Gorham & Salman (2001) points are asserted: the
+/// contact slides for the whole impact there (ψ = tan θ/μ > 1.15·3.5(1+e) at θ ≥ 28°), where the
+/// result does not depend on the tangential compliance nor on the anvil's (soda-lime glass, not
+/// rigid) stiffness. Below it the differences are measured and reported (notes), not asserted.
+/// Budget of every tolerance (docs/verification.md §3): the paper's e = 0.98 against our elastic
+/// e = 1, digitisation of the published figures (about 1 % of the axis range) and the scatter of
+/// the experiment.
+pub const KHARAZ_SLIDING_ANGLE: f64 = 28.0;
+/// e_t against experiment (absolute): e = 0.98 vs 1 moves the sliding e_t by `0.02 μ/tan θ ≤
+/// 0.004`, digitisation 0.01; measured ≤ 0.008.
+pub const KHARAZ_ET_TOLERANCE: f64 = 0.02;
+/// Spin against experiment (relative): e = 0.98 vs 1 lowers the sliding spin by 1 %; the measured
+/// spins lie 0.2–7.5 % above the gross-sliding value, which both laws reproduce within 0.5 %
+/// (an impulse identity, so the excess is experimental).
+pub const KHARAZ_SPIN_TOLERANCE: f64 = 0.08;
+/// Rebound angle of the centre against experiment (absolute, degrees): e = 0.98 vs 1 shifts it by
+/// ≤ 0.7°, digitisation ≈ 0.6°; measured ≤ 0.21°.
+pub const KHARAZ_CENTRE_ANGLE_TOLERANCE: f64 = 1.5;
+/// Rebound angle of the contact point against experiment (absolute, degrees): in sliding
+/// `tan φ' = (tan θ − 3.5 μ (1+e))/e`, so e = 0.98 vs 1 shifts it by 0.9–1.1° at 50–70°;
+/// digitisation ≈ 1°; measured ≤ 2.7° (experiment above the simulation throughout).
+pub const KHARAZ_CONTACT_ANGLE_TOLERANCE: f64 = 3.0;
+
+/// Test 4 (aluminium oxide) against the experimental points: checks in gross sliding, the
+/// stick/transition range measured and reported as notes; figures of spin (rad/s) and rebound
+/// angle of the contact point with the experiment.
+fn kharaz_comparison(m: Material, resolution: Resolution, report: &mut TestReport) -> Result<()> {
+    let backends = [
+        Backend::ValidatorMindlin,
+        Backend::ValidatorSpringBed {
+            springs: resolution.springs,
+        },
+    ];
+    let at = |angle: f64, backend: Backend| -> Result<(Collision, CollisionOutcome)> {
+        let r = angle.to_radians();
+        let c = Collision {
+            tangential_speed: 3.9 * r.sin(),
+            friction: MU_4,
+            steps_per_contact: resolution.steps_per_contact,
+            ..Collision::head_on(
+                0.0025,
+                m,
+                Target::Plane {
+                    material: materials::rigid_for(&m),
+                },
+                3.9 * r.cos(),
+            )
+        };
+        let out = c.run(backend)?;
+        Ok((c, out))
+    };
+    type Quantity = fn(&Collision, &CollisionOutcome) -> f64;
+    let e_t: Quantity = |c, o| {
+        if c.tangential_speed > 0.0 {
+            o.tangential_velocity / c.tangential_speed
+        } else {
+            1.0
+        }
+    };
+    let spin: Quantity = |_, o| o.spin;
+    let centre: Quantity = |c, o| {
+        o.tangential_velocity
+            .atan2(o.normal_restitution * c.normal_speed)
+            .to_degrees()
+    };
+    let contact: Quantity = |c, o| {
+        (o.tangential_velocity - c.radius * o.spin)
+            .atan2(o.normal_restitution * c.normal_speed)
+            .to_degrees()
+    };
+    /// Name, experimental points, computed quantity, tolerance.
+    type Row = (&'static str, &'static [(f64, f64)], Quantity, Tolerance);
+    let quantities: [Row; 4] = [
+        (
+            "e_t",
+            &kharaz::TANGENTIAL_RESTITUTION,
+            e_t,
+            Tolerance::Absolute(KHARAZ_ET_TOLERANCE),
+        ),
+        (
+            "spin ω' (rad/s)",
+            &kharaz::SPIN,
+            spin,
+            Tolerance::Relative(KHARAZ_SPIN_TOLERANCE),
+        ),
+        (
+            "rebound angle of the centre (°)",
+            &kharaz::REBOUND_ANGLE_CENTRE,
+            centre,
+            Tolerance::Absolute(KHARAZ_CENTRE_ANGLE_TOLERANCE),
+        ),
+        (
+            "rebound angle of the contact point (°)",
+            &kharaz::REBOUND_ANGLE_CONTACT,
+            contact,
+            Tolerance::Absolute(KHARAZ_CONTACT_ANGLE_TOLERANCE),
+        ),
+    ];
+    let mut spin_series = vec![measured(&kharaz::SPIN)];
+    let mut contact_series = vec![measured(&kharaz::REBOUND_ANGLE_CONTACT)];
+    for backend in backends {
+        let mut computed: Vec<Vec<(f64, f64)>> = Vec::new();
+        for (name, data, quantity, tolerance) in quantities {
+            let mut worst_stick: (f64, f64) = (0.0, 0.0);
+            let mut points = Vec::new();
+            for &(angle, experiment) in data {
+                let (c, out) = at(angle, backend)?;
+                let value = quantity(&c, &out);
+                points.push((angle, value));
+                if angle >= KHARAZ_SLIDING_ANGLE {
+                    report.checks.push(Check::new(
+                        format!(
+                            "{name} vs experiment (Kharaz et al. 2001), θ = {angle:.1}°, {}",
+                            backend.label()
+                        ),
+                        value,
+                        experiment,
+                        tolerance,
+                    ));
+                } else if (value - experiment).abs() > worst_stick.1.abs() {
+                    worst_stick = (angle, value - experiment);
+                }
+            }
+            report.notes.push(format!(
+                "aluminium oxide, {}: {name} − experiment below {KHARAZ_SLIDING_ANGLE}° (stick/\
+                 transition, not asserted): largest {:+.3} at θ = {:.1}°",
+                backend.label(),
+                worst_stick.1,
+                worst_stick.0
+            ));
+            computed.push(points);
+        }
+        spin_series.push(Series {
+            label: backend.label().into(),
+            points: computed[1].clone(),
+            style: Style::Points,
+        });
+        contact_series.push(Series {
+            label: backend.label().into(),
+            points: computed[3].clone(),
+            style: Style::Points,
+        });
+    }
+    report.figures.push(Figure {
+        name: "verify_test4_aluminium_oxide_spin_experiment".into(),
+        title: "Test 4 (aluminium oxide): spin after impact vs experiment".into(),
+        x_label: "impact angle (degrees)".into(),
+        y_label: "ω' (rad/s)".into(),
+        series: spin_series,
+    });
+    report.figures.push(Figure {
+        name: "verify_test4_aluminium_oxide_rebound_contact".into(),
+        title: "Test 4 (aluminium oxide): rebound angle of the contact point".into(),
+        x_label: "impact angle (degrees)".into(),
+        y_label: "atan((v_t' − R ω')/v_n') (degrees)".into(),
+        series: contact_series,
+    });
+    Ok(())
+}
+
+/// A sphere of radius `radius` on a rigid plane: normal speed `vn`, tangential speed `vt`, spin
+/// `spin`, friction `mu`.
+fn plane_case(m: Material, radius: f64, vn: f64, mu: f64, vt: f64, spin: f64) -> Collision {
     Collision {
         tangential_speed: vt,
         spin,
-        friction: MU_5_TO_8,
+        friction: mu,
         ..Collision::head_on(
-            0.1,
+            radius,
             m,
             Target::Plane {
                 material: materials::rigid_for(&m),
             },
-            0.2,
+            vn,
         )
     }
 }
 
-fn materials_5_to_8() -> [(&'static str, Material); 2] {
-    [
-        ("aluminium alloy", materials::aluminium_alloy()),
-        ("nylon", materials::nylon()),
-    ]
-}
-
-/// Test 5: sphere (R = 0.1 m) on a rigid plane, normal speed 0.2 m/s, tangential speed varied.
+/// Test 5 (Chung & Ooi; Thornton et al.'s FEM case): sphere R = 10 µm on a rigid plane, normal
+/// speed 5 m/s, tangential speed varied, elastic, μ = 0.3, steel and polyethylene.
 pub fn test5(resolution: Resolution) -> Result<TestReport> {
     let psis = linspace(0.5, 14.0, resolution.points);
-    let cases = materials_5_to_8()
-        .into_iter()
-        .map(|(name, m)| {
-            let pts = psis
-                .iter()
-                .map(|&psi| ObliquePoint {
-                    x: psi,
-                    collision: plane_case(m, psi * MU_5_TO_8 * 0.2, 0.0),
-                })
-                .collect();
-            (name, pts)
-        })
-        .collect();
+    let cases = [
+        ("steel", materials::steel()),
+        ("polyethylene", materials::polyethylene()),
+    ]
+    .into_iter()
+    .map(|(name, m)| {
+        let pts = psis
+            .iter()
+            .map(|&psi| ObliquePoint {
+                x: psi,
+                collision: plane_case(m, TEST5_RADIUS, 5.0, MU_5, psi * MU_5 * 5.0, 0.0),
+            })
+            .collect();
+        (name.to_string(), pts)
+    })
+    .collect();
     oblique_report(
         5,
         "oblique impact on a rigid plane, constant normal speed, varying tangential speed",
@@ -734,21 +949,24 @@ pub fn test5(resolution: Resolution) -> Result<TestReport> {
     )
 }
 
+/// Radius of test 5's sphere (m).
+pub const TEST5_RADIUS: f64 = 1.0e-5;
+
 /// Test 6: spinning sphere (R = 0.1 m) on a rigid plane, normal speed 0.2 m/s, no tangential
-/// speed, angular velocity varied.
+/// speed, angular velocity varied; aluminium alloy and nylon, μ = 0.4.
 pub fn test6(resolution: Resolution) -> Result<TestReport> {
     let psis = linspace(0.5, 14.0, resolution.points);
-    let cases = materials_5_to_8()
+    let cases = materials_6_and_8()
         .into_iter()
         .map(|(name, m)| {
             let pts = psis
                 .iter()
                 .map(|&psi| ObliquePoint {
                     x: psi,
-                    collision: plane_case(m, 0.0, psi * MU_5_TO_8 * 0.2 / 0.1),
+                    collision: plane_case(m, 0.1, 0.2, MU_6_TO_8, 0.0, psi * MU_6_TO_8 * 0.2 / 0.1),
                 })
                 .collect();
-            (name, pts)
+            (name.to_string(), pts)
         })
         .collect();
     oblique_report(
@@ -760,29 +978,88 @@ pub fn test6(resolution: Resolution) -> Result<TestReport> {
     )
 }
 
-/// Test 7: two identical spheres (R = 0.1 m), normal approach speed 0.2 m/s, both spinning with
-/// the same angular velocity (slip `2 R ω`), varied.
+fn materials_6_and_8() -> [(&'static str, Material); 2] {
+    [
+        ("aluminium alloy", materials::aluminium_alloy()),
+        ("nylon", materials::nylon()),
+    ]
+}
+
+/// Test 7: two identical spheres (R = 0.1 m) approaching at ±0.2 m/s (relative 0.4 m/s),
+/// aluminium alloy and copper, μ = 0.4, angular velocity ω varied from 0.175 to 21 rad/s.
+/// The paper's case: the spheres spin in opposite senses, so that their surfaces at the contact
+/// move together (no slip): no tangential force may arise, ω' = ω and v_t' = 0. A second case
+/// (not in the paper): both spin in the same sense, slip `2 R ω`.
 pub fn test7(resolution: Resolution) -> Result<TestReport> {
+    let omegas = linspace(0.175, 21.0, resolution.points);
+    let mut cases = Vec::new();
+    for (name, m) in [
+        ("aluminium alloy", materials::aluminium_alloy()),
+        ("copper", materials::copper()),
+    ] {
+        for (arrangement, sign) in [("counter-rotating", -1.0), ("co-rotating", 1.0)] {
+            let pts = omegas
+                .iter()
+                .map(|&omega| ObliquePoint {
+                    x: omega,
+                    collision: Collision {
+                        spin: omega,
+                        friction: MU_6_TO_8,
+                        ..Collision::head_on(
+                            0.1,
+                            m,
+                            Target::Sphere {
+                                radius: 0.1,
+                                material: m,
+                                spin: sign * omega,
+                            },
+                            0.4,
+                        )
+                    },
+                })
+                .collect();
+            cases.push((format!("{name} {arrangement}"), pts));
+        }
+    }
+    oblique_report(
+        7,
+        "two identical spheres, constant normal speed, varying angular velocity",
+        cases,
+        "ω (rad/s)",
+        resolution,
+    )
+}
+
+/// Test 8: a spinning sphere (R = 0.1 m, ω varied, no tangential speed) on a larger free sphere
+/// at rest (R = 0.5 m, same material), normal speed 0.2 m/s, μ = 0.4; aluminium alloy and nylon.
+/// A second case (not in the paper): no spin, tangential speed varied.
+pub fn test8(resolution: Resolution) -> Result<TestReport> {
     let psis = linspace(0.5, 14.0, resolution.points);
-    let cases = materials_5_to_8()
-        .into_iter()
-        .map(|(name, m)| {
+    let mut cases = Vec::new();
+    for (name, m) in materials_6_and_8() {
+        for spinning in [true, false] {
             let pts = psis
                 .iter()
                 .map(|&psi| {
-                    let omega = psi * MU_5_TO_8 * 0.2 / (2.0 * 0.1);
+                    let slip = psi * MU_6_TO_8 * 0.2;
+                    let (vt, spin) = if spinning {
+                        (0.0, -slip / 0.1)
+                    } else {
+                        (slip, 0.0)
+                    };
                     ObliquePoint {
                         x: psi,
                         collision: Collision {
-                            spin: omega,
-                            friction: MU_5_TO_8,
+                            tangential_speed: vt,
+                            spin,
+                            friction: MU_6_TO_8,
                             ..Collision::head_on(
                                 0.1,
                                 m,
                                 Target::Sphere {
-                                    radius: 0.1,
+                                    radius: 0.5,
                                     material: m,
-                                    spin: omega,
+                                    spin: 0.0,
                                 },
                                 0.2,
                             )
@@ -790,53 +1067,15 @@ pub fn test7(resolution: Resolution) -> Result<TestReport> {
                     }
                 })
                 .collect();
-            (name, pts)
-        })
-        .collect();
-    oblique_report(
-        7,
-        "two identical spheres, constant normal speed, varying angular velocity",
-        cases,
-        "2 R ω / (μ v_n)",
-        resolution,
-    )
-}
-
-/// Test 8: a sphere (R = 0.1 m) on a larger free sphere (R = 0.5 m, same material), normal
-/// speed 0.2 m/s, tangential speed varied.
-pub fn test8(resolution: Resolution) -> Result<TestReport> {
-    let psis = linspace(0.5, 14.0, resolution.points);
-    let cases = materials_5_to_8()
-        .into_iter()
-        .map(|(name, m)| {
-            let pts = psis
-                .iter()
-                .map(|&psi| ObliquePoint {
-                    x: psi,
-                    collision: Collision {
-                        tangential_speed: psi * MU_5_TO_8 * 0.2,
-                        friction: MU_5_TO_8,
-                        ..Collision::head_on(
-                            0.1,
-                            m,
-                            Target::Sphere {
-                                radius: 0.5,
-                                material: m,
-                                spin: 0.0,
-                            },
-                            0.2,
-                        )
-                    },
-                })
-                .collect();
-            (name, pts)
-        })
-        .collect();
+            let label = if spinning { "spinning" } else { "sliding" };
+            cases.push((format!("{name} {label}"), pts));
+        }
+    }
     oblique_report(
         8,
-        "two different spheres, constant normal speed, varying tangential speed",
+        "two different spheres, constant normal speed, varying angular velocity",
         cases,
-        "ψ = v_t / (μ v_n)",
+        "ψ = |v_slip| / (μ v_n)",
         resolution,
     )
 }

@@ -18,6 +18,7 @@
 pub mod chung_ooi;
 mod collision;
 pub mod error;
+pub mod kharaz;
 pub mod materials;
 pub mod plot;
 pub mod reference;

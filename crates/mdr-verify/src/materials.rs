@@ -16,7 +16,7 @@ pub fn limestone() -> Material {
     material(2.0e10, 0.25, 2500.0)
 }
 
-/// Aluminium alloy (tests 2, 4–8): E = 70 GPa, ν = 0.33, ρ = 2700 kg/m³.
+/// Aluminium alloy (tests 2, 4, 6–8): E = 70 GPa, ν = 0.33, ρ = 2700 kg/m³.
 pub fn aluminium_alloy() -> Material {
     material(7.0e10, 0.33, 2700.0)
 }
@@ -36,7 +36,22 @@ pub fn cast_iron() -> Material {
     material(1.0e11, 0.25, 7000.0)
 }
 
-/// Nylon (tests 5–8): E = 2.5 GPa, ν = 0.40, ρ = 1000 kg/m³.
+/// Steel (test 5): E = 208 GPa, ν = 0.30, ρ = 7850 kg/m³ (docs/verification.md §1).
+pub fn steel() -> Material {
+    material(2.08e11, 0.30, 7850.0)
+}
+
+/// Polyethylene (test 5): E = 1.0 GPa, ν = 0.40, ρ = 1400 kg/m³.
+pub fn polyethylene() -> Material {
+    material(1.0e9, 0.40, 1400.0)
+}
+
+/// Copper (test 7): E = 120 GPa, ν = 0.35, ρ = 8900 kg/m³.
+pub fn copper() -> Material {
+    material(1.2e11, 0.35, 8900.0)
+}
+
+/// Nylon (tests 6, 8): E = 2.5 GPa, ν = 0.40, ρ = 1000 kg/m³.
 pub fn nylon() -> Material {
     material(2.5e9, 0.40, 1000.0)
 }

@@ -120,6 +120,18 @@ pub fn write_svg(figure: &Figure, dir: &Path) -> Result<PathBuf> {
                         .label(s.label.as_str())
                         .legend(move |(x, y)| Circle::new((x + 10, y), 4, legend_colour));
                 }
+                Style::Measured => {
+                    chart
+                        .draw_series(s.points.iter().map(|&(x, y)| {
+                            EmptyElement::at((x, y))
+                                + Rectangle::new([(-4, -4), (4, 4)], BLACK.filled())
+                        }))
+                        .map_err(|e| plot_error(&path, e))?
+                        .label(s.label.as_str())
+                        .legend(|(x, y)| {
+                            Rectangle::new([(x + 6, y - 4), (x + 14, y + 4)], BLACK.filled())
+                        });
+                }
             }
         }
         chart

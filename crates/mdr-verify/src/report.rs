@@ -85,6 +85,8 @@ pub enum Style {
     Dashed,
     /// Simulated points.
     Points,
+    /// Measured (experimental) points: filled black squares.
+    Measured,
 }
 
 /// A labelled set of points.

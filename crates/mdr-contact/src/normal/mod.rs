@@ -15,7 +15,10 @@ mod thornton;
 pub use hertz::{Hertz, HertzLaw};
 pub use mdr::{EnergyRouteImpact, Hardening, MdrElastoPlastic, MdrLaw, MdrState};
 pub use spring_bed::{SphereSpringBed, SpringBed, SpringBedState};
-pub use thornton::{thornton_restitution, Thornton, ThorntonLaw, ThorntonState};
+pub use thornton::{
+    liggghts_thornton_ning_restitution, thornton_restitution, Thornton, ThorntonLaw, ThorntonState,
+    ThorntonUnloading,
+};
 
 use crate::error::Result;
 use crate::material::ContactPair;

@@ -4,37 +4,72 @@
 //! spheres", J. Appl. Mech. 64, 383–386 (1997). Hertz until the contact pressure reaches the
 //! limiting value `p_y`; then `F = F_y + π p_y R (δ − δ_y)`; unloading is Hertzian with an
 //! enlarged radius `R_p` about a residual overlap `δ_p` (see `docs/theory.md` §6).
+//!
+//! [`ThorntonUnloading::LiggghtsThorntonNing`] selects instead the unloading branch of LIGGGHTS
+//! 3.8 `normal_model thornton_ning` at zero surface energy (`docs/theory.md` §6.1), used by the
+//! cross-code check of `docs/verification.md` §4.2.
 
 use super::{pow3_2, pow5_2, NormalLaw, NormalModel, NormalResponse};
 use crate::error::{positive, Result};
 use crate::material::ContactPair;
 use std::f64::consts::PI;
 
-/// Parameters of Thornton's law: the limiting contact pressure `p_y` (Pa).
+/// The unloading (and reloading) branch after yield. Loading is the same for both: Hertz up to
+/// `δ_y`, then `F = F_y + π p_y R (δ − δ_y)`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum ThorntonUnloading {
+    /// Thornton (1997): Hertzian with the enlarged radius `R_p = 4E* a*³/(3F*)` about the
+    /// residual overlap `δ_p`, `F = (4/3) E* √R_p (δ − δ_p)^{3/2}` (`docs/theory.md` §6).
+    #[default]
+    Thornton1997,
+    /// LIGGGHTS 3.8 `normal_model thornton_ning` with `surfaceEnergy 0`: the force decreases by
+    /// `dF = 2 E* √(R δ) dδ` (original radius, total overlap), i.e. the Hertz curve shifted down,
+    /// `F = (4/3) E* √R (δ^{3/2} − δ_p^{3/2})` with `δ_p^{3/2} = δ*^{3/2} − F*/((4/3)E*√R)`
+    /// (`docs/theory.md` §6.1).
+    LiggghtsThorntonNing,
+}
+
+/// Parameters of Thornton's law: the limiting contact pressure `p_y` (Pa) and the unloading
+/// branch.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Thornton {
     yield_pressure: f64,
+    #[cfg_attr(feature = "serde", serde(default))]
+    unloading: ThorntonUnloading,
 }
 
 impl Thornton {
-    /// `p_y` (Pa, > 0), the limiting contact pressure (the "yield stress" of the model).
+    /// `p_y` (Pa, > 0), the limiting contact pressure (the "yield stress" of the model), with
+    /// Thornton's (1997) unloading.
     pub fn new(yield_pressure: f64) -> Result<Self> {
         Ok(Self {
             yield_pressure: positive("yield_stress", yield_pressure)?,
+            unloading: ThorntonUnloading::Thornton1997,
         })
+    }
+
+    /// The same law with another unloading branch.
+    pub fn with_unloading(self, unloading: ThorntonUnloading) -> Self {
+        Self { unloading, ..self }
     }
 
     /// `p_y` (Pa).
     pub fn yield_pressure(&self) -> f64 {
         self.yield_pressure
     }
+
+    /// The unloading branch.
+    pub fn unloading(&self) -> ThorntonUnloading {
+        self.unloading
+    }
 }
 
 impl NormalModel for Thornton {
     type Law = ThorntonLaw;
     fn bind(&self, pair: &ContactPair) -> Result<ThorntonLaw> {
-        Ok(ThorntonLaw::new(pair, self.yield_pressure))
+        Ok(ThorntonLaw::new(pair, self.yield_pressure).with_unloading(self.unloading))
     }
 }
 
@@ -44,7 +79,8 @@ impl NormalModel for Thornton {
 pub struct ThorntonState {
     /// Largest overlap `δ*` (m).
     pub max_overlap: f64,
-    /// `(4/3) E* √R_p` of the unloading curve (0 while elastic).
+    /// `(4/3) E* √R_p` of the unloading curve (0 while elastic; `(4/3) E* √R` for
+    /// [`ThorntonUnloading::LiggghtsThorntonNing`]).
     unloading_coefficient: f64,
     /// Residual overlap `δ_p` (m).
     residual_overlap: f64,
@@ -61,6 +97,7 @@ pub struct ThorntonLaw {
     yield_overlap: f64,
     /// `F_y = (4/3) E* √R δ_y^{3/2}`.
     yield_force: f64,
+    unloading: ThorntonUnloading,
 }
 
 impl ThorntonLaw {
@@ -77,7 +114,18 @@ impl ThorntonLaw {
             force_coefficient: c,
             yield_overlap,
             yield_force: c * pow3_2(yield_overlap),
+            unloading: ThorntonUnloading::Thornton1997,
         }
+    }
+
+    /// The same law with another unloading branch.
+    pub fn with_unloading(self, unloading: ThorntonUnloading) -> Self {
+        Self { unloading, ..self }
+    }
+
+    /// The unloading branch.
+    pub fn unloading(&self) -> ThorntonUnloading {
+        self.unloading
     }
 
     /// Yield speed `v_y` (m/s) for reduced mass `mass`: the kinetic energy equal to the Hertz work
@@ -121,6 +169,24 @@ pub fn thornton_restitution(speed_over_yield_speed: f64) -> f64 {
     first * second
 }
 
+/// Restitution coefficient of the [`ThorntonUnloading::LiggghtsThorntonNing`] branch, closed form
+/// (`docs/theory.md` §6.1). With `r = v/v_y`, `s = δ*/δ_y` from the energy balance
+/// `(2/5) r² = 2/5 + (s − 1) + (3/4)(s − 1)²`, `f = F*/F_y = 1 + (3/2)(s − 1)` and
+/// `q = δ_p/δ_y = (s^{3/2} − f)^{2/3}`:
+/// `e² = [(2/5)(s^{5/2} − q^{5/2}) − q^{3/2}(s − q)] / ((2/5) r²)`; `e = 1` for `r ≤ 1`.
+pub fn liggghts_thornton_ning_restitution(speed_over_yield_speed: f64) -> f64 {
+    let r = speed_over_yield_speed;
+    if r <= 1.0 {
+        return 1.0;
+    }
+    let x = ((1.0 + 1.2 * (r * r - 1.0)).sqrt() - 1.0) / 1.5;
+    let s = 1.0 + x;
+    let f = 1.0 + 1.5 * x;
+    let q = (pow3_2(s) - f).max(0.0).powf(2.0 / 3.0);
+    let returned = 0.4 * (pow5_2(s) - pow5_2(q)) - pow3_2(q) * (s - q);
+    (returned / (0.4 * r * r)).sqrt()
+}
+
 impl NormalLaw for ThorntonLaw {
     type State = ThorntonState;
 
@@ -140,12 +206,23 @@ impl NormalLaw for ThorntonLaw {
                 };
             }
             let force = self.loading_force(d);
-            // Unloading curve from (δ*, F*): contact radius a*² = R δ* (= (2F* + F_y)/(2π p_y)),
-            // R_p = 4 E* a*³ / (3 F*), δ_p = δ* − (3 F* / (4 E* √R_p))^{2/3}.
-            let r_p = 4.0 * self.effective_modulus * a * a * a / (3.0 * force);
-            let coefficient = 4.0 / 3.0 * self.effective_modulus * r_p.sqrt();
-            state.unloading_coefficient = coefficient;
-            state.residual_overlap = d - (force / coefficient).powf(2.0 / 3.0);
+            match self.unloading {
+                ThorntonUnloading::Thornton1997 => {
+                    // Unloading curve from (δ*, F*): contact radius a*² = R δ*
+                    // (= (2F* + F_y)/(2π p_y)), R_p = 4 E* a*³ / (3 F*),
+                    // δ_p = δ* − (3 F* / (4 E* √R_p))^{2/3}.
+                    let r_p = 4.0 * self.effective_modulus * a * a * a / (3.0 * force);
+                    let coefficient = 4.0 / 3.0 * self.effective_modulus * r_p.sqrt();
+                    state.unloading_coefficient = coefficient;
+                    state.residual_overlap = d - (force / coefficient).powf(2.0 / 3.0);
+                }
+                ThorntonUnloading::LiggghtsThorntonNing => {
+                    // F = c (δ^{3/2} − δ_p^{3/2}), c = (4/3) E* √R, through (δ*, F*).
+                    let c = self.force_coefficient;
+                    state.unloading_coefficient = c;
+                    state.residual_overlap = (pow3_2(d) - force / c).max(0.0).powf(2.0 / 3.0);
+                }
+            }
             return NormalResponse {
                 force,
                 contact_radius: a,
@@ -165,6 +242,15 @@ impl NormalLaw for ThorntonLaw {
             return NormalResponse::default();
         }
         let c = state.unloading_coefficient;
+        if self.unloading == ThorntonUnloading::LiggghtsThorntonNing {
+            // LIGGGHTS: a = √(R δ) of the total overlap, dF/dδ = 2 E* a.
+            let a = (self.effective_radius * d).sqrt();
+            return NormalResponse {
+                force: c * (pow3_2(d) - pow3_2(state.residual_overlap)),
+                contact_radius: a,
+                stiffness: e2 * a,
+            };
+        }
         // a = sqrt(R_p x) with R_p = (3c / (4E*))².
         let r_p = (0.75 * c / self.effective_modulus).powi(2);
         let a = (r_p * x).sqrt();
@@ -198,6 +284,15 @@ impl NormalLaw for ThorntonLaw {
             return 0.4 * self.force_coefficient * pow5_2(overlap.max(0.0));
         }
         let x = (overlap - state.residual_overlap).max(0.0);
+        if self.unloading == ThorntonUnloading::LiggghtsThorntonNing {
+            // ∫_{δ_p}^{δ} c (u^{3/2} − δ_p^{3/2}) du.
+            let p = state.residual_overlap;
+            if overlap <= p {
+                return 0.0;
+            }
+            return state.unloading_coefficient
+                * (0.4 * (pow5_2(overlap) - pow5_2(p)) - pow3_2(p) * (overlap - p));
+        }
         0.4 * state.unloading_coefficient * pow5_2(x)
     }
 
