@@ -1,7 +1,7 @@
 //! The energy books: where the energy of a run is at one time, and the CSV time series.
 //!
-//! With no external work the sum `kinetic + rotational + gravitational + elastic + plastic +
-//! friction + damping` is constant up to the time-integration error; a kinematic wall's work on
+//! With no external work the sum `kinetic + rotational + gravitational + elastic (normal,
+//! tangential, rolling) + plastic + friction + damping + rolling` is constant up to the time-integration error; a kinematic wall's work on
 //! the particles is booked in `wall_work_j` and subtracted, so `balance_j` stays constant then too.
 
 use super::atomic::write_atomic;
@@ -35,6 +35,13 @@ pub struct EnergyRow {
     pub balance_j: f64,
     /// Touching contacts.
     pub contacts: u64,
+    /// Elastic energy stored in the rolling-resistance springs of the touching contacts (J).
+    /// (Columns added after `contacts`, so that the earlier ones keep their positions.)
+    #[serde(default)]
+    pub elastic_rolling_j: f64,
+    /// Work dissipated by rolling resistance since the start (J).
+    #[serde(default)]
+    pub rolling_j: f64,
 }
 
 impl EnergyRow {
@@ -48,6 +55,8 @@ impl EnergyRow {
             + self.plastic_j
             + self.friction_j
             + self.damping_j
+            + self.elastic_rolling_j
+            + self.rolling_j
             - self.wall_work_j;
         self
     }
@@ -79,6 +88,8 @@ pub fn write_csv(path: &Path, rows: &[EnergyRow]) -> std::io::Result<()> {
                 "wall_work_j",
                 "balance_j",
                 "contacts",
+                "elastic_rolling_j",
+                "rolling_j",
             ])
             .map_err(std::io::Error::other)?;
     }
