@@ -261,8 +261,7 @@ fn an_interrupted_run_writes_a_final_checkpoint_and_resumes_bit_identically() {
         .lines()
         .filter_map(|l| l.split("file=\"").nth(1))
         .filter_map(|f| f.split('"').next())
-        .filter(|f| !f.contains("contacts"))
-        .last()
+        .rfind(|f| !f.contains("contacts"))
         .expect("frames listed")
         .to_owned();
     let frame = mdr_sim::output::vtk::read_particles(&out.join(last)).expect("whole frame");
