@@ -21,7 +21,7 @@ use thiserror::Error;
 /// First bytes of every checkpoint.
 pub const MAGIC: &[u8; 8] = b"MDRSIMCK";
 /// Version of the layout of the payload; bumped whenever it changes.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 const HEADER_LEN: usize = 24;
 
 /// Why a checkpoint was refused.
@@ -80,6 +80,14 @@ pub enum CheckpointError {
         /// File.
         path: PathBuf,
         /// Decoder message.
+        reason: String,
+    },
+    /// The state could not be encoded (nothing was written).
+    #[error("checkpoint {path} could not be written: {reason}")]
+    Encode {
+        /// File.
+        path: PathBuf,
+        /// Encoder message.
         reason: String,
     },
     /// The payload does not fit the scene it is resumed with.

@@ -189,6 +189,20 @@ impl RollingLaw for AnyRollingLaw {
             None => RollingResponse::default(),
         }
     }
+    #[inline]
+    fn elastic_energy(&self, state: &EpsdRollingState) -> f64 {
+        match &self.0 {
+            Some(l) => l.elastic_energy(state),
+            None => 0.0,
+        }
+    }
+    #[inline]
+    fn dissipated_work(&self, state: &EpsdRollingState) -> f64 {
+        match &self.0 {
+            Some(l) => l.dissipated_work(state),
+            None => 0.0,
+        }
+    }
 }
 
 /// The composed model of a scene (normal + Mindlin with the scene's `μ`, 0 = frictionless +

@@ -1,7 +1,7 @@
 //! The energy books: where the energy of a run is at one time, and the CSV time series.
 //!
-//! With no external work the sum `kinetic + rotational + gravitational + elastic + plastic +
-//! friction + damping` is constant up to the time-integration error; a kinematic wall's work on
+//! With no external work the sum `kinetic + rotational + gravitational + elastic (normal,
+//! tangential, rolling) + plastic + friction + damping + rolling` is constant up to the time-integration error; a kinematic wall's work on
 //! the particles is booked in `wall_work_j` and subtracted, so `balance_j` stays constant then too.
 
 use super::atomic::write_atomic;
@@ -35,6 +35,13 @@ pub struct EnergyRow {
     pub balance_j: f64,
     /// Touching contacts.
     pub contacts: u64,
+    /// Elastic energy stored in the rolling-resistance springs of the touching contacts (J).
+    /// (Columns added after `contacts`, so that the earlier ones keep their positions.)
+    #[serde(default)]
+    pub elastic_rolling_j: f64,
+    /// Work dissipated by rolling resistance since the start (J).
+    #[serde(default)]
+    pub rolling_j: f64,
 }
 
 impl EnergyRow {
@@ -48,6 +55,8 @@ impl EnergyRow {
             + self.plastic_j
             + self.friction_j
             + self.damping_j
+            + self.elastic_rolling_j
+            + self.rolling_j
             - self.wall_work_j;
         self
     }
@@ -79,6 +88,8 @@ pub fn write_csv(path: &Path, rows: &[EnergyRow]) -> std::io::Result<()> {
                 "wall_work_j",
                 "balance_j",
                 "contacts",
+                "elastic_rolling_j",
+                "rolling_j",
             ])
             .map_err(std::io::Error::other)?;
     }
@@ -96,4 +107,56 @@ pub fn read_csv(path: &Path) -> Result<Vec<EnergyRow>, String> {
         .deserialize()
         .collect::<Result<Vec<EnergyRow>, _>>()
         .map_err(|e| format!("{}: {e}", path.display()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A CSV written before the rolling columns existed reads with them as zero; a new one
+    /// round-trips exactly, with the rolling columns after `contacts`.
+    #[test]
+    fn old_and_new_csv_read_back() {
+        let dir = std::env::temp_dir().join(format!("mdr-sim-energy-csv-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let old = dir.join("old.csv");
+        std::fs::write(
+            &old,
+            "time_s,kinetic_translational_j,kinetic_rotational_j,gravitational_j,elastic_normal_j,\
+             elastic_tangential_j,plastic_j,friction_j,damping_j,wall_work_j,balance_j,contacts\n\
+             0.5,1,2,3,4,5,6,7,8,9,27,3\n",
+        )
+        .unwrap();
+        let rows = read_csv(&old).unwrap();
+        assert_eq!(rows.len(), 1);
+        assert_eq!(rows[0].contacts, 3);
+        assert_eq!(rows[0].elastic_rolling_j, 0.0);
+        assert_eq!(rows[0].rolling_j, 0.0);
+        assert_eq!(rows[0].with_balance().balance_j, 27.0);
+
+        let row = EnergyRow {
+            time_s: 0.25,
+            kinetic_translational_j: 1.0,
+            elastic_rolling_j: 0.125,
+            rolling_j: 0.5,
+            contacts: 2,
+            ..EnergyRow::default()
+        }
+        .with_balance();
+        assert_eq!(row.balance_j, 1.625);
+        let new = dir.join("new.csv");
+        write_csv(&new, &[row]).unwrap();
+        let text = std::fs::read_to_string(&new).unwrap();
+        assert!(
+            text.starts_with("time_s,")
+                && text
+                    .lines()
+                    .next()
+                    .unwrap()
+                    .ends_with("balance_j,contacts,elastic_rolling_j,rolling_j"),
+            "{text}"
+        );
+        assert_eq!(read_csv(&new).unwrap(), vec![row]);
+        std::fs::remove_dir_all(&dir).ok();
+    }
 }

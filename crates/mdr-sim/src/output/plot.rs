@@ -95,11 +95,12 @@ pub fn write_energy_plot(path: &Path, title: &str, rows: &[EnergyRow]) -> std::i
         ("gravitational", col(|r| r.gravitational_j)),
         (
             "elastic",
-            col(|r| r.elastic_normal_j + r.elastic_tangential_j),
+            col(|r| r.elastic_normal_j + r.elastic_tangential_j + r.elastic_rolling_j),
         ),
         ("plastic", col(|r| r.plastic_j)),
         ("friction", col(|r| r.friction_j)),
         ("damping", col(|r| r.damping_j)),
+        ("rolling", col(|r| r.rolling_j)),
         ("wall work", col(|r| r.wall_work_j)),
         ("balance", col(|r| r.balance_j)),
     ];

@@ -23,6 +23,7 @@ use crate::scene::Scene;
 use build::{build, Built, Coupling};
 use indicatif::{ProgressBar, ProgressStyle};
 use mdr_contact::normal::NormalLaw;
+use mdr_contact::rolling::RollingLaw;
 use mdr_rapier::convert::to_na;
 use nalgebra::Vector3;
 use rand::SeedableRng;
@@ -138,6 +139,25 @@ struct ViewBuffers {
     contacts: Vec<u32>,
 }
 
+/// Whether a decoded world holds the bodies and colliders the scene builds, with the same
+/// handles and shapes' kinds (the colliders registered with the coupling refer to them).
+fn handles_match(sim: &Sim<'_>, world: &rapier3d_f64::prelude::PhysicsWorld) -> bool {
+    let built = &sim.built.world;
+    built.bodies.len() == world.bodies.len()
+        && built.colliders.len() == world.colliders.len()
+        && built.bodies.iter().all(|(h, b)| {
+            world
+                .bodies
+                .get(h)
+                .is_some_and(|w| w.body_type() == b.body_type())
+        })
+        && built.colliders.iter().all(|(h, c)| {
+            world.colliders.get(h).is_some_and(|w| {
+                w.shape().shape_type() == c.shape().shape_type() && w.parent() == c.parent()
+            })
+        })
+}
+
 fn every(interval: f64, dt: f64) -> u64 {
     ((interval / dt).round() as u64).max(1)
 }
@@ -213,6 +233,26 @@ impl<'a> Sim<'a> {
             ))
             .into());
         }
+        // Restitution mode: rapier's whole world (decoded and checked before anything is used).
+        let world = match sim.built.coupling {
+            Coupling::Force(_) => None,
+            Coupling::Restitution(_) => {
+                let world: rapier3d_f64::prelude::PhysicsWorld = postcard::from_bytes(&data.world)
+                    .map_err(|e| CheckpointError::Decode {
+                        path: path.to_path_buf(),
+                        reason: format!("rapier's world: {e}"),
+                    })?;
+                let same_bodies = handles_match(&sim, &world);
+                if !same_bodies {
+                    return Err(incompatible(
+                        "rapier's world in it does not hold the scene's bodies and colliders"
+                            .into(),
+                    )
+                    .into());
+                }
+                Some(world)
+            }
+        };
         // Everything is checked: now apply it.
         let handles: Vec<_> = sim
             .built
@@ -221,11 +261,15 @@ impl<'a> Sim<'a> {
             .chain(&sim.built.wall_bodies)
             .copied()
             .collect();
-        for (h, record) in handles.iter().zip(&data.bodies) {
-            record.apply(&mut sim.built.world.bodies[*h]);
-        }
-        if matches!(sim.built.coupling, Coupling::Force(_)) {
-            sim.built.world.detect_collisions(&(), &());
+        match world {
+            // Restitution: the world continues exactly where it stopped (the bodies are in it).
+            Some(world) => sim.built.world = world,
+            None => {
+                for (h, record) in handles.iter().zip(&data.bodies) {
+                    record.apply(&mut sim.built.world.bodies[*h]);
+                }
+                sim.built.world.detect_collisions(&(), &());
+            }
         }
         sim.restore_contacts(&data)?;
         sim.step = data.step;
@@ -497,12 +541,14 @@ impl<'a> Sim<'a> {
                 row.elastic_tangential_j += 0.5
                     * e.law.tangential.stiffness(t.contact_radius)
                     * t.displacement.norm_squared();
+                row.elastic_rolling_j += e.rolling.elastic_energy(&e.history.rolling);
             }
             row.contacts = stepper.contacts().len() as u64;
         }
         row.plastic_j = self.books.plastic;
         row.friction_j = self.books.friction;
         row.damping_j = self.books.damping;
+        row.rolling_j = self.books.rolling;
         row.wall_work_j = self.books.wall_work;
         row.with_balance()
     }
@@ -613,10 +659,13 @@ impl<'a> Sim<'a> {
     }
 
     fn write_checkpoint(&mut self, out: &Path) -> Result<(), SimError> {
-        let data = CheckpointData::capture(self);
         let path = out
             .join("checkpoints")
             .join(format!("{}_step{:012}.mdrck", self.scene.name, self.step));
+        let data = CheckpointData::capture(self).map_err(|reason| CheckpointError::Encode {
+            path: path.clone(),
+            reason,
+        })?;
         checkpoint::write(&path, &data)?;
         self.checkpoints.push(path);
         // Keep the last three.

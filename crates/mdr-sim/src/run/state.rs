@@ -9,7 +9,7 @@ use crate::output::energy::EnergyRow;
 use crate::output::vtk::CollectionEntry;
 use crate::scene::Scene;
 use mdr_contact::model::ContactState;
-use mdr_contact::rolling::EpsdRollingState;
+use mdr_contact::rolling::{EpsdRollingState, RollingLaw};
 use mdr_contact::tangential::MindlinState;
 use mdr_rapier::convert::{to_glam, to_na};
 use nalgebra::Vector3;
@@ -28,11 +28,13 @@ pub struct Books {
     pub friction: f64,
     /// Damping work since the start (J).
     pub damping: f64,
+    /// Rolling-resistance work since the start (J).
+    pub rolling: f64,
     /// Work of kinematic walls on the particles since the start (J).
     pub wall_work: f64,
-    /// `(pair key, plastic, friction, damping)` of every touching pair at the last update,
-    /// sorted by key.
-    pub last: Vec<(u64, f64, f64, f64)>,
+    /// `(pair key, plastic, friction, damping, rolling)` work of every touching pair at the
+    /// last update, sorted by key.
+    pub last: Vec<(u64, f64, f64, f64, f64)>,
     /// Plastic work per particle (J).
     pub particle_plastic: Vec<f64>,
 }
@@ -69,14 +71,16 @@ impl Books {
                 j += 1;
             }
             let prev = match self.last.get(j) {
-                Some(l) if l.0 == key => (l.1, l.2, l.3),
-                _ => (0.0, 0.0, 0.0),
+                Some(l) if l.0 == key => (l.1, l.2, l.3, l.4),
+                _ => (0.0, 0.0, 0.0, 0.0),
             };
             let report = e.law.report(&e.history.contact, e.contact.overlap);
+            let rolling_work = e.rolling.dissipated_work(&e.history.rolling);
             let dp = report.plastic_work - prev.0;
             self.plastic += dp;
             self.friction += report.friction_work - prev.1;
             self.damping += report.damping_work - prev.2;
+            self.rolling += rolling_work - prev.3;
             if dp != 0.0 {
                 match (particle(e.collider1), particle(e.collider2)) {
                     (Some(a), Some(b)) => {
@@ -105,6 +109,7 @@ impl Books {
                 report.plastic_work,
                 report.friction_work,
                 report.damping_work,
+                rolling_work,
             ));
         }
         self.last = next;
@@ -204,6 +209,13 @@ pub struct CheckpointData {
     pub contacts: Vec<ContactRecord>,
     /// Restitution mode: `(pair key, largest overlap)` of the impact history.
     pub impacts: Vec<(u64, f64)>,
+    /// Restitution mode: rapier's world as `postcard` bytes of `PhysicsWorld` (bodies,
+    /// colliders, broad phase, narrow phase with every contact manifold and its warm-start
+    /// impulses, islands; rapier leaves out only its pipelines' scratch buffers). Rapier's
+    /// solver reads its contacts' previous impulses and its broad phase's tree, so rebuilding
+    /// the world from the scene would continue correctly but not bit-identically. Empty in
+    /// force mode, where rapier solves no contacts and the bodies alone are the state.
+    pub world: Vec<u8>,
     /// Energy books.
     pub books: Books,
     /// Random generator.
@@ -219,7 +231,9 @@ pub struct CheckpointData {
 }
 
 impl CheckpointData {
-    pub(crate) fn capture(sim: &Sim<'_>) -> Self {
+    /// Everything of `sim`; fails only if rapier's world does not encode (then nothing is
+    /// written).
+    pub(crate) fn capture(sim: &Sim<'_>) -> Result<Self, String> {
         let bodies = &sim.built.world.bodies;
         let records = sim
             .built
@@ -251,7 +265,12 @@ impl CheckpointData {
                 (Vec::new(), impacts)
             }
         };
-        Self {
+        let world = match &sim.built.coupling {
+            Coupling::Force(_) => Vec::new(),
+            Coupling::Restitution(_) => postcard::to_stdvec(&sim.built.world)
+                .map_err(|e| format!("rapier's world does not encode: {e}"))?,
+        };
+        Ok(Self {
             scene_name: sim.scene.name.clone(),
             fingerprint: fingerprint(sim.scene),
             dt_bits: sim.scene.dt.to_bits(),
@@ -259,13 +278,14 @@ impl CheckpointData {
             bodies: records,
             contacts,
             impacts,
+            world,
             books: sim.books.clone(),
             rng: RngRecord::of(&sim.rng),
             tracker: sim.tracker.clone(),
             collection: sim.collection.clone(),
             energy: sim.energy.clone(),
             samples: sim.samples.clone(),
-        }
+        })
     }
 }
 

@@ -1,0 +1,151 @@
+//! `mdr-dem sim run` and Ctrl-C (issue 5): SIGINT while the run is under way makes it write a
+//! final checkpoint and exit with success, printing the `--resume` command; resuming from that
+//! checkpoint (with a `duration_s` that ends shortly after it) completes normally.
+
+#![cfg(unix)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+const DT: f64 = 4.0e-6;
+
+fn scene(duration: f64) -> String {
+    format!(
+        r#"
+[run]
+name = "column"
+seed = 5
+duration_s = {duration:e}
+dt_s = {DT:e}
+max_speed_m_per_s = 1.0
+output_interval_s = 0.002
+headline = "column"
+
+[gravity]
+acceleration_m_per_s2 = [0.0, 0.0, -9.81]
+
+[[material]]
+name = "grain"
+youngs_pa = 5.0e7
+poisson_ratio = 0.25
+density_kg_per_m3 = 2500.0
+
+[contact]
+normal = "mdr"
+critical_line_load_n_per_m = 100.0
+hardening_ratio = 0.37
+tangential = "mindlin"
+friction = 0.5
+rolling_friction = 0.1
+
+[[particles]]
+material = "grain"
+count = 27
+radius_m = 0.002
+placement = "lattice"
+region_min_m = [-0.0064, -0.0064, 0.0]
+region_max_m = [0.0064, 0.0064, 0.0127]
+gap_fraction = 0.05
+jitter_fraction = 0.8
+
+[[walls]]
+kind = "plane"
+material = "grain"
+point_m = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+"#
+    )
+}
+
+fn write(path: &Path, text: &str) -> PathBuf {
+    std::fs::write(path, text).unwrap();
+    path.to_path_buf()
+}
+
+#[test]
+fn ctrl_c_writes_a_final_checkpoint_and_the_run_resumes_from_it() {
+    let dir = std::env::temp_dir().join(format!("mdr_sim_cli_interrupt_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("out");
+    // 100 s of simulated time: the interrupt always comes first.
+    let long = write(&dir.join("long.toml"), &scene(100.0));
+    let mut child = Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
+        .args(["sim", "run"])
+        .arg(&long)
+        .arg("--out")
+        .arg(&out)
+        .arg("--quiet")
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("mdr-dem starts");
+    // Wait until the run is under way (its second frame exists), then send SIGINT.
+    let second = out.join("frames").join("column_000001.vtp");
+    let limit = Instant::now() + Duration::from_secs(300);
+    while !second.exists() {
+        if let Some(status) = child.try_wait().unwrap() {
+            let output = child.wait_with_output().unwrap();
+            panic!(
+                "mdr-dem ended before the interrupt ({status}): {}",
+                String::from_utf8_lossy(&output.stderr)
+            );
+        }
+        assert!(Instant::now() < limit, "no second frame within 300 s");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(killed.success());
+    let output = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{}: {stderr}", output.status);
+    assert!(stderr.contains("interrupted at t = "), "{stderr}");
+    // "interrupted at t = T s (step N); continue with:\n  mdr-dem sim run SCENE --resume CK"
+    let step: u64 = stderr
+        .split("(step ")
+        .nth(1)
+        .and_then(|s| s.split(')').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no step in {stderr}"));
+    let checkpoint = PathBuf::from(
+        stderr
+            .split("--resume ")
+            .nth(1)
+            .map(str::trim)
+            .unwrap_or_else(|| panic!("no --resume in {stderr}")),
+    );
+    assert!(checkpoint.exists(), "{}", checkpoint.display());
+    assert!(step > 0);
+    // No temporary file is left behind.
+    for sub in [out.clone(), out.join("frames"), out.join("checkpoints")] {
+        for e in std::fs::read_dir(&sub).unwrap() {
+            let name = e.unwrap().file_name().to_string_lossy().into_owned();
+            assert!(!name.contains(".tmp"), "{name} in {}", sub.display());
+        }
+    }
+
+    // Resume with a duration 50 steps past the stop (only duration_s may change).
+    let short = write(&dir.join("short.toml"), &scene((step as f64 + 49.5) * DT));
+    let resumed = Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
+        .args(["sim", "run"])
+        .arg(&short)
+        .arg("--out")
+        .arg(&out)
+        .arg("--quiet")
+        .arg("--resume")
+        .arg(&checkpoint)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&resumed.stdout);
+    assert!(
+        resumed.status.success(),
+        "{}",
+        String::from_utf8_lossy(&resumed.stderr)
+    );
+    assert!(stdout.contains(&format!("{} steps", step + 50)), "{stdout}");
+    std::fs::remove_dir_all(&dir).ok();
+}
