@@ -73,7 +73,7 @@ impl DampingModel for HertzianViscous {
 }
 
 impl DampingLaw for HertzianViscousLaw {
-    #[inline]
+    #[inline(always)]
     fn normal_force(&self, _: &NormalResponse, overlap: f64, approach_rate: f64) -> f64 {
         self.coefficient * approach_rate * overlap.max(0.0).sqrt()
     }

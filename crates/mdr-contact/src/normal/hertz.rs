@@ -65,7 +65,7 @@ impl NormalLaw for HertzLaw {
     /// Largest overlap so far (m).
     type State = f64;
 
-    #[inline]
+    #[inline(always)]
     fn update(&self, state: &mut f64, overlap: f64) -> NormalResponse {
         if overlap <= 0.0 {
             return NormalResponse::default();

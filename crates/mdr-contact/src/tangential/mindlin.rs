@@ -103,7 +103,14 @@ impl MindlinLaw {
 impl TangentialLaw for MindlinLaw {
     type State = MindlinState;
 
-    #[inline]
+    /// One step of model.md §5. The arithmetic is arranged for the per-contact hot loop (the
+    /// results are those of the textbook sequence to round-off):
+    /// - the plane projection and the unloading rescale are folded into one scalar factor
+    ///   `√(|ξ|²/|ξ_⊥|²) · (a/a_prev)` applied once;
+    /// - the Coulomb test compares squares, `k² |ξ|² > (μ F_N)²`, so the stick branch (the common
+    ///   one) takes no square root after the projection; `|ξ|` is formed only on gross slip;
+    /// - the stored elastic energy reuses `|ξ|²` (times `keep²` after a slip) instead of a new norm.
+    #[inline(always)]
     fn update(&self, state: &mut MindlinState, input: &TangentialInput) -> TangentialResponse {
         let n = input.normal;
         let a = input.normal_response.contact_radius;
@@ -117,11 +124,12 @@ impl TangentialLaw for MindlinLaw {
         // contact frame rotated, the springs did not stretch).
         let mut xi = state.displacement;
         let old_len2 = xi.norm_squared();
+        let mut scale = 1.0;
         if old_len2 > 0.0 {
             xi -= n * n.dot(&xi);
             let new_len2 = xi.norm_squared();
             if new_len2 > 0.0 {
-                xi *= (old_len2 / new_len2).sqrt();
+                scale = (old_len2 / new_len2).sqrt();
             }
         }
         let previous_radius = state.contact_radius;
@@ -132,37 +140,40 @@ impl TangentialLaw for MindlinLaw {
                 // the stored one.
                 MindlinForm::Displacement => {
                     if shrinking_rescaled {
-                        xi *= a / previous_radius;
+                        scale *= a / previous_radius;
                     }
                 }
                 // Keep the force k(a_prev) ξ (scaled by a/a_prev on unloading when rescaling) and
                 // store it as the equivalent displacement at the new stiffness.
                 MindlinForm::Force => {
                     if !shrinking_rescaled {
-                        xi *= previous_radius / a;
+                        scale *= previous_radius / a;
                     }
                 }
             }
         }
         let du = input.displacement_increment - n * n.dot(&input.displacement_increment);
-        xi += du;
+        xi = xi * scale + du;
         let k = self.stiffness(a);
         let cap = self.friction_coefficient * normal_force;
-        let trial = k * xi.norm();
+        let len2 = xi.norm_squared();
         let mut response = TangentialResponse::default();
-        if trial > cap {
-            // Gross slip: the spring is reset to the Coulomb limit; μ F_N times the slip length
-            // is dissipated.
+        let mut stored2 = len2;
+        if k * k * len2 > cap * cap {
+            // Gross slip: the spring is reset to the Coulomb limit (trial force k|ξ| > μ F_N);
+            // μ F_N times the slip length is dissipated.
+            let len = len2.sqrt();
+            let trial = k * len;
             let keep = if trial > 0.0 { cap / trial } else { 0.0 };
-            let slip = xi.norm() * (1.0 - keep);
             xi *= keep;
+            stored2 = len2 * keep * keep;
             response.sliding = true;
-            response.dissipated = cap * slip;
+            response.dissipated = cap * (len * (1.0 - keep));
         }
         state.displacement = xi;
         state.contact_radius = a;
         response.force = -k * xi;
-        response.elastic_energy = 0.5 * k * xi.norm_squared();
+        response.elastic_energy = 0.5 * k * stored2;
         response
     }
 }
