@@ -105,8 +105,9 @@ impl TangentialLaw for MindlinLaw {
 
     /// One step of model.md §5. The arithmetic is arranged for the per-contact hot loop (the
     /// results are those of the textbook sequence to round-off):
-    /// - the plane projection and the unloading rescale are folded into one scalar factor
-    ///   `√(|ξ|²/|ξ_⊥|²) · (a/a_prev)` applied once;
+    /// - the plane projection and the radius rescale are folded into one scalar factor
+    ///   `√(|ξ|² r_num² / (|ξ_⊥|² r_den²))` (`r_num/r_den` = `a/a_prev`, `a_prev/a` or 1, see
+    ///   [`MindlinForm`]): one division and one square root, applied once;
     /// - the Coulomb test compares squares, `k² |ξ|² > (μ F_N)²`, so the stick branch (the common
     ///   one) takes no square root after the projection; `|ξ|` is formed only on gross slip;
     /// - the stored elastic energy reuses `|ξ|²` (times `keep²` after a slip) instead of a new norm.
@@ -124,36 +125,35 @@ impl TangentialLaw for MindlinLaw {
         // contact frame rotated, the springs did not stretch).
         let mut xi = state.displacement;
         let old_len2 = xi.norm_squared();
-        let mut scale = 1.0;
         if old_len2 > 0.0 {
+            // The radius rescale r_num/r_den (ξ = 0 needs none).
+            let (r_num, r_den) = {
+                let previous_radius = state.contact_radius;
+                let shrinking_rescaled = self.rescale_on_unloading && a < previous_radius;
+                match self.form {
+                    // F = k(a) ξ: rescaling ξ by a/a_prev on unloading keeps the released energy
+                    // below the stored one.
+                    MindlinForm::Displacement if previous_radius > 0.0 && shrinking_rescaled => {
+                        (a, previous_radius)
+                    }
+                    // Keep the force k(a_prev) ξ (scaled by a/a_prev on unloading when rescaling)
+                    // and store it as the equivalent displacement at the new stiffness.
+                    MindlinForm::Force if previous_radius > 0.0 && !shrinking_rescaled => {
+                        (previous_radius, a)
+                    }
+                    _ => (1.0, 1.0),
+                }
+            };
             xi -= n * n.dot(&xi);
             let new_len2 = xi.norm_squared();
             if new_len2 > 0.0 {
-                scale = (old_len2 / new_len2).sqrt();
-            }
-        }
-        let previous_radius = state.contact_radius;
-        if previous_radius > 0.0 {
-            let shrinking_rescaled = self.rescale_on_unloading && a < previous_radius;
-            match self.form {
-                // F = k(a) ξ: rescaling ξ by a/a_prev on unloading keeps the released energy below
-                // the stored one.
-                MindlinForm::Displacement => {
-                    if shrinking_rescaled {
-                        scale *= a / previous_radius;
-                    }
-                }
-                // Keep the force k(a_prev) ξ (scaled by a/a_prev on unloading when rescaling) and
-                // store it as the equivalent displacement at the new stiffness.
-                MindlinForm::Force => {
-                    if !shrinking_rescaled {
-                        scale *= previous_radius / a;
-                    }
-                }
+                xi *= ((old_len2 * (r_num * r_num)) / (new_len2 * (r_den * r_den))).sqrt();
+            } else {
+                xi *= r_num / r_den;
             }
         }
         let du = input.displacement_increment - n * n.dot(&input.displacement_increment);
-        xi = xi * scale + du;
+        xi += du;
         let k = self.stiffness(a);
         let cap = self.friction_coefficient * normal_force;
         let len2 = xi.norm_squared();

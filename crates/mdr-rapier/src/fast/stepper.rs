@@ -558,8 +558,11 @@ where
                         None => {
                             if active[k] {
                                 // Separated: the plain path drops the entry, so does this one.
+                                // The wrench of an inactive pair is kept at zero, so that the
+                                // per-particle sums need not test `active`.
                                 active[k] = false;
                                 history[k] = Default::default();
+                                wrench[k] = PairWrench::default();
                             }
                         }
                         Some(contact) => {
@@ -626,6 +629,7 @@ where
                         if active[k] {
                             active[k] = false;
                             history[k] = Default::default();
+                            wrench[k] = PairWrench::default();
                         }
                         continue;
                     };
@@ -686,27 +690,22 @@ where
                     let i = c * PCHUNK + k;
                     let mut force = Vector3::zeros();
                     let mut torque = Vector3::zeros();
-                    for s in sp.start[i] as usize..sp.start[i + 1] as usize {
-                        if sp.active[s] {
-                            force += sp.wrench[s].force;
-                            torque += sp.wrench[s].torque1;
-                        }
+                    // Inactive pairs hold a zero wrench (see the pair loops): no branch on
+                    // `active` here.
+                    for w in &sp.wrench[sp.start[i] as usize..sp.start[i + 1] as usize] {
+                        force += w.force;
+                        torque += w.torque1;
                     }
                     for &e in &pairs.second
                         [pairs.second_start[i] as usize..pairs.second_start[i + 1] as usize]
                     {
-                        let e = e as usize;
-                        if pairs.active[e] {
-                            let w: &PairWrench = &pairs.wrench[e];
-                            force += -w.force;
-                            torque += w.torque2;
-                        }
+                        let w: &PairWrench = &pairs.wrench[e as usize];
+                        force += -w.force;
+                        torque += w.torque2;
                     }
-                    for e in pairs.first[i] as usize..pairs.first[i + 1] as usize {
-                        if pairs.active[e] {
-                            force += pairs.wrench[e].force;
-                            torque += pairs.wrench[e].torque1;
-                        }
+                    for w in &pairs.wrench[pairs.first[i] as usize..pairs.first[i + 1] as usize] {
+                        force += w.force;
+                        torque += w.torque1;
                     }
                     let s = &table[species[i] as usize];
                     // rapier: force = user_force + g · m; Δv = force · (1/m) · dt.
