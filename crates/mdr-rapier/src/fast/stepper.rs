@@ -547,43 +547,57 @@ where
             .enumerate()
             .map(|(c, ((history, wrench), active))| {
                 let base = c * CHUNK;
-                let mut touching = 0;
-                for k in 0..history.len() {
-                    let q = base + k;
-                    let (i, j) = (pi[q] as usize, pj[q] as usize);
-                    let offset = &offsets[image[q] as usize];
+                let len = history.len();
+                let (pi, pj, image) = (
+                    &pi[base..base + len],
+                    &pj[base..base + len],
+                    &image[base..base + len],
+                );
+                // Pass 1, the overlap test alone (the exact test `sphere_sphere` makes): collect
+                // the touching pairs of the chunk without a data-dependent branch, and forget the
+                // pairs that separated. Pass 2 runs the law on the touching ones only, so the
+                // unpredictable touch/apart branch of a mixed list is not taken per pair.
+                let mut touching_pairs = [0u16; CHUNK];
+                let mut touching = 0usize;
+                for k in 0..len {
+                    let (i, j) = (pi[k] as usize, pj[k] as usize);
+                    let xj = p.position[j] + offsets[image[k] as usize].position;
+                    let dist2 = (p.position[i] - xj).norm_squared();
+                    let reach = p.radius[i] + p.radius[j];
+                    let touch = !(dist2 >= reach * reach || dist2 == 0.0);
+                    touching_pairs[touching] = k as u16;
+                    touching += usize::from(touch);
+                    if active[k] & !touch {
+                        // Separated: the plain path drops the entry, so does this one. The
+                        // wrench of an inactive pair is kept at zero, so that the per-particle
+                        // sums need not test `active`.
+                        active[k] = false;
+                        history[k] = Default::default();
+                        wrench[k] = PairWrench::default();
+                    }
+                }
+                for &k in &touching_pairs[..touching] {
+                    let k = k as usize;
+                    let (i, j) = (pi[k] as usize, pj[k] as usize);
+                    let offset = &offsets[image[k] as usize];
                     let xi = &p.position[i];
                     let xj = p.position[j] + offset.position;
-                    match sphere_sphere(xi, p.radius[i], &xj, p.radius[j]) {
-                        None => {
-                            if active[k] {
-                                // Separated: the plain path drops the entry, so does this one.
-                                // The wrench of an inactive pair is kept at zero, so that the
-                                // per-particle sums need not test `active`.
-                                active[k] = false;
-                                history[k] = Default::default();
-                                wrench[k] = PairWrench::default();
-                            }
-                        }
-                        Some(contact) => {
-                            active[k] = true;
-                            touching += 1;
-                            let kinematics = ContactKinematics {
-                                overlap: contact.overlap,
-                                normal: contact.normal,
-                                arm1: contact.point - xi,
-                                arm2: contact.point - xj,
-                                linvel1: p.linvel[i],
-                                angvel1: p.angvel[i],
-                                linvel2: p.linvel[j] + offset.velocity,
-                                angvel2: p.angvel[j],
-                            };
-                            let (law, rolling) =
-                                &laws[p.species[i] as usize * ns + p.species[j] as usize];
-                            wrench[k] =
-                                evaluate_pair(law, rolling, &mut history[k], &kinematics, dt);
-                        }
-                    }
+                    let Some(contact) = sphere_sphere(xi, p.radius[i], &xj, p.radius[j]) else {
+                        continue; // not reached: pass 1 made the same test
+                    };
+                    active[k] = true;
+                    let kinematics = ContactKinematics {
+                        overlap: contact.overlap,
+                        normal: contact.normal,
+                        arm1: contact.point - xi,
+                        arm2: contact.point - xj,
+                        linvel1: p.linvel[i],
+                        angvel1: p.angvel[i],
+                        linvel2: p.linvel[j] + offset.velocity,
+                        angvel2: p.angvel[j],
+                    };
+                    let (law, rolling) = &laws[p.species[i] as usize * ns + p.species[j] as usize];
+                    wrench[k] = evaluate_pair(law, rolling, &mut history[k], &kinematics, dt);
                 }
                 touching
             })
