@@ -37,8 +37,7 @@ pub fn sphere_sphere(
     }
     let dist = dist2.sqrt();
     let overlap = reach - dist;
-    // One division for the three components (the pair loop is bound by the divider).
-    let normal = d * (1.0 / dist);
+    let normal = d / dist;
     Some(SurfaceContact {
         overlap,
         normal,
