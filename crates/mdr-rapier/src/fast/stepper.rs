@@ -5,13 +5,17 @@
 //! 1. rebuild the neighbour lists if a particle moved more than half the skin, or a surface
 //!    collider moved more than half the skin, since the last build (the first step always
 //!    builds); a build wraps the particles into the periodic box;
-//! 2. every sphere–sphere candidate: exact overlap, then the per-pair kernel
-//!    [`crate::kernel::evaluate_pair`] on the history stored next to the pair (parallel);
-//! 3. every particle–surface candidate: [`crate::geometry::sphere_shape`] against the rapier
-//!    collider, then the same kernel (parallel);
+//! 2. every particle–surface candidate: [`crate::geometry::sphere_shape`] against the rapier
+//!    collider, then the per-pair kernel [`crate::kernel::evaluate_pair`] (parallel);
+//! 3. every sphere–sphere candidate, in two passes per chunk of the list: the exact overlap test
+//!    alone (branch-free, collecting the touching pairs), then the same kernel on the history
+//!    stored next to each touching pair (parallel; with one thread each wrench is also added to
+//!    both particles' force and torque sums right away);
 //! 4. per particle, in a fixed order (surfaces, then partners by increasing index), sum the
-//!    wrenches and integrate as rapier does with one solver iteration: `v += (F + m g)/m · dt`,
-//!    `ω += τ/I · dt`, `x += v dt`, the orientation by rapier's linearised update (parallel);
+//!    wrenches (gathered per particle with several threads; already summed in that order with
+//!    one) and integrate as rapier does with one solver iteration: `v += (F + m g)/m · dt`,
+//!    `ω += τ/I · dt`, `x += v dt`, the orientation by rapier's linearised update unless switched
+//!    off with [`FastForceStepper::track_orientation`] (parallel);
 //! 5. reaction forces on dynamic rapier bodies, in key order, through `add_force`/`add_torque`;
 //!    then `PhysicsWorld::step` moves the rapier bodies.
 //!
@@ -568,7 +572,7 @@ where
         }));
     }
 
-    /// Step 2: sphere–sphere pairs. Returns the number of touching pairs. With `serial`, each
+    /// Step 3: sphere–sphere pairs. Returns the number of touching pairs. With `serial`, each
     /// wrench is also added to both particles' sums (`self.sums`, started by
     /// [`Self::surface_sums`]) in pair order.
     fn sphere_wrenches(&mut self, dt: f64, serial: bool) -> usize {
@@ -676,7 +680,7 @@ where
         }
     }
 
-    /// Step 3: particle–surface pairs. Returns the number of touching pairs.
+    /// Step 2: particle–surface pairs. Returns the number of touching pairs.
     fn surface_wrenches(
         &mut self,
         bodies: &RigidBodySet,
