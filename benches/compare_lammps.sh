@@ -6,7 +6,8 @@
 #
 # Usage: benches/compare_lammps.sh [nbench] [threads...]   (default: 10000 steps; threads 1 2)
 # Environment: LAMMPS_BENCH_DIR (default ../shared/bench/lammps), MDR_DEM (the binary; default
-# target/release/mdr-dem, built if missing).
+# target/release/mdr-dem, built if missing), MDR_BENCH_FLAGS (extra `bench bed` flags, e.g.
+# `--no-orientation`: LAMMPS atom_style sphere integrates no orientation either).
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 lammps_dir=${LAMMPS_BENCH_DIR:-$repo/../shared/bench/lammps}
@@ -35,11 +36,12 @@ print(f"{rate} {rate / (cpu / 100.0)}")
 PY
 }
 ours_rate() { # law threads -> "wall M/s  per-CPU-second M/s"
-  "$bin" bench bed --law "$1" --threads "$2" --steps "$nbench" --json |
+  # shellcheck disable=SC2086 # MDR_BENCH_FLAGS is a list of flags
+  "$bin" bench bed --law "$1" --threads "$2" --steps "$nbench" ${MDR_BENCH_FLAGS:-} --json |
     python3 -c 'import json,sys; d=json.load(sys.stdin); print(d["particle_steps_per_s"]/1e6, d["particle_steps_per_cpu_s"]/1e6)'
 }
 
-echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg); bench bed flags: ${MDR_BENCH_FLAGS:-none}"
 # Wall: particle-steps per second of elapsed time (what a user sees on an idle machine).
 # CPU: particle-steps per CPU second (LAMMPS: wall rate / its "% CPU use"; mdr-dem: user +
 # system time of all threads) -- per-core figures that survive a loaded machine.

@@ -65,6 +65,10 @@ pub struct BedArgs {
     /// Neighbour skin (as LAMMPS `neighbor 0.1 bin`).
     #[arg(long, default_value_t = 0.1)]
     pub skin: f64,
+    /// Do not integrate particle orientations (LAMMPS `atom_style sphere` keeps none; sphere
+    /// trajectories are unchanged).
+    #[arg(long)]
+    pub no_orientation: bool,
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
@@ -186,6 +190,8 @@ struct BedFigures {
     floor_contacts: usize,
     plastic_contact_fraction: f64,
     stepper_bytes_per_particle: f64,
+    /// Whether orientations were integrated (`--no-orientation` turns it off).
+    orientation: bool,
 }
 
 fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
@@ -216,8 +222,17 @@ fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
         println!("{}", serde_json::to_string(&figures)?);
     } else {
         println!(
-            "bench bed: {} spheres, law {}, {} threads, {} timed steps after {} warm-up steps",
-            figures.particles, figures.law, figures.threads, figures.steps, args.warmup
+            "bench bed: {} spheres, law {}, {} threads, {} timed steps after {} warm-up steps{}",
+            figures.particles,
+            figures.law,
+            figures.threads,
+            figures.steps,
+            args.warmup,
+            if figures.orientation {
+                ""
+            } else {
+                ", orientations not integrated"
+            }
         );
         println!(
             "  {:.3} M particle-steps/s, {:.3} ms/step",
@@ -262,7 +277,9 @@ where
     let model = ContactModel::new(normal)
         .with_tangential(Mindlin::new(0.5)?)
         .with_damping(HertzianViscous::new(50.0)?);
-    let mut stepper = FastForceStepper::new(model, boundary).skin(args.skin)?;
+    let mut stepper = FastForceStepper::new(model, boundary)
+        .skin(args.skin)?
+        .track_orientation(!args.no_orientation);
     let grain = stepper.insert_material(Material::new(1.0, 0.3, 1.0)?);
     // kn = 2e5 ⇔ (4/3) E* = kn; LAMMPS NULL kt = 2/7 kn and k_t = 2 G* a ⇔ G* = kt / 2.
     stepper.set_pair_moduli(grain, grain, 1.5e5, 2.0e5 / 7.0)?;
@@ -335,6 +352,7 @@ where
         steps: args.steps,
         rebuilds: stepper.rebuilds() - rebuilds0,
         floor_contacts: report.surface_contacts,
+        orientation: !args.no_orientation,
         plastic_contact_fraction: if touching > 0 {
             plastic as f64 / touching as f64
         } else {

@@ -172,8 +172,9 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
         ContactState::default()
     }
 
-    /// Advance one contact by one step.
-    #[inline]
+    /// Advance one contact by one step (always inlined: it is the body of every per-contact hot
+    /// loop, and inlining lets the caller drop the parts of the output it does not read).
+    #[inline(always)]
     pub fn update(&self, state: &mut StateOf<NL, TL>, input: &ContactInput) -> ContactOutput {
         let normal = self.normal.update(&mut state.normal, input.overlap);
         if normal.force <= 0.0 && normal.contact_radius <= 0.0 {

@@ -61,7 +61,7 @@ pub struct PairHistory<S, RS> {
 
 /// One contact, one step: the law crate's [`ContactLaw::update`] (normal MDR, tangential Mindlin,
 /// damping) and the rolling law, turned into a force and two torques.
-#[inline]
+#[inline(always)]
 pub fn evaluate_pair<NL, TL, DL, RL>(
     law: &ContactLaw<NL, TL, DL>,
     rolling: &RL,

@@ -296,3 +296,73 @@ fn lammps_data_round_trip_and_tiling() {
     assert!(Bed::read_lammps(&path).is_err());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn orientation_tracking_does_not_change_sphere_trajectories() {
+    // Spheres: contact forces and torques do not depend on orientation, so switching its
+    // integration off must leave positions and velocities bit for bit the same, on the serial
+    // (one-thread) and the parallel path alike.
+    let bed = lattice_bed(&BedSpec {
+        count: 300,
+        ..BedSpec::default()
+    })
+    .unwrap();
+    let run = |threads: usize, orientation: bool| {
+        ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| {
+                let boundary =
+                    Boundary::periodic_xy((bed.lo[0], bed.hi[0]), (bed.lo[1], bed.hi[1])).unwrap();
+                let mut fast = FastForceStepper::new(model(), boundary)
+                    .skin(0.1)
+                    .unwrap()
+                    .track_orientation(orientation);
+                let m = fast.insert_material(grain());
+                let mut world = PhysicsWorld {
+                    gravity: Vector::new(0.0, 0.0, -1.0),
+                    ..PhysicsWorld::default()
+                };
+                fast.configure(&mut world.integration_parameters, 1e-4)
+                    .unwrap();
+                fast.insert_surface(
+                    &mut world,
+                    ColliderBuilder::new(SharedShape::halfspace(Vector::Z)),
+                    None,
+                    m,
+                )
+                .unwrap();
+                for (k, p) in bed.position.iter().enumerate() {
+                    fast.insert_sphere(
+                        SphereBuilder::new(0.5, m)
+                            .translation(Vector::new(p.x, p.y, 0.49 + (p.z - 0.55) * 0.9))
+                            .angvel(Vector::new(0.0, 0.0, 0.1 * (k % 5) as f64)),
+                    )
+                    .unwrap();
+                }
+                for _ in 0..300 {
+                    fast.step(&mut world).unwrap();
+                }
+                fast
+            })
+    };
+    for threads in [1, 2] {
+        let on = run(threads, true);
+        let off = run(threads, false);
+        assert!(on.last_report().sphere_contacts > 50);
+        assert_eq!(on.particles().position, off.particles().position);
+        assert_eq!(on.particles().linvel, off.particles().linvel);
+        assert_eq!(on.particles().angvel, off.particles().angvel);
+        // The tracked orientations turned; the untracked ones did not.
+        let turned = |f: &FastForceStepper<Hertz, Mindlin, HertzianViscous>| {
+            f.particles()
+                .rotation
+                .iter()
+                .filter(|q| q.w < 1.0 - 1e-12)
+                .count()
+        };
+        assert!(turned(&on) > 100);
+        assert_eq!(turned(&off), 0);
+    }
+}

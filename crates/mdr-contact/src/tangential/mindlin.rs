@@ -103,7 +103,15 @@ impl MindlinLaw {
 impl TangentialLaw for MindlinLaw {
     type State = MindlinState;
 
-    #[inline]
+    /// One step of model.md §5. The arithmetic is arranged for the per-contact hot loop (the
+    /// results are those of the textbook sequence to round-off):
+    /// - the plane projection and the radius rescale are folded into one scalar factor
+    ///   `√(|ξ|² r_num² / (|ξ_⊥|² r_den²))` (`r_num/r_den` = `a/a_prev`, `a_prev/a` or 1, see
+    ///   [`MindlinForm`]): one division and one square root, applied once;
+    /// - the Coulomb test compares squares, `k² |ξ|² > (μ F_N)²`, so the stick branch (the common
+    ///   one) takes no square root after the projection; `|ξ|` is formed only on gross slip;
+    /// - the stored elastic energy reuses `|ξ|²` (times `keep²` after a slip) instead of a new norm.
+    #[inline(always)]
     fn update(&self, state: &mut MindlinState, input: &TangentialInput) -> TangentialResponse {
         let n = input.normal;
         let a = input.normal_response.contact_radius;
@@ -118,51 +126,54 @@ impl TangentialLaw for MindlinLaw {
         let mut xi = state.displacement;
         let old_len2 = xi.norm_squared();
         if old_len2 > 0.0 {
+            // The radius rescale r_num/r_den (ξ = 0 needs none).
+            let (r_num, r_den) = {
+                let previous_radius = state.contact_radius;
+                let shrinking_rescaled = self.rescale_on_unloading && a < previous_radius;
+                match self.form {
+                    // F = k(a) ξ: rescaling ξ by a/a_prev on unloading keeps the released energy
+                    // below the stored one.
+                    MindlinForm::Displacement if previous_radius > 0.0 && shrinking_rescaled => {
+                        (a, previous_radius)
+                    }
+                    // Keep the force k(a_prev) ξ (scaled by a/a_prev on unloading when rescaling)
+                    // and store it as the equivalent displacement at the new stiffness.
+                    MindlinForm::Force if previous_radius > 0.0 && !shrinking_rescaled => {
+                        (previous_radius, a)
+                    }
+                    _ => (1.0, 1.0),
+                }
+            };
             xi -= n * n.dot(&xi);
             let new_len2 = xi.norm_squared();
             if new_len2 > 0.0 {
-                xi *= (old_len2 / new_len2).sqrt();
-            }
-        }
-        let previous_radius = state.contact_radius;
-        if previous_radius > 0.0 {
-            let shrinking_rescaled = self.rescale_on_unloading && a < previous_radius;
-            match self.form {
-                // F = k(a) ξ: rescaling ξ by a/a_prev on unloading keeps the released energy below
-                // the stored one.
-                MindlinForm::Displacement => {
-                    if shrinking_rescaled {
-                        xi *= a / previous_radius;
-                    }
-                }
-                // Keep the force k(a_prev) ξ (scaled by a/a_prev on unloading when rescaling) and
-                // store it as the equivalent displacement at the new stiffness.
-                MindlinForm::Force => {
-                    if !shrinking_rescaled {
-                        xi *= previous_radius / a;
-                    }
-                }
+                xi *= ((old_len2 * (r_num * r_num)) / (new_len2 * (r_den * r_den))).sqrt();
+            } else {
+                xi *= r_num / r_den;
             }
         }
         let du = input.displacement_increment - n * n.dot(&input.displacement_increment);
         xi += du;
         let k = self.stiffness(a);
         let cap = self.friction_coefficient * normal_force;
-        let trial = k * xi.norm();
+        let len2 = xi.norm_squared();
         let mut response = TangentialResponse::default();
-        if trial > cap {
-            // Gross slip: the spring is reset to the Coulomb limit; μ F_N times the slip length
-            // is dissipated.
+        let mut stored2 = len2;
+        if k * k * len2 > cap * cap {
+            // Gross slip: the spring is reset to the Coulomb limit (trial force k|ξ| > μ F_N);
+            // μ F_N times the slip length is dissipated.
+            let len = len2.sqrt();
+            let trial = k * len;
             let keep = if trial > 0.0 { cap / trial } else { 0.0 };
-            let slip = xi.norm() * (1.0 - keep);
             xi *= keep;
+            stored2 = len2 * keep * keep;
             response.sliding = true;
-            response.dissipated = cap * slip;
+            response.dissipated = cap * (len * (1.0 - keep));
         }
         state.displacement = xi;
         state.contact_radius = a;
         response.force = -k * xi;
-        response.elastic_energy = 0.5 * k * xi.norm_squared();
+        response.elastic_energy = 0.5 * k * stored2;
         response
     }
 }

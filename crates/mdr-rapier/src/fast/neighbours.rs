@@ -29,7 +29,8 @@ pub struct PairList<H> {
     pub active: Vec<bool>,
     /// Contact history of each pair (default while apart).
     pub history: Vec<H>,
-    /// Wrench of each pair at the last force evaluation (valid where `active`).
+    /// Wrench of each pair at the last force evaluation; zero where not `active` (the pair loop
+    /// keeps it so, and the per-particle sums rely on it).
     pub wrench: Vec<PairWrench>,
     /// `first[i]..first[i + 1]`: the pairs whose first particle is `i`.
     pub first: Vec<u32>,

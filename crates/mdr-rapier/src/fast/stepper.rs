@@ -5,13 +5,17 @@
 //! 1. rebuild the neighbour lists if a particle moved more than half the skin, or a surface
 //!    collider moved more than half the skin, since the last build (the first step always
 //!    builds); a build wraps the particles into the periodic box;
-//! 2. every sphere–sphere candidate: exact overlap, then the per-pair kernel
-//!    [`crate::kernel::evaluate_pair`] on the history stored next to the pair (parallel);
-//! 3. every particle–surface candidate: [`crate::geometry::sphere_shape`] against the rapier
-//!    collider, then the same kernel (parallel);
+//! 2. every particle–surface candidate: [`crate::geometry::sphere_shape`] against the rapier
+//!    collider, then the per-pair kernel [`crate::kernel::evaluate_pair`] (parallel);
+//! 3. every sphere–sphere candidate, in two passes per chunk of the list: the exact overlap test
+//!    alone (branch-free, collecting the touching pairs), then the same kernel on the history
+//!    stored next to each touching pair (parallel; with one thread each wrench is also added to
+//!    both particles' force and torque sums right away);
 //! 4. per particle, in a fixed order (surfaces, then partners by increasing index), sum the
-//!    wrenches and integrate as rapier does with one solver iteration: `v += (F + m g)/m · dt`,
-//!    `ω += τ/I · dt`, `x += v dt`, the orientation by rapier's linearised update (parallel);
+//!    wrenches (gathered per particle with several threads; already summed in that order with
+//!    one) and integrate as rapier does with one solver iteration: `v += (F + m g)/m · dt`,
+//!    `ω += τ/I · dt`, `x += v dt`, the orientation by rapier's linearised update unless switched
+//!    off with [`FastForceStepper::track_orientation`] (parallel);
 //! 5. reaction forces on dynamic rapier bodies, in key order, through `add_force`/`add_torque`;
 //!    then `PhysicsWorld::step` moves the rapier bodies.
 //!
@@ -97,6 +101,10 @@ pub struct FastForceStepper<
     surface_candidates: Vec<(u32, u32)>,
     /// Reaction wrench per surface body, reduced in key order.
     reactions: Vec<(RigidBodyHandle, Vector3<f64>, Vector3<f64>)>,
+    /// Per-particle force and torque sums of the one-thread path (see [`FastForceStepper::step`]).
+    sums: Vec<(Vector3<f64>, Vector3<f64>)>,
+    /// Whether orientations are integrated (see [`FastForceStepper::track_orientation`]).
+    orientation: bool,
     needs_build: bool,
     max_displacement: f64,
     report: FastStepReport,
@@ -127,6 +135,8 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> FastForceStepper<N, T,
             old_surface_pairs: SurfacePairs::default(),
             surface_candidates: Vec::new(),
             reactions: Vec::new(),
+            sums: Vec::new(),
+            orientation: true,
             needs_build: true,
             max_displacement: 0.0,
             report: FastStepReport::default(),
@@ -168,6 +178,8 @@ where
             old_surface_pairs: SurfacePairs::default(),
             surface_candidates: self.surface_candidates,
             reactions: self.reactions,
+            sums: self.sums,
+            orientation: self.orientation,
             needs_build: true,
             max_displacement: 0.0,
             report: self.report,
@@ -182,6 +194,16 @@ where
         self.skin = positive("skin", skin)?;
         self.needs_build = true;
         Ok(self)
+    }
+
+    /// Whether to integrate the particles' orientations (default: yes, as rapier does). Contact
+    /// forces and torques of spheres do not depend on orientation, so switching it off changes
+    /// no trajectory; it saves a quaternion product and normalisation (a square root and a
+    /// division) per particle and step, and leaves [`FastParticles::rotation`] at its last value.
+    /// LAMMPS `atom_style sphere` keeps no orientation either.
+    pub fn track_orientation(mut self, yes: bool) -> Self {
+        self.orientation = yes;
+        self
     }
 
     /// Add a material; pair moduli follow from eq. (3) and model.md §5 unless overridden by
@@ -379,6 +401,7 @@ where
             + self.surface_pairs.bytes()
             + self.old_surface_pairs.bytes()
             + self.surface_candidates.capacity() * 8
+            + self.sums.capacity() * 48
             + (self.sphere_laws.capacity() + self.surface_laws.capacity())
                 * std::mem::size_of::<(Law<N, T, D>, R::Law)>()
     }
@@ -508,10 +531,18 @@ where
         if rebuilt {
             self.rebuild(&world.bodies, &world.colliders)?;
         }
-        let sphere_contacts = self.sphere_wrenches(dt);
+        // One worker thread: the sphere pair loop adds each wrench to both particles' sums as it
+        // goes (LAMMPS's scatter), in pair order after the surface wrenches, which is exactly
+        // the order in which the parallel path gathers them per particle; both give the same
+        // sums for any number of threads.
+        let serial = rayon::current_num_threads() == 1;
         let surface_contacts = self.surface_wrenches(&world.bodies, &world.colliders, dt);
+        if serial {
+            self.surface_sums();
+        }
+        let sphere_contacts = self.sphere_wrenches(dt, serial);
         let gravity = to_na(world.gravity);
-        self.max_displacement = self.integrate(&gravity, dt).sqrt();
+        self.max_displacement = self.integrate(&gravity, dt, serial).sqrt();
         self.apply_reactions(&mut world.bodies);
         world.step();
         self.report = FastStepReport {
@@ -524,8 +555,27 @@ where
         Ok(self.report)
     }
 
-    /// Step 2: sphere–sphere pairs. Returns the number of touching pairs.
-    fn sphere_wrenches(&mut self, dt: f64) -> usize {
+    /// One-thread path: start each particle's sums with its surface wrenches, in the order the
+    /// parallel path's gather adds them.
+    fn surface_sums(&mut self) {
+        let sp = &self.surface_pairs;
+        let n = self.particles.len();
+        self.sums.clear();
+        self.sums.extend((0..n).map(|i| {
+            let mut force = Vector3::zeros();
+            let mut torque = Vector3::zeros();
+            for w in &sp.wrench[sp.start[i] as usize..sp.start[i + 1] as usize] {
+                force += w.force;
+                torque += w.torque1;
+            }
+            (force, torque)
+        }));
+    }
+
+    /// Step 3: sphere–sphere pairs. Returns the number of touching pairs. With `serial`, each
+    /// wrench is also added to both particles' sums (`self.sums`, started by
+    /// [`Self::surface_sums`]) in pair order.
+    fn sphere_wrenches(&mut self, dt: f64, serial: bool) -> usize {
         let offsets = self.boundary.offsets();
         let p = &self.particles;
         let laws = &self.sphere_laws;
@@ -540,54 +590,97 @@ where
             ..
         } = &mut self.pairs;
         let (pi, pj, image) = (&*pi, &*pj, &*image);
-        history
-            .par_chunks_mut(CHUNK)
-            .zip(wrench.par_chunks_mut(CHUNK))
-            .zip(active.par_chunks_mut(CHUNK))
-            .enumerate()
-            .map(|(c, ((history, wrench), active))| {
-                let base = c * CHUNK;
-                let mut touching = 0;
-                for k in 0..history.len() {
-                    let q = base + k;
-                    let (i, j) = (pi[q] as usize, pj[q] as usize);
-                    let offset = &offsets[image[q] as usize];
-                    let xi = &p.position[i];
-                    let xj = p.position[j] + offset.position;
-                    match sphere_sphere(xi, p.radius[i], &xj, p.radius[j]) {
-                        None => {
-                            if active[k] {
-                                // Separated: the plain path drops the entry, so does this one.
-                                active[k] = false;
-                                history[k] = Default::default();
-                            }
-                        }
-                        Some(contact) => {
-                            active[k] = true;
-                            touching += 1;
-                            let kinematics = ContactKinematics {
-                                overlap: contact.overlap,
-                                normal: contact.normal,
-                                arm1: contact.point - xi,
-                                arm2: contact.point - xj,
-                                linvel1: p.linvel[i],
-                                angvel1: p.angvel[i],
-                                linvel2: p.linvel[j] + offset.velocity,
-                                angvel2: p.angvel[j],
-                            };
-                            let (law, rolling) =
-                                &laws[p.species[i] as usize * ns + p.species[j] as usize];
-                            wrench[k] =
-                                evaluate_pair(law, rolling, &mut history[k], &kinematics, dt);
-                        }
-                    }
+        let chunk = |c: usize,
+                     history: &mut [FastHistory<N, T, R>],
+                     wrench: &mut [PairWrench],
+                     active: &mut [bool],
+                     mut sums: Option<&mut [(Vector3<f64>, Vector3<f64>)]>|
+         -> usize {
+            let base = c * CHUNK;
+            let len = history.len();
+            let (pi, pj, image) = (
+                &pi[base..base + len],
+                &pj[base..base + len],
+                &image[base..base + len],
+            );
+            // Pass 1, the overlap test alone (the exact test `sphere_sphere` makes): collect
+            // the touching pairs of the chunk without a data-dependent branch, and forget the
+            // pairs that separated. Pass 2 runs the law on the touching ones only, so the
+            // unpredictable touch/apart branch of a mixed list is not taken per pair.
+            let mut touching_pairs = [0u16; CHUNK];
+            let mut touching = 0usize;
+            for k in 0..len {
+                let (i, j) = (pi[k] as usize, pj[k] as usize);
+                let xj = p.position[j] + offsets[image[k] as usize].position;
+                let dist2 = (p.position[i] - xj).norm_squared();
+                let reach = p.radius[i] + p.radius[j];
+                let touch = !(dist2 >= reach * reach || dist2 == 0.0);
+                touching_pairs[touching] = k as u16;
+                touching += usize::from(touch);
+                if active[k] & !touch {
+                    // Separated: the plain path drops the entry, so does this one. The
+                    // wrench of an inactive pair is kept at zero, so that the per-particle
+                    // sums need not test `active`.
+                    active[k] = false;
+                    history[k] = Default::default();
+                    wrench[k] = PairWrench::default();
                 }
-                touching
-            })
-            .sum()
+            }
+            for &k in &touching_pairs[..touching] {
+                let k = k as usize;
+                let (i, j) = (pi[k] as usize, pj[k] as usize);
+                let offset = &offsets[image[k] as usize];
+                let xi = &p.position[i];
+                let xj = p.position[j] + offset.position;
+                let Some(contact) = sphere_sphere(xi, p.radius[i], &xj, p.radius[j]) else {
+                    continue; // not reached: pass 1 made the same test
+                };
+                active[k] = true;
+                let kinematics = ContactKinematics {
+                    overlap: contact.overlap,
+                    normal: contact.normal,
+                    arm1: contact.point - xi,
+                    arm2: contact.point - xj,
+                    linvel1: p.linvel[i],
+                    angvel1: p.angvel[i],
+                    linvel2: p.linvel[j] + offset.velocity,
+                    angvel2: p.angvel[j],
+                };
+                let (law, rolling) = &laws[p.species[i] as usize * ns + p.species[j] as usize];
+                let w = evaluate_pair(law, rolling, &mut history[k], &kinematics, dt);
+                wrench[k] = w;
+                if let Some(sums) = sums.as_deref_mut() {
+                    sums[i].0 += w.force;
+                    sums[i].1 += w.torque1;
+                    sums[j].0 += -w.force;
+                    sums[j].1 += w.torque2;
+                }
+            }
+            touching
+        };
+        if serial {
+            let sums = &mut self.sums[..];
+            history
+                .chunks_mut(CHUNK)
+                .zip(wrench.chunks_mut(CHUNK))
+                .zip(active.chunks_mut(CHUNK))
+                .enumerate()
+                .map(|(c, ((history, wrench), active))| {
+                    chunk(c, history, wrench, active, Some(&mut *sums))
+                })
+                .sum()
+        } else {
+            history
+                .par_chunks_mut(CHUNK)
+                .zip(wrench.par_chunks_mut(CHUNK))
+                .zip(active.par_chunks_mut(CHUNK))
+                .enumerate()
+                .map(|(c, ((history, wrench), active))| chunk(c, history, wrench, active, None))
+                .sum()
+        }
     }
 
-    /// Step 3: particle–surface pairs. Returns the number of touching pairs.
+    /// Step 2: particle–surface pairs. Returns the number of touching pairs.
     fn surface_wrenches(
         &mut self,
         bodies: &RigidBodySet,
@@ -626,6 +719,7 @@ where
                         if active[k] {
                             active[k] = false;
                             history[k] = Default::default();
+                            wrench[k] = PairWrench::default();
                         }
                         continue;
                     };
@@ -659,8 +753,10 @@ where
 
     /// Step 4: sum each particle's wrenches in a fixed order and integrate it. Returns the
     /// largest squared displacement since the last build.
-    fn integrate(&mut self, gravity: &Vector3<f64>, dt: f64) -> f64 {
+    fn integrate(&mut self, gravity: &Vector3<f64>, dt: f64, serial: bool) -> f64 {
         let pairs = &self.pairs;
+        let sums = &self.sums;
+        let orientation = self.orientation;
         let sp = &self.surface_pairs;
         let built_at = &self.built_at;
         let FastParticles {
@@ -684,30 +780,11 @@ where
                 let mut max2: f64 = 0.0;
                 for k in 0..x.len() {
                     let i = c * PCHUNK + k;
-                    let mut force = Vector3::zeros();
-                    let mut torque = Vector3::zeros();
-                    for s in sp.start[i] as usize..sp.start[i + 1] as usize {
-                        if sp.active[s] {
-                            force += sp.wrench[s].force;
-                            torque += sp.wrench[s].torque1;
-                        }
-                    }
-                    for &e in &pairs.second
-                        [pairs.second_start[i] as usize..pairs.second_start[i + 1] as usize]
-                    {
-                        let e = e as usize;
-                        if pairs.active[e] {
-                            let w: &PairWrench = &pairs.wrench[e];
-                            force += -w.force;
-                            torque += w.torque2;
-                        }
-                    }
-                    for e in pairs.first[i] as usize..pairs.first[i + 1] as usize {
-                        if pairs.active[e] {
-                            force += pairs.wrench[e].force;
-                            torque += pairs.wrench[e].torque1;
-                        }
-                    }
+                    let (force, torque) = if serial {
+                        sums[i]
+                    } else {
+                        gather(pairs, sp, i)
+                    };
                     let s = &table[species[i] as usize];
                     // rapier: force = user_force + g · m; Δv = force · (1/m) · dt.
                     let total = force + gravity * s.mass;
@@ -715,9 +792,11 @@ where
                     w[k] += torque * s.inv_inertia * dt;
                     x[k] += v[k] * dt;
                     // rapier's linearised rotation update.
-                    let half = w[k] * (dt * 0.5);
-                    let id_plus_half = Rotation::from_xyzw(half.x, half.y, half.z, 1.0);
-                    q[k] = (id_plus_half * q[k]).normalize();
+                    if orientation {
+                        let half = w[k] * (dt * 0.5);
+                        let id_plus_half = Rotation::from_xyzw(half.x, half.y, half.z, 1.0);
+                        q[k] = (id_plus_half * q[k]).normalize();
+                    }
                     max2 = max2.max((x[k] - built_at[i]).norm_squared());
                 }
                 max2
@@ -761,6 +840,30 @@ where
             body.add_torque(to_glam(t), false);
         }
     }
+}
+
+/// The parallel path's per-particle sum: surfaces, then the pairs where `i` is second (in
+/// increasing first particle), then the pairs where `i` is first (increasing second particle),
+/// i.e. pair order. Inactive pairs hold a zero wrench (see the pair loops): no branch on
+/// `active` here.
+#[inline]
+fn gather<H>(pairs: &PairList<H>, sp: &SurfacePairs<H>, i: usize) -> (Vector3<f64>, Vector3<f64>) {
+    let mut force = Vector3::zeros();
+    let mut torque = Vector3::zeros();
+    for w in &sp.wrench[sp.start[i] as usize..sp.start[i + 1] as usize] {
+        force += w.force;
+        torque += w.torque1;
+    }
+    for &e in &pairs.second[pairs.second_start[i] as usize..pairs.second_start[i + 1] as usize] {
+        let w: &PairWrench = &pairs.wrench[e as usize];
+        force += -w.force;
+        torque += w.torque2;
+    }
+    for w in &pairs.wrench[pairs.first[i] as usize..pairs.first[i + 1] as usize] {
+        force += w.force;
+        torque += w.torque1;
+    }
+    (force, torque)
 }
 
 use rapier3d_f64::math::Rotation;

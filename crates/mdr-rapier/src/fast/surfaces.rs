@@ -35,7 +35,7 @@ pub struct SurfacePairs<H> {
     /// Contact history.
     pub history: Vec<H>,
     /// Wrench at the last force evaluation (force on the particle; `torque2` on the surface's
-    /// body).
+    /// body); zero where not `active`.
     pub wrench: Vec<PairWrench>,
     /// `start[i]..start[i + 1]`: the pairs of particle `i`.
     pub start: Vec<u32>,
