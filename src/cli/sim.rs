@@ -58,10 +58,10 @@ impl From<ModeArg> for CouplingMode {
     }
 }
 
-/// Flags of `sim drop`.
+/// Flags shared by `sim drop` and `sim pair`.
 #[derive(Debug, Clone, Args)]
-pub struct DropArgs {
-    /// Impact speed(s) (m/s), comma-separated.
+pub struct ImpactRunArgs {
+    /// Impact speed(s) (m/s), comma-separated; for `pair` the relative approach speed.
     #[arg(
         long,
         value_delimiter = ',',
@@ -72,9 +72,6 @@ pub struct DropArgs {
     /// Coupling mode.
     #[arg(long, value_enum, default_value = "force")]
     pub mode: ModeArg,
-    /// Angle of the impact velocity from the normal (degrees).
-    #[arg(long, default_value_t = 0.0)]
-    pub angle: f64,
     /// Force mode: time steps per Hertz contact time [default: 1000] (same as --steps).
     #[arg(long)]
     pub steps_per_contact: Option<f64>,
@@ -86,29 +83,21 @@ pub struct DropArgs {
     pub common: CommonArgs,
 }
 
+/// Flags of `sim drop`.
+#[derive(Debug, Clone, Args)]
+pub struct DropArgs {
+    /// Angle of the impact velocity from the normal (degrees).
+    #[arg(long, default_value_t = 0.0)]
+    pub angle: f64,
+    #[command(flatten)]
+    pub run: ImpactRunArgs,
+}
+
 /// Flags of `sim pair`. `--target-radius` and `--target-density` default to the particle's.
 #[derive(Debug, Clone, Args)]
 pub struct PairArgs {
-    /// Relative approach speed(s) (m/s), comma-separated.
-    #[arg(
-        long,
-        value_delimiter = ',',
-        required = true,
-        allow_negative_numbers = true
-    )]
-    pub v0: Vec<f64>,
-    /// Coupling mode.
-    #[arg(long, value_enum, default_value = "force")]
-    pub mode: ModeArg,
-    /// Force mode: time steps per Hertz contact time [default: 1000] (same as --steps).
-    #[arg(long)]
-    pub steps_per_contact: Option<f64>,
-    /// Output CSV file, `-` for standard output.
-    #[arg(long, default_value = "-")]
-    pub csv: String,
-    /// Material and law flags, as in `mdr-dem impact` (and the same `--config` file keys).
     #[command(flatten)]
-    pub common: CommonArgs,
+    pub run: ImpactRunArgs,
 }
 
 /// Default time steps per Hertz contact time in rapier (1 % accuracy needs ≳ 50; 1,000 gives
@@ -241,28 +230,22 @@ fn scene_error(e: CouplingError) -> anyhow::Error {
 }
 
 fn run_drop(args: &DropArgs) -> anyhow::Result<()> {
-    let settings = SceneSettings::resolve(&args.common, args.steps_per_contact, false)?;
-    let rows = args
-        .v0
-        .iter()
-        .map(|&v| {
-            settings
-                .scene(v, args.angle)
-                .run(args.mode.into())
-                .map_err(scene_error)
-        })
-        .collect::<anyhow::Result<Vec<_>>>()?;
-    write_csv(&args.csv, &rows)
+    run_impacts(&args.run, false, args.angle)
 }
 
 fn run_pair(args: &PairArgs) -> anyhow::Result<()> {
-    let settings = SceneSettings::resolve(&args.common, args.steps_per_contact, true)?;
+    run_impacts(&args.run, true, 0.0)
+}
+
+/// One rapier impact per `--v0`, at a half-space or (`sphere_target`) a free sphere.
+fn run_impacts(args: &ImpactRunArgs, sphere_target: bool, angle: f64) -> anyhow::Result<()> {
+    let settings = SceneSettings::resolve(&args.common, args.steps_per_contact, sphere_target)?;
     let rows = args
         .v0
         .iter()
         .map(|&v| {
             settings
-                .scene(v, 0.0)
+                .scene(v, angle)
                 .run(args.mode.into())
                 .map_err(scene_error)
         })
