@@ -249,11 +249,9 @@ where
         world: &mut PhysicsWorld,
         sphere: SphereBuilder,
     ) -> Result<(RigidBodyHandle, ColliderHandle)> {
-        let (body, collider) = sphere.builders(&self.particles)?;
-        let (b, c) = world.insert(body, collider.solver_groups(InteractionGroups::none()));
-        self.particles
-            .register_sphere(&world.colliders, c, sphere.material)?;
-        Ok((b, c))
+        self.particles.insert_sphere_flagged(world, sphere, |c| {
+            c.solver_groups(InteractionGroups::none())
+        })
     }
 
     /// Insert a collider of any shape (a wall, a box, a mesh …), optionally on a body, with
@@ -265,11 +263,10 @@ where
         parent: Option<RigidBodyHandle>,
         material: MaterialHandle,
     ) -> Result<ColliderHandle> {
-        self.particles.material(material)?;
-        let c = world.insert_collider(collider.solver_groups(InteractionGroups::none()), parent);
         self.particles
-            .register_surface(&world.colliders, c, material)?;
-        Ok(c)
+            .insert_surface_flagged(world, collider, parent, material, |c| {
+                c.solver_groups(InteractionGroups::none())
+            })
     }
 
     /// One coupled step of `world`: forces from the current poses, then `world.step()`.

@@ -145,6 +145,36 @@ impl ParticleSet {
         Ok(())
     }
 
+    /// Insert `sphere` (a dynamic body and its ball collider, the collider prepared by `flag`:
+    /// the coupling's impulse or hook flags) into `world` and register it.
+    pub(crate) fn insert_sphere_flagged(
+        &mut self,
+        world: &mut PhysicsWorld,
+        sphere: SphereBuilder,
+        flag: impl FnOnce(ColliderBuilder) -> ColliderBuilder,
+    ) -> Result<(RigidBodyHandle, ColliderHandle)> {
+        let (body, collider) = sphere.builders(self)?;
+        let (b, c) = world.insert(body, flag(collider));
+        self.register_sphere(&world.colliders, c, sphere.material)?;
+        Ok((b, c))
+    }
+
+    /// Insert `collider` (any shape, optionally on `parent`, prepared by `flag`) into `world` and
+    /// register it as a surface of `material`.
+    pub(crate) fn insert_surface_flagged(
+        &mut self,
+        world: &mut PhysicsWorld,
+        collider: ColliderBuilder,
+        parent: Option<RigidBodyHandle>,
+        material: MaterialHandle,
+        flag: impl FnOnce(ColliderBuilder) -> ColliderBuilder,
+    ) -> Result<ColliderHandle> {
+        self.material(material)?;
+        let c = world.insert_collider(flag(collider), parent);
+        self.register_surface(&world.colliders, c, material)?;
+        Ok(c)
+    }
+
     fn insert(&mut self, particle: Particle) {
         let index = particle.collider.into_raw_parts().0 as usize;
         if index >= self.slots.len() {

@@ -258,14 +258,9 @@ impl RestitutionHooks {
         world: &mut PhysicsWorld,
         sphere: SphereBuilder,
     ) -> Result<(RigidBodyHandle, ColliderHandle)> {
-        let (body, collider) = sphere.builders(&self.particles)?;
-        let (b, c) = world.insert(
-            body,
-            collider.active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS),
-        );
-        self.particles
-            .register_sphere(&world.colliders, c, sphere.material)?;
-        Ok((b, c))
+        self.particles.insert_sphere_flagged(world, sphere, |c| {
+            c.active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS)
+        })
     }
 
     /// Insert a collider of any shape as a surface of `material`, optionally on a body.
@@ -276,14 +271,10 @@ impl RestitutionHooks {
         parent: Option<RigidBodyHandle>,
         material: MaterialHandle,
     ) -> Result<ColliderHandle> {
-        self.particles.material(material)?;
-        let c = world.insert_collider(
-            collider.active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS),
-            parent,
-        );
         self.particles
-            .register_surface(&world.colliders, c, material)?;
-        Ok(c)
+            .insert_surface_flagged(world, collider, parent, material, |c| {
+                c.active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS)
+            })
     }
 
     /// One step of `world` with these hooks, then [`RestitutionHooks::maintain`].
