@@ -4,16 +4,9 @@
 
 use anyhow::{bail, Context};
 use clap::{Args, Subcommand, ValueEnum};
-use mdr_contact::damping::HertzianViscous;
-use mdr_contact::model::ContactModel;
 use mdr_contact::normal::{Hertz, MdrElastoPlastic, NormalLaw, NormalModel};
-use mdr_contact::tangential::Mindlin;
-use mdr_contact::Material;
-use mdr_rapier::fast::bed::{settled_bed, Bed, BedSpec};
+use mdr_rapier::fast::bed::{reference_system, settled_bed, Bed, BedSpec};
 use mdr_rapier::fast::rayon;
-use mdr_rapier::fast::{Boundary, FastForceStepper};
-use mdr_rapier::rapier::prelude::*;
-use mdr_rapier::SphereBuilder;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -273,29 +266,7 @@ where
     N: NormalModel,
     N::Law: Clone,
 {
-    let boundary = Boundary::periodic_xy((bed.lo[0], bed.hi[0]), (bed.lo[1], bed.hi[1]))?;
-    let model = ContactModel::new(normal)
-        .with_tangential(Mindlin::new(0.5)?)
-        .with_damping(HertzianViscous::new(50.0)?);
-    let mut stepper = FastForceStepper::new(model, boundary)
-        .skin(args.skin)?
-        .track_orientation(!args.no_orientation);
-    let grain = stepper.insert_material(Material::new(1.0, 0.3, 1.0)?);
-    // kn = 2e5 ⇔ (4/3) E* = kn; LAMMPS NULL kt = 2/7 kn and k_t = 2 G* a ⇔ G* = kt / 2.
-    stepper.set_pair_moduli(grain, grain, 1.5e5, 2.0e5 / 7.0)?;
-    let mut world = PhysicsWorld {
-        gravity: Vector::new(0.0, 0.0, -1.0),
-        ..PhysicsWorld::default()
-    };
-    stepper.configure(&mut world.integration_parameters, 1e-4)?;
-    stepper.insert_surface(
-        &mut world,
-        ColliderBuilder::new(SharedShape::halfspace(Vector::Z)),
-        None,
-        grain,
-    )?;
-    for (i, p) in bed.position.iter().enumerate() {
-        let material = grain;
+    for i in 0..bed.len() {
         if (bed.diameter[i] - 1.0).abs() > 1e-12 || (bed.density[i] - 1.0).abs() > 1e-12 {
             bail!(
                 "sphere {} has diameter {} and density {}: `bench bed` expects the reference bed \
@@ -305,11 +276,11 @@ where
                 bed.density[i]
             );
         }
-        stepper.insert_sphere(
-            SphereBuilder::new(0.5 * bed.diameter[i], material)
-                .translation(Vector::new(p.x, p.y, p.z)),
-        )?;
     }
+    let (stepper, mut world) = reference_system(normal, bed)?;
+    let mut stepper = stepper
+        .skin(args.skin)?
+        .track_orientation(!args.no_orientation);
     for _ in 0..args.warmup {
         stepper.step(&mut world)?;
     }

@@ -7,7 +7,7 @@ use crate::error::{positive, CouplingError, Result};
 use crate::particles::SphereBuilder;
 use mdr_contact::damping::HertzianViscous;
 use mdr_contact::model::ContactModel;
-use mdr_contact::normal::Hertz;
+use mdr_contact::normal::{Hertz, NormalModel};
 use mdr_contact::tangential::Mindlin;
 use mdr_contact::Material;
 use nalgebra::Vector3;
@@ -308,17 +308,27 @@ pub fn lattice_bed(spec: &BedSpec) -> Result<Bed, BedError> {
     Ok(bed)
 }
 
-/// Pour a [`lattice_bed`] onto the floor and settle it with the reference Hertz system (fast
-/// path); returns the settled bed (positions only).
-pub fn settled_bed(spec: &BedSpec) -> Result<Bed, BedError> {
-    let mut bed = lattice_bed(spec)?;
+/// The reference system of `../shared/bench/lammps/in.bench` (`hertzhist`) on `bed`, with
+/// normal law `normal`: diameter-1, density-1 spheres, Mindlin `μ = 0.5`, normal damping
+/// `γn = 50`, `kn = 2e5` (`E* = 1.5e5`) and LAMMPS's `kt = 2/7 kn` (`G* = kt/2`), the floor
+/// `z = 0` as a rapier half-space, `g = 1` along −z, `dt = 1e-4`, x/y periodic over the bed's box
+/// (docs/performance.md). Returns the stepper (skin 0.1) and the rapier world.
+#[allow(clippy::type_complexity)]
+pub fn reference_system<N>(
+    normal: N,
+    bed: &Bed,
+) -> Result<(FastForceStepper<N, Mindlin, HertzianViscous>, PhysicsWorld)>
+where
+    N: NormalModel,
+    N::Law: Clone,
+{
     let boundary = Boundary::periodic_xy((bed.lo[0], bed.hi[0]), (bed.lo[1], bed.hi[1]))?;
-    let model = ContactModel::new(Hertz)
-        .with_tangential(Mindlin::new(0.5).map_err(CouplingError::from)?)
-        .with_damping(HertzianViscous::new(50.0).map_err(CouplingError::from)?);
-    let mut stepper = FastForceStepper::new(model, boundary);
-    let grain = stepper.insert_material(Material::new(1.0, 0.3, 1.0).map_err(CouplingError::from)?);
-    // kn = 2e5 ⇔ E* = 3/4 kn; kt = 2/7 kn ⇔ G* = kt / 2 (docs/performance.md).
+    let model = ContactModel::new(normal)
+        .with_tangential(Mindlin::new(0.5)?)
+        .with_damping(HertzianViscous::new(50.0)?);
+    let mut stepper = FastForceStepper::new(model, boundary).skin(0.1)?;
+    let grain = stepper.insert_material(Material::new(1.0, 0.3, 1.0)?);
+    // kn = 2e5 ⇔ (4/3) E* = kn; LAMMPS NULL kt = 2/7 kn and k_t = 2 G* a ⇔ G* = kt / 2.
     stepper.set_pair_moduli(grain, grain, 1.5e5, 2.0e5 / 7.0)?;
     let mut world = PhysicsWorld {
         gravity: Vector::new(0.0, 0.0, -1.0),
@@ -331,12 +341,20 @@ pub fn settled_bed(spec: &BedSpec) -> Result<Bed, BedError> {
         None,
         grain,
     )?;
-    for p in &bed.position {
+    for (i, p) in bed.position.iter().enumerate() {
         stepper.insert_sphere(
-            SphereBuilder::new(0.5, grain).translation(Vector::new(p.x, p.y, p.z)),
+            SphereBuilder::new(0.5 * bed.diameter[i], grain)
+                .translation(Vector::new(p.x, p.y, p.z)),
         )?;
     }
-    let mut stepper = stepper.skin(0.1)?;
+    Ok((stepper, world))
+}
+
+/// Pour a [`lattice_bed`] onto the floor and settle it with the reference Hertz system
+/// ([`reference_system`]); returns the settled bed (positions only).
+pub fn settled_bed(spec: &BedSpec) -> Result<Bed, BedError> {
+    let mut bed = lattice_bed(spec)?;
+    let (mut stepper, mut world) = reference_system(Hertz, &bed)?;
     for _ in 0..spec.settle_steps {
         stepper.step(&mut world)?;
     }
