@@ -15,7 +15,7 @@
 use crate::convert::{to_glam, to_na};
 use crate::error::{positive, Result};
 use crate::geometry::{sphere_shape, sphere_sphere, SurfaceContact};
-use crate::kernel::{evaluate_pair, ContactKinematics, PairHistory, PairWrench};
+use crate::kernel::{evaluate_pair, Arms, ContactKinematics, PairHistory, PairWrench};
 use crate::particles::{MaterialHandle, ParticleSet, ParticleShape, SphereBuilder};
 use crate::store::{ContactStore, Keyed, PairKey};
 use mdr_contact::damping::{DampingModel, NoDamping};
@@ -512,8 +512,10 @@ fn kinematics(
     ContactKinematics {
         overlap: contact.overlap,
         normal: contact.normal,
-        arm1: contact.point - to_na(b1.center_of_mass()),
-        arm2,
+        arms: Arms {
+            arm1: contact.point - to_na(b1.center_of_mass()),
+            arm2,
+        },
         linvel1: to_na(b1.linvel()),
         angvel1: to_na(b1.angvel()),
         linvel2,

@@ -9,17 +9,88 @@ use mdr_contact::rolling::{RollingInput, RollingLaw};
 use mdr_contact::tangential::TangentialLaw;
 use nalgebra::Vector3;
 
-/// Kinematics of one touching pair at the start of the step.
+/// Where the contact point sits relative to the two centres of mass: it decides the contact
+/// point's velocity and the torques of the contact force.
+pub trait LeverArms: Copy {
+    /// `ω₁ × r₁ − ω₂ × r₂`: the rotational part of body 1's contact-point velocity relative to
+    /// body 2's (m/s).
+    fn rotational_velocity(
+        &self,
+        normal: &Vector3<f64>,
+        angvel1: &Vector3<f64>,
+        angvel2: &Vector3<f64>,
+    ) -> Vector3<f64>;
+    /// Torques `(r₁ × F, r₂ × (−F))` of the force `F` on body 1 (and `−F` on body 2) (N·m).
+    fn torques(&self, normal: &Vector3<f64>, force: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>);
+}
+
+/// Lever arms of any contact: the contact point minus each centre of mass.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ContactKinematics {
-    /// Overlap `δ` (m), > 0.
-    pub overlap: f64,
-    /// Unit normal from body 2 towards body 1.
-    pub normal: Vector3<f64>,
+pub struct Arms {
     /// Contact point minus the centre of mass of body 1 (m).
     pub arm1: Vector3<f64>,
     /// Contact point minus the centre of mass of body 2 (m); zero for a body-less collider.
     pub arm2: Vector3<f64>,
+}
+
+impl LeverArms for Arms {
+    #[inline(always)]
+    fn rotational_velocity(
+        &self,
+        _: &Vector3<f64>,
+        angvel1: &Vector3<f64>,
+        angvel2: &Vector3<f64>,
+    ) -> Vector3<f64> {
+        angvel1.cross(&self.arm1) - angvel2.cross(&self.arm2)
+    }
+
+    #[inline(always)]
+    fn torques(&self, _: &Vector3<f64>, force: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+        (self.arm1.cross(force), self.arm2.cross(&(-force)))
+    }
+}
+
+/// Lever arms of two spheres: the contact point lies on the line of centres, at `lever1` from
+/// centre 1 against the normal and `lever2` from centre 2 along it (for an overlap `δ`,
+/// `lever = r − δ/2`, the mid-overlap point of [`crate::geometry::sphere_sphere`]). Then
+/// `r₁ = −lever1 n`, `r₂ = lever2 n`, so `ω₁ × r₁ − ω₂ × r₂ = −(lever1 ω₁ + lever2 ω₂) × n` and
+/// both torques are multiples of `n × F` (`−lever1 n × F` and `−lever2 n × F`): one cross
+/// product each instead of two.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SphereArms {
+    /// Distance from centre 1 to the contact point (m).
+    pub lever1: f64,
+    /// Distance from centre 2 to the contact point (m).
+    pub lever2: f64,
+}
+
+impl LeverArms for SphereArms {
+    #[inline(always)]
+    fn rotational_velocity(
+        &self,
+        normal: &Vector3<f64>,
+        angvel1: &Vector3<f64>,
+        angvel2: &Vector3<f64>,
+    ) -> Vector3<f64> {
+        -(angvel1 * self.lever1 + angvel2 * self.lever2).cross(normal)
+    }
+
+    #[inline(always)]
+    fn torques(&self, normal: &Vector3<f64>, force: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+        let moment = normal.cross(force);
+        (moment * -self.lever1, moment * -self.lever2)
+    }
+}
+
+/// Kinematics of one touching pair at the start of the step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactKinematics<A: LeverArms = Arms> {
+    /// Overlap `δ` (m), > 0.
+    pub overlap: f64,
+    /// Unit normal from body 2 towards body 1.
+    pub normal: Vector3<f64>,
+    /// Where the contact point sits relative to the centres of mass.
+    pub arms: A,
     /// Velocity of body 1's centre of mass (m/s).
     pub linvel1: Vector3<f64>,
     /// Angular velocity of body 1 (rad/s).
@@ -30,12 +101,14 @@ pub struct ContactKinematics {
     pub angvel2: Vector3<f64>,
 }
 
-impl ContactKinematics {
+impl<A: LeverArms> ContactKinematics<A> {
     /// Velocity of body 1 relative to body 2 at the contact point (m/s).
-    #[inline]
+    #[inline(always)]
     pub fn relative_velocity(&self) -> Vector3<f64> {
-        (self.linvel1 + self.angvel1.cross(&self.arm1))
-            - (self.linvel2 + self.angvel2.cross(&self.arm2))
+        (self.linvel1 - self.linvel2)
+            + self
+                .arms
+                .rotational_velocity(&self.normal, &self.angvel1, &self.angvel2)
     }
 }
 
@@ -62,14 +135,15 @@ pub struct PairHistory<S, RS> {
 /// One contact, one step: the law crate's [`ContactLaw::update`] (normal MDR, tangential Mindlin,
 /// damping) and the rolling law, turned into a force and two torques.
 #[inline(always)]
-pub fn evaluate_pair<NL, TL, DL, RL>(
+pub fn evaluate_pair<NL, TL, DL, RL, A>(
     law: &ContactLaw<NL, TL, DL>,
     rolling: &RL,
     history: &mut PairHistory<StateOf<NL, TL>, RL::State>,
-    kinematics: &ContactKinematics,
+    kinematics: &ContactKinematics<A>,
     dt: f64,
 ) -> PairWrench
 where
+    A: LeverArms,
     NL: NormalLaw,
     TL: TangentialLaw,
     DL: DampingLaw,
@@ -94,9 +168,10 @@ where
         },
     );
     let force = output.force;
+    let (torque1, torque2) = kinematics.arms.torques(&kinematics.normal, &force);
     PairWrench {
         force,
-        torque1: kinematics.arm1.cross(&force) + roll.torque,
-        torque2: kinematics.arm2.cross(&(-force)) - roll.torque,
+        torque1: torque1 + roll.torque,
+        torque2: torque2 - roll.torque,
     }
 }
