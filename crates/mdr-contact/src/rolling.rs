@@ -160,6 +160,32 @@ impl EpsdRollingState {
     }
 }
 
+impl EpsdRollingState {
+    /// Energy the spring gains without work when an update changes its stiffness from
+    /// `previous_stiffness` to `stiffness` while it carries a torque of squared length
+    /// `torque_len2` (J; negative when it loses energy): `½|M|² (1/k_r − 1/k_r,prev)`.
+    ///
+    /// The law is written in forces (`M ← M − k_r Δθ`), so the update keeps the torque while
+    /// `k_r = 2.25 μ_r² R² k_n` follows the normal law's tangent stiffness; the stored energy
+    /// `|M|²/(2 k_r)` then changes with no rotation. The rest of the update satisfies
+    /// `|M'−k_rΔθ|²/(2k_r) − |M'|²/(2k_r) = −M'·Δθ + ½k_r|Δθ|²` (docs/theory.md, "Energy books
+    /// of the incremental springs"). Pass the stiffness the update stored: 0 when it dropped the
+    /// spring (the contact opened), where the law already booked what the spring held as
+    /// dissipated, so this returns 0 then. Not called by [`RollingLaw::update`]: the energy books
+    /// call it with the state before the update, so the hot loop pays nothing for it.
+    pub fn stiffness_energy_change(
+        torque_len2: f64,
+        previous_stiffness: f64,
+        stiffness: f64,
+    ) -> f64 {
+        if previous_stiffness > 0.0 && stiffness > 0.0 {
+            0.5 * torque_len2 * (1.0 / stiffness - 1.0 / previous_stiffness)
+        } else {
+            0.0
+        }
+    }
+}
+
 impl RollingLaw for EpsdRollingLaw {
     type State = EpsdRollingState;
 

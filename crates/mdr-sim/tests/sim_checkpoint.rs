@@ -157,18 +157,26 @@ fn damaged_and_foreign_checkpoints_are_refused() {
         "{e}"
     );
 
-    // A checkpoint of the first format (before the rolling books and rapier's world).
-    let mut version = bytes.clone();
-    version[8] = 1;
-    std::fs::write(&p, &version).unwrap();
-    let e = resume(&p).unwrap_err();
-    assert!(
-        matches!(
-            e,
-            SimError::Checkpoint(CheckpointError::Version { found: 1, .. })
-        ),
-        "{e}"
-    );
+    // Checkpoints of the earlier formats (1: before the rolling books and rapier's world; 2:
+    // before the springs' stiffness books) are refused with both versions named.
+    for old in [1u8, 2] {
+        let mut version = bytes.clone();
+        version[8] = old;
+        std::fs::write(&p, &version).unwrap();
+        let e = resume(&p).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                SimError::Checkpoint(CheckpointError::Version { found, expected: 3, .. })
+                    if found == u32::from(old)
+            ),
+            "{e}"
+        );
+        assert!(
+            e.to_string().contains(&format!("format version {old}")),
+            "{e}"
+        );
+    }
 
     // A checkpoint of another scene (other seed, so other placement): refused.
     let other_text = text.replace("seed = 5", "seed = 6");

@@ -100,6 +100,58 @@ impl MindlinLaw {
     }
 }
 
+impl MindlinLaw {
+    /// The factor `r_num / r_den` by which an update at contact radius `a` scales the stored
+    /// displacement of a contact whose previous radius was `previous_radius` (see
+    /// [`MindlinForm`] and [`Mindlin::rescale_on_unloading`]); `(1, 1)` when it is kept.
+    #[inline(always)]
+    fn rescale(&self, previous_radius: f64, a: f64) -> (f64, f64) {
+        let shrinking_rescaled = self.rescale_on_unloading && a < previous_radius;
+        match self.form {
+            // F = k(a) ξ: rescaling ξ by a/a_prev on unloading keeps the released energy
+            // below the stored one.
+            MindlinForm::Displacement if previous_radius > 0.0 && shrinking_rescaled => {
+                (a, previous_radius)
+            }
+            // Keep the force k(a_prev) ξ (scaled by a/a_prev on unloading when rescaling)
+            // and store it as the equivalent displacement at the new stiffness.
+            MindlinForm::Force if previous_radius > 0.0 && !shrinking_rescaled => {
+                (previous_radius, a)
+            }
+            _ => (1.0, 1.0),
+        }
+    }
+
+    /// Energy the spring gains without work when an update at contact radius `contact_radius`
+    /// starts from a stored displacement of squared length `displacement_len2` held at
+    /// `previous_radius` (J; negative when it loses energy): `½ k_t(a) |ξ'|² − ½ k_t(a_prev) |ξ|²`,
+    /// where `ξ'` is the displacement the update carries over (rotated into the new contact
+    /// plane at its length, times the radius rescale of [`MindlinForm`]). The update then adds
+    /// the displacement increment to `ξ'` at the stiffness `k_t(a)`; the work identity of that
+    /// part is `½k|ξ'+Δu|² − ½k|ξ'|² = −F'·Δu + ½k|Δu|²` (`F' = −k ξ'`). Not called by
+    /// [`TangentialLaw::update`] (the hot loop pays nothing for it): the energy books call it with
+    /// the state before the update (docs/theory.md, "Energy books of the incremental springs").
+    /// A contact that opens (`a ≤ 0`) releases the whole `½ k_t(a_prev) |ξ|²`: the update drops
+    /// the spring.
+    pub fn stiffness_energy_change(
+        &self,
+        displacement_len2: f64,
+        previous_radius: f64,
+        contact_radius: f64,
+    ) -> f64 {
+        let before = 0.5 * self.stiffness(previous_radius) * displacement_len2;
+        if contact_radius <= 0.0 {
+            return -before;
+        }
+        if displacement_len2 <= 0.0 {
+            return 0.0;
+        }
+        let (r_num, r_den) = self.rescale(previous_radius, contact_radius);
+        let ratio = r_num / r_den;
+        0.5 * self.stiffness(contact_radius) * displacement_len2 * ratio * ratio - before
+    }
+}
+
 impl TangentialLaw for MindlinLaw {
     type State = MindlinState;
 
@@ -127,23 +179,7 @@ impl TangentialLaw for MindlinLaw {
         let old_len2 = xi.norm_squared();
         if old_len2 > 0.0 {
             // The radius rescale r_num/r_den (ξ = 0 needs none).
-            let (r_num, r_den) = {
-                let previous_radius = state.contact_radius;
-                let shrinking_rescaled = self.rescale_on_unloading && a < previous_radius;
-                match self.form {
-                    // F = k(a) ξ: rescaling ξ by a/a_prev on unloading keeps the released energy
-                    // below the stored one.
-                    MindlinForm::Displacement if previous_radius > 0.0 && shrinking_rescaled => {
-                        (a, previous_radius)
-                    }
-                    // Keep the force k(a_prev) ξ (scaled by a/a_prev on unloading when rescaling)
-                    // and store it as the equivalent displacement at the new stiffness.
-                    MindlinForm::Force if previous_radius > 0.0 && !shrinking_rescaled => {
-                        (previous_radius, a)
-                    }
-                    _ => (1.0, 1.0),
-                }
-            };
+            let (r_num, r_den) = self.rescale(state.contact_radius, a);
             xi -= n * n.dot(&xi);
             let new_len2 = xi.norm_squared();
             if new_len2 > 0.0 {

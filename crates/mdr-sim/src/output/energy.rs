@@ -1,8 +1,13 @@
 //! The energy books: where the energy of a run is at one time, and the CSV time series.
 //!
 //! With no external work the sum `kinetic + rotational + gravitational + elastic (normal,
-//! tangential, rolling) + plastic + friction + damping + rolling` is constant up to the time-integration error; a kinematic wall's work on
-//! the particles is booked in `wall_work_j` and subtracted, so `balance_j` stays constant then too.
+//! tangential, rolling) + plastic + friction + damping + rolling + stiffness (tangential,
+//! rolling)` is constant up to the time-integration error; a kinematic wall's work on the
+//! particles is booked in `wall_work_j` and subtracted, so `balance_j` stays constant then too.
+//! The two stiffness books hold the energy the incremental tangential and rolling springs lose
+//! without work, because their stiffness follows the contact while they carry a fixed
+//! displacement (Mindlin) or torque (rolling); docs/theory.md, "Energy books of the incremental
+//! springs".
 
 use super::atomic::write_atomic;
 use serde::{Deserialize, Serialize};
@@ -42,6 +47,17 @@ pub struct EnergyRow {
     /// Work dissipated by rolling resistance since the start (J).
     #[serde(default)]
     pub rolling_j: f64,
+    /// Energy the tangential (Mindlin) springs lost since the start without work (J; negative
+    /// when they gained it): through changes of `k_t = 2 G* a` at a fixed displacement, the
+    /// displacement's rescale when the contact shrinks, and what a spring held when its contact
+    /// opened. (Added after `rolling_j`.)
+    #[serde(default)]
+    pub stiffness_tangential_j: f64,
+    /// Energy the rolling springs lost since the start without work (J; negative when they
+    /// gained it): through changes of `k_r ∝ k_n` (the normal law's tangent stiffness) at a
+    /// fixed torque.
+    #[serde(default)]
+    pub stiffness_rolling_j: f64,
 }
 
 impl EnergyRow {
@@ -57,6 +73,8 @@ impl EnergyRow {
             + self.damping_j
             + self.elastic_rolling_j
             + self.rolling_j
+            + self.stiffness_tangential_j
+            + self.stiffness_rolling_j
             - self.wall_work_j;
         self
     }
@@ -90,6 +108,8 @@ pub fn write_csv(path: &Path, rows: &[EnergyRow]) -> std::io::Result<()> {
                 "contacts",
                 "elastic_rolling_j",
                 "rolling_j",
+                "stiffness_tangential_j",
+                "stiffness_rolling_j",
             ])
             .map_err(std::io::Error::other)?;
     }
@@ -132,6 +152,8 @@ mod tests {
         assert_eq!(rows[0].contacts, 3);
         assert_eq!(rows[0].elastic_rolling_j, 0.0);
         assert_eq!(rows[0].rolling_j, 0.0);
+        assert_eq!(rows[0].stiffness_tangential_j, 0.0);
+        assert_eq!(rows[0].stiffness_rolling_j, 0.0);
         assert_eq!(rows[0].with_balance().balance_j, 27.0);
 
         let row = EnergyRow {
@@ -139,21 +161,22 @@ mod tests {
             kinetic_translational_j: 1.0,
             elastic_rolling_j: 0.125,
             rolling_j: 0.5,
+            stiffness_tangential_j: 0.25,
+            stiffness_rolling_j: -0.0625,
             contacts: 2,
             ..EnergyRow::default()
         }
         .with_balance();
-        assert_eq!(row.balance_j, 1.625);
+        assert_eq!(row.balance_j, 1.8125);
         let new = dir.join("new.csv");
         write_csv(&new, &[row]).unwrap();
         let text = std::fs::read_to_string(&new).unwrap();
         assert!(
             text.starts_with("time_s,")
-                && text
-                    .lines()
-                    .next()
-                    .unwrap()
-                    .ends_with("balance_j,contacts,elastic_rolling_j,rolling_j"),
+                && text.lines().next().unwrap().ends_with(
+                    "balance_j,contacts,elastic_rolling_j,rolling_j,\
+                         stiffness_tangential_j,stiffness_rolling_j"
+                ),
             "{text}"
         );
         assert_eq!(read_csv(&new).unwrap(), vec![row]);

@@ -101,6 +101,10 @@ pub fn write_energy_plot(path: &Path, title: &str, rows: &[EnergyRow]) -> std::i
         ("friction", col(|r| r.friction_j)),
         ("damping", col(|r| r.damping_j)),
         ("rolling", col(|r| r.rolling_j)),
+        (
+            "stiffness",
+            col(|r| r.stiffness_tangential_j + r.stiffness_rolling_j),
+        ),
         ("wall work", col(|r| r.wall_work_j)),
         ("balance", col(|r| r.balance_j)),
     ];

@@ -549,6 +549,8 @@ impl<'a> Sim<'a> {
         row.friction_j = self.books.friction;
         row.damping_j = self.books.damping;
         row.rolling_j = self.books.rolling;
+        row.stiffness_tangential_j = self.books.stiffness_tangential;
+        row.stiffness_rolling_j = self.books.stiffness_rolling;
         row.wall_work_j = self.books.wall_work;
         row.with_balance()
     }

@@ -32,11 +32,41 @@ pub struct Books {
     pub rolling: f64,
     /// Work of kinematic walls on the particles since the start (J).
     pub wall_work: f64,
-    /// `(pair key, plastic, friction, damping, rolling)` work of every touching pair at the
-    /// last update, sorted by key.
-    pub last: Vec<(u64, f64, f64, f64, f64)>,
+    /// Energy the tangential springs lost without work since the start (J; negative when
+    /// gained): stiffness changes at fixed displacement, the rescale of a shrinking contact,
+    /// and what a spring held when its contact opened.
+    pub stiffness_tangential: f64,
+    /// Energy the rolling springs lost without work since the start (J; negative when gained):
+    /// stiffness changes at fixed torque.
+    pub stiffness_rolling: f64,
+    /// Every touching pair at the last update, sorted by key: its work books and the spring
+    /// states the next update starts from.
+    pub last: Vec<PairBooks>,
     /// Plastic work per particle (J).
     pub particle_plastic: Vec<f64>,
+}
+
+/// What the books keep of one touching pair between updates.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct PairBooks {
+    /// Pair key.
+    pub key: u64,
+    /// Plastic work of the pair so far (J).
+    pub plastic: f64,
+    /// Friction work (J).
+    pub friction: f64,
+    /// Damping work (J).
+    pub damping: f64,
+    /// Rolling work (J).
+    pub rolling: f64,
+    /// `|ξ|²` of the Mindlin spring after the update (m²).
+    pub displacement_len2: f64,
+    /// Contact radius the Mindlin spring was stored at (m; 0 when it holds nothing).
+    pub contact_radius: f64,
+    /// `|M_r|²` of the rolling spring after the update ((N·m)²).
+    pub torque_len2: f64,
+    /// Stiffness of the rolling spring after the update (N·m/rad; 0 when it holds nothing).
+    pub rolling_stiffness: f64,
 }
 
 impl Books {
@@ -67,20 +97,34 @@ impl Books {
         };
         for e in entries {
             let key = e.key.0;
-            while j < self.last.len() && self.last[j].0 < key {
+            while j < self.last.len() && self.last[j].key < key {
                 j += 1;
             }
             let prev = match self.last.get(j) {
-                Some(l) if l.0 == key => (l.1, l.2, l.3, l.4),
-                _ => (0.0, 0.0, 0.0, 0.0),
+                Some(l) if l.key == key => *l,
+                _ => PairBooks::default(),
             };
             let report = e.law.report(&e.history.contact, e.contact.overlap);
             let rolling_work = e.rolling.dissipated_work(&e.history.rolling);
-            let dp = report.plastic_work - prev.0;
+            let dp = report.plastic_work - prev.plastic;
             self.plastic += dp;
-            self.friction += report.friction_work - prev.1;
-            self.damping += report.damping_work - prev.2;
-            self.rolling += rolling_work - prev.3;
+            self.friction += report.friction_work - prev.friction;
+            self.damping += report.damping_work - prev.damping;
+            self.rolling += rolling_work - prev.rolling;
+            // The springs' energy change without work in this update, from the state the update
+            // started from (docs/theory.md, "Energy books of the incremental springs").
+            let tangential = &e.history.contact.tangential;
+            let rolling = &e.history.rolling;
+            self.stiffness_tangential -= e.law.tangential.stiffness_energy_change(
+                prev.displacement_len2,
+                prev.contact_radius,
+                tangential.contact_radius,
+            );
+            self.stiffness_rolling -= EpsdRollingState::stiffness_energy_change(
+                prev.torque_len2,
+                prev.rolling_stiffness,
+                rolling.stiffness,
+            );
             if dp != 0.0 {
                 match (particle(e.collider1), particle(e.collider2)) {
                     (Some(a), Some(b)) => {
@@ -104,13 +148,17 @@ impl Books {
                     }
                 }
             }
-            next.push((
+            next.push(PairBooks {
                 key,
-                report.plastic_work,
-                report.friction_work,
-                report.damping_work,
-                rolling_work,
-            ));
+                plastic: report.plastic_work,
+                friction: report.friction_work,
+                damping: report.damping_work,
+                rolling: rolling_work,
+                displacement_len2: tangential.displacement.norm_squared(),
+                contact_radius: tangential.contact_radius,
+                torque_len2: rolling.torque.norm_squared(),
+                rolling_stiffness: rolling.stiffness,
+            });
         }
         self.last = next;
     }
