@@ -185,6 +185,21 @@ struct BedFigures {
     stepper_bytes_per_particle: f64,
     /// Whether orientations were integrated (`--no-orientation` turns it off).
     orientation: bool,
+    /// FNV-1a hash (hex) of the bits of every particle's final position, velocity and angular
+    /// velocity: two builds (or thread counts) gave the same trajectories iff it is the same.
+    state_checksum: String,
+}
+
+/// FNV-1a (64 bit) over the bit patterns of `values`.
+fn fnv1a(values: impl Iterator<Item = f64>) -> u64 {
+    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    for v in values {
+        for byte in v.to_bits().to_le_bytes() {
+            hash ^= u64::from(byte);
+            hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    hash
 }
 
 fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
@@ -252,6 +267,7 @@ fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
             "  peak RSS {:.1} MB; stepper buffers {:.0} bytes per particle; {} neighbour-list builds",
             figures.peak_rss_mb, figures.stepper_bytes_per_particle, figures.rebuilds
         );
+        println!("  final state checksum {}", figures.state_checksum);
     }
     Ok(())
 }
@@ -330,5 +346,10 @@ where
             0.0
         },
         stepper_bytes_per_particle: stepper.memory_bytes() as f64 / n as f64,
+        state_checksum: {
+            let p = stepper.particles();
+            let vectors = p.position.iter().chain(&p.linvel).chain(&p.angvel);
+            format!("{:016x}", fnv1a(vectors.flat_map(|v| [v.x, v.y, v.z])))
+        },
     })
 }
