@@ -29,8 +29,10 @@ pub struct PairList<H> {
     pub active: Vec<bool>,
     /// Contact history of each pair (default while apart).
     pub history: Vec<H>,
-    /// Wrench of each pair at the last force evaluation; zero where not `active` (the pair loop
-    /// keeps it so, and the per-particle sums rely on it).
+    /// Wrench of each pair at the last force evaluation of the parallel path (several threads),
+    /// which gathers them per particle; zero where not `active` (the pair loop keeps it so, and
+    /// the gather relies on it). Empty after a one-thread step: that path adds each wrench to
+    /// the particles' sums as it goes and stores none.
     pub wrench: Vec<PairWrench>,
     /// `first[i]..first[i + 1]`: the pairs whose first particle is `i`.
     pub first: Vec<u32>,
@@ -260,8 +262,13 @@ impl NeighbourBuilder {
         // Carry histories over: both lists are sorted by (i, j, image).
         out.history.clear();
         out.active.clear();
+        // Wrenches are kept only while the parallel path runs (it gathers them per particle);
+        // the one-thread path leaves the list's `wrench` empty.
+        let keep_wrenches = old.wrench.len() == old.len() && !old.is_empty();
         out.wrench.clear();
-        out.wrench.resize(m, PairWrench::default());
+        if keep_wrenches {
+            out.wrench.resize(m, PairWrench::default());
+        }
         let key = |l: &PairList<H>, p: usize| (l.i[p], l.j[p], l.image[p]);
         let mut q = 0;
         for p in 0..m {
@@ -272,7 +279,9 @@ impl NeighbourBuilder {
             if q < old.len() && key(old, q) == k {
                 out.history.push(std::mem::take(&mut old.history[q]));
                 out.active.push(old.active[q]);
-                out.wrench[p] = old.wrench[q];
+                if keep_wrenches {
+                    out.wrench[p] = old.wrench[q];
+                }
                 q += 1;
             } else {
                 out.history.push(H::default());
