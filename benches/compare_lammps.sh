@@ -7,7 +7,9 @@
 # Usage: benches/compare_lammps.sh [nbench] [threads...]   (default: 10000 steps; threads 1 2)
 # Environment: LAMMPS_BENCH_DIR (default ../shared/bench/lammps), MDR_DEM (the binary; default
 # target/release/mdr-dem, built if missing), MDR_BENCH_FLAGS (extra `bench bed` flags, e.g.
-# `--no-orientation`: LAMMPS atom_style sphere integrates no orientation either).
+# `--no-orientation`: LAMMPS atom_style sphere integrates no orientation either), MDR_NATIVE=1
+# (build and run a binary compiled for this CPU, `RUSTFLAGS=-C target-cpu=native`, in
+# target/native; same trajectories bit for bit, see `state_checksum` of `bench bed --json`).
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 lammps_dir=${LAMMPS_BENCH_DIR:-$repo/../shared/bench/lammps}
@@ -19,9 +21,15 @@ if [ ! -x "$lammps_dir/run.sh" ]; then
   echo "error: $lammps_dir/run.sh not found (set LAMMPS_BENCH_DIR)" >&2
   exit 1
 fi
-bin=${MDR_DEM:-${CARGO_TARGET_DIR:-$repo/target}/release/mdr-dem}
-if [ ! -x "$bin" ]; then
-  (cd "$repo" && cargo build --release --bin mdr-dem)
+if [ "${MDR_NATIVE:-0}" = 1 ]; then
+  bin=${MDR_DEM:-$repo/target/native/release/mdr-dem}
+  (cd "$repo" && RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR="$repo/target/native" \
+    cargo build --release --bin mdr-dem)
+else
+  bin=${MDR_DEM:-${CARGO_TARGET_DIR:-$repo/target}/release/mdr-dem}
+  if [ ! -x "$bin" ]; then
+    (cd "$repo" && cargo build --release --bin mdr-dem)
+  fi
 fi
 
 lammps_rate() { # model -> "wall M/s  per-CPU-second M/s" of the timed run (last Loop time)
@@ -41,7 +49,7 @@ ours_rate() { # law threads -> "wall M/s  per-CPU-second M/s"
     python3 -c 'import json,sys; d=json.load(sys.stdin); print(d["particle_steps_per_s"]/1e6, d["particle_steps_per_cpu_s"]/1e6)'
 }
 
-echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg); bench bed flags: ${MDR_BENCH_FLAGS:-none}"
+echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg); bench bed flags: ${MDR_BENCH_FLAGS:-none}; binary: $bin"
 # Wall: particle-steps per second of elapsed time (what a user sees on an idle machine).
 # CPU: particle-steps per CPU second (LAMMPS: wall rate / its "% CPU use"; mdr-dem: user +
 # system time of all threads) -- per-core figures that survive a loaded machine.
