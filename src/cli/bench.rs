@@ -152,15 +152,17 @@ fn peak_rss_mb() -> f64 {
         .map_or(0.0, |kb| kb / 1024.0)
 }
 
-/// CPU time (user + system, all threads) of this process so far (s), from /proc/self/stat
-/// (clock ticks of 1/100 s, the Linux USER_HZ); `None` where unavailable.
+/// CPU time (user + system, all threads) of this process so far (s), from
+/// `clock_gettime(CLOCK_PROCESS_CPUTIME_ID)` (nanosecond resolution, up to date for running
+/// threads too); `None` where the clock is unavailable.
 fn process_cpu_seconds() -> Option<f64> {
-    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
-    let rest = stat.rsplit_once(") ")?.1;
-    let fields: Vec<&str> = rest.split_whitespace().collect();
-    let utime: f64 = fields.get(11)?.parse().ok()?;
-    let stime: f64 = fields.get(12)?.parse().ok()?;
-    Some((utime + stime) / 100.0)
+    let mut time = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: clock_gettime writes one `timespec` through the valid pointer it is given.
+    let status = unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut time) };
+    (status == 0).then_some(time.tv_sec as f64 + time.tv_nsec as f64 * 1e-9)
 }
 
 /// Figures of one `bench bed` run.
@@ -209,6 +211,9 @@ fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
     };
     if args.tile == 0 {
         bail!("--tile = 0 is outside the allowed range [1, inf)");
+    }
+    if args.steps == 0 {
+        bail!("--steps = 0 is outside the allowed range [1, inf) (timed steps)");
     }
     let bed = Bed::read_lammps(&path).with_context(|| format!("reading {}", path.display()))?;
     let bed = if args.tile > 1 {

@@ -1,0 +1,144 @@
+//! `mdr-dem bench make-bed` and `mdr-dem bench bed` (issue 6): the JSON contract, trajectories
+//! that do not depend on the number of threads, and bad values named by their flag.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::OnceLock;
+
+fn mdr_dem(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
+        .args(args)
+        .output()
+        .expect("run mdr-dem")
+}
+
+/// A small settled bed written by the generator, once for all tests: 150 spheres of diameter 1
+/// and density 1 poured from a 38-layer lattice (its top at z ≈ 41, a fall of ≈ 9 time units)
+/// and settled for 15 time units.
+fn small_bed() -> &'static PathBuf {
+    static BED: OnceLock<PathBuf> = OnceLock::new();
+    BED.get_or_init(make_small_bed)
+}
+
+fn make_small_bed() -> PathBuf {
+    let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_bench_bed.data");
+    let output = mdr_dem(&[
+        "bench",
+        "make-bed",
+        "--count",
+        "150",
+        "--settle-steps",
+        "150000",
+        "--threads",
+        "1",
+        "--out",
+        path.to_str().unwrap(),
+    ]);
+    assert!(
+        output.status.success(),
+        "make-bed failed: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    path
+}
+
+fn bench_json(bed: &Path, law: &str, threads: usize) -> serde_json::Value {
+    let output = mdr_dem(&[
+        "bench",
+        "bed",
+        "--data",
+        bed.to_str().unwrap(),
+        "--law",
+        law,
+        "--threads",
+        &threads.to_string(),
+        "--warmup",
+        "200",
+        "--steps",
+        "100",
+        "--json",
+    ]);
+    assert!(
+        output.status.success(),
+        "bench bed failed: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    serde_json::from_slice(&output.stdout).expect("one JSON object on stdout")
+}
+
+#[test]
+fn bench_bed_json_contract_and_same_trajectories_for_one_and_two_threads() {
+    let bed = small_bed();
+    for law in ["hertz", "mdr"] {
+        let mut checksums = Vec::new();
+        for threads in [1, 2] {
+            let d = bench_json(bed, law, threads);
+            // The keys the issue fixes, then the ones added since.
+            for key in [
+                "particle_steps_per_s",
+                "ms_per_step",
+                "contacts_per_particle",
+                "peak_rss_mb",
+                "particle_steps_per_cpu_s",
+                "cpu_seconds",
+                "stepper_bytes_per_particle",
+            ] {
+                let v = d[key]
+                    .as_f64()
+                    .unwrap_or_else(|| panic!("{key} is not a number: {}", d[key]));
+                assert!(
+                    v.is_finite() && v > 0.0,
+                    "{key} = {v} ({law}, {threads} threads)"
+                );
+            }
+            assert_eq!(d["threads"].as_u64(), Some(threads as u64));
+            assert_eq!(d["particles"].as_u64(), Some(150));
+            assert_eq!(d["steps"].as_u64(), Some(100));
+            assert_eq!(d["law"].as_str(), Some(law));
+            // A settled bed: every sphere rests on others or on the floor (2.7 × 2.7 of it).
+            let contacts = d["contacts_per_particle"].as_f64().unwrap();
+            assert!(contacts > 4.0, "{contacts} contacts per particle");
+            assert!(d["floor_contacts"].as_u64().unwrap() >= 3);
+            let ms = d["ms_per_step"].as_f64().unwrap();
+            let rate = d["particle_steps_per_s"].as_f64().unwrap();
+            assert!(
+                (rate * ms / 1e3 / 150.0 - 1.0).abs() < 1e-9,
+                "rate and ms/step disagree"
+            );
+            let checksum = d["state_checksum"].as_str().unwrap().to_string();
+            assert_eq!(checksum.len(), 16);
+            assert!(checksum.chars().all(|c| c.is_ascii_hexdigit()));
+            checksums.push(checksum);
+        }
+        assert_eq!(
+            checksums[0], checksums[1],
+            "{law}: 1 and 2 threads must give the same final state"
+        );
+    }
+}
+
+#[test]
+fn bench_bed_refuses_bad_values_by_name() {
+    let data = small_bed().to_str().unwrap();
+    for (flag, value) in [
+        ("--threads", "0"),
+        ("--tile", "0"),
+        ("--skin", "-0.1"),
+        ("--skin", "0"),
+        ("--steps", "0"),
+        ("--law", "thornton"),
+    ] {
+        let setting = format!("{flag}={value}");
+        let output = mdr_dem(&["bench", "bed", "--data", data, "--warmup", "1", &setting]);
+        assert!(!output.status.success(), "{flag} {value} was accepted");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        let name = flag.trim_start_matches("--");
+        assert!(
+            stderr.contains(name),
+            "{flag} {value}: the error does not name it: {stderr}"
+        );
+    }
+    let output = mdr_dem(&["bench", "bed", "--data", "/nonexistent/bed.data"]);
+    assert!(!output.status.success());
+    assert!(String::from_utf8_lossy(&output.stderr).contains("/nonexistent/bed.data"));
+}
