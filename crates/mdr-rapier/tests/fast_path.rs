@@ -174,6 +174,19 @@ fn fast_path_reproduces_plain_path() {
 }
 
 fn periodic_run(bed: &Bed, steps: usize) -> FastForceStepper<Hertz, Mindlin, HertzianViscous> {
+    let (mut fast, mut world) = periodic_setup(bed);
+    for _ in 0..steps {
+        fast.step(&mut world).unwrap();
+    }
+    fast
+}
+
+fn periodic_setup(
+    bed: &Bed,
+) -> (
+    FastForceStepper<Hertz, Mindlin, HertzianViscous>,
+    PhysicsWorld,
+) {
     let boundary = Boundary::periodic_xy((bed.lo[0], bed.hi[0]), (bed.lo[1], bed.hi[1])).unwrap();
     let mut fast = FastForceStepper::new(model(), boundary).skin(0.1).unwrap();
     let m = fast.insert_material(grain());
@@ -203,10 +216,7 @@ fn periodic_run(bed: &Bed, steps: usize) -> FastForceStepper<Hertz, Mindlin, Her
         )
         .unwrap();
     }
-    for _ in 0..steps {
-        fast.step(&mut world).unwrap();
-    }
-    fast
+    (fast, world)
 }
 
 #[test]
@@ -234,6 +244,41 @@ fn fast_path_is_deterministic_for_one_and_two_threads() {
     assert_eq!(one.particles().position, two.particles().position);
     assert_eq!(one.particles().linvel, two.particles().linvel);
     assert_eq!(one.particles().angvel, two.particles().angvel);
+}
+
+/// The one-thread path stores no per-pair wrench and the parallel path needs them all for its
+/// gather: switching between them (and rebuilding the list in either mode) must not change a bit.
+#[test]
+fn switching_thread_counts_mid_run_changes_nothing() {
+    let bed = lattice_bed(&BedSpec {
+        count: 3000,
+        ..BedSpec::default()
+    })
+    .unwrap();
+    let one_thread = ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    let two_threads = ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+    let reference = one_thread.install(|| periodic_run(&bed, 400));
+    let (mut fast, mut world) = periodic_setup(&bed);
+    let mut rebuilds_in = [0u64; 2];
+    for step in 0..400 {
+        let parallel = (step / 37) % 2 == 1;
+        let pool = if parallel { &two_threads } else { &one_thread };
+        let report = pool.install(|| fast.step(&mut world).unwrap());
+        rebuilds_in[usize::from(parallel)] += u64::from(report.rebuilt);
+        let stored = fast.pairs().wrench.len();
+        if parallel {
+            assert_eq!(stored, fast.pairs().len(), "the gather needs every wrench");
+        } else {
+            assert_eq!(stored, 0, "the one-thread path stores none");
+        }
+    }
+    assert!(
+        rebuilds_in[0] > 1 && rebuilds_in[1] > 1,
+        "rebuilds in both modes: {rebuilds_in:?}"
+    );
+    assert_eq!(reference.particles().position, fast.particles().position);
+    assert_eq!(reference.particles().linvel, fast.particles().linvel);
+    assert_eq!(reference.particles().angvel, fast.particles().angvel);
 }
 
 #[test]
