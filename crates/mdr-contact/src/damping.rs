@@ -1,5 +1,7 @@
-//! Normal damping sub-models (optional; off by default). Kept separate from the normal laws so
-//! that plastic dissipation and viscous dissipation are booked separately.
+//! Viscous damping sub-models (optional; off by default): a normal dashpot and, optionally, a
+//! tangential one in proportion to it (LAMMPS `gammat`, GRANULAR `damp_tangential`). Kept
+//! separate from the normal and tangential laws so that plastic, frictional and viscous
+//! dissipation are booked separately.
 
 use crate::error::{non_negative, Result};
 use crate::material::ContactPair;
@@ -10,6 +12,13 @@ pub trait DampingLaw: Send + Sync {
     /// Damping force along the normal (N, positive = repulsive) at overlap `overlap` (m) and
     /// approach rate `approach_rate = dδ/dt` (m/s, positive while the bodies approach).
     fn normal_force(&self, response: &NormalResponse, overlap: f64, approach_rate: f64) -> f64;
+
+    /// Tangential dashpot coefficient `η_t` (N·s/m) at overlap `overlap`: while the tangential
+    /// spring sticks the contact adds the force `−η_t v_t` (`v_t` the tangential relative
+    /// velocity); on gross slip the force is the Coulomb-capped spring force alone (the
+    /// LIGGGHTS `tangential_history` rule; LAMMPS `gran/hertz/history` caps spring plus
+    /// dashpot together, which differs only while sliding). No default: a wrapper must forward it.
+    fn tangential_coefficient(&self, response: &NormalResponse, overlap: f64) -> f64;
 }
 
 /// Material-level damping parameters.
@@ -37,22 +46,40 @@ impl DampingLaw for NoDamping {
     fn normal_force(&self, _: &NormalResponse, _: f64, _: f64) -> f64 {
         0.0
     }
+
+    #[inline]
+    fn tangential_coefficient(&self, _: &NormalResponse, _: f64) -> f64 {
+        0.0
+    }
 }
 
 /// LAMMPS `gran/hertz/history` damping: `F_d = m γ_n (dδ/dt) √(R δ)`, with `γ_n` in
-/// 1/(time·length) (LAMMPS's `gamman`), `m` the reduced mass and `R` the effective radius.
+/// 1/(time·length) (LAMMPS's `gamman`), `m` the reduced mass and `R` the effective radius;
+/// optionally a tangential dashpot `−m γ_t √(R δ) v_t` with `γ_t = ratio · γ_n` (LAMMPS
+/// `gammat`; its `NULL` default is `γ_n / 2`, ratio 0.5), see
+/// [`HertzianViscous::with_tangential_ratio`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct HertzianViscous {
     gamma_n: f64,
+    #[cfg_attr(feature = "serde", serde(default))]
+    tangential_ratio: f64,
 }
 
 impl HertzianViscous {
-    /// `γ_n` (finite, ≥ 0).
+    /// `γ_n` (finite, ≥ 0); no tangential dashpot.
     pub fn new(gamma_n: f64) -> Result<Self> {
         Ok(Self {
             gamma_n: non_negative("gamma_n", gamma_n)?,
+            tangential_ratio: 0.0,
         })
+    }
+
+    /// Add the tangential dashpot `γ_t = ratio · γ_n` (ratio finite, ≥ 0; LAMMPS
+    /// `gran/hertz/history` with `gammat = NULL` is 0.5).
+    pub fn with_tangential_ratio(mut self, ratio: f64) -> Result<Self> {
+        self.tangential_ratio = non_negative("tangential_damping_ratio", ratio)?;
+        Ok(self)
     }
 }
 
@@ -61,13 +88,17 @@ impl HertzianViscous {
 pub struct HertzianViscousLaw {
     /// `m γ_n √R`.
     coefficient: f64,
+    /// `m γ_t √R`.
+    tangential_coefficient: f64,
 }
 
 impl DampingModel for HertzianViscous {
     type Law = HertzianViscousLaw;
     fn bind(&self, pair: &ContactPair) -> Result<HertzianViscousLaw> {
+        let coefficient = pair.reduced_mass() * self.gamma_n * pair.effective_radius().sqrt();
         Ok(HertzianViscousLaw {
-            coefficient: pair.reduced_mass() * self.gamma_n * pair.effective_radius().sqrt(),
+            coefficient,
+            tangential_coefficient: self.tangential_ratio * coefficient,
         })
     }
 }
@@ -83,6 +114,15 @@ impl DampingLaw for HertzianViscousLaw {
             0.0
         }
     }
+
+    #[inline(always)]
+    fn tangential_coefficient(&self, _: &NormalResponse, overlap: f64) -> f64 {
+        if overlap > 0.0 {
+            self.tangential_coefficient * overlap.sqrt()
+        } else {
+            0.0
+        }
+    }
 }
 
 /// Tsuji-type viscoelastic damping: `F_d = η √(m k_n) (dδ/dt)`, `k_n` the normal law's tangent
@@ -91,14 +131,23 @@ impl DampingLaw for HertzianViscousLaw {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct StiffnessViscous {
     eta: f64,
+    #[cfg_attr(feature = "serde", serde(default))]
+    tangential_ratio: f64,
 }
 
 impl StiffnessViscous {
-    /// `η` (finite, ≥ 0).
+    /// `η` (finite, ≥ 0); no tangential dashpot.
     pub fn new(eta: f64) -> Result<Self> {
         Ok(Self {
             eta: non_negative("eta", eta)?,
+            tangential_ratio: 0.0,
         })
+    }
+
+    /// Add the tangential dashpot `η_t = ratio · η √(m k_n)` (ratio finite, ≥ 0).
+    pub fn with_tangential_ratio(mut self, ratio: f64) -> Result<Self> {
+        self.tangential_ratio = non_negative("tangential_damping_ratio", ratio)?;
+        Ok(self)
     }
 }
 
@@ -107,6 +156,7 @@ impl StiffnessViscous {
 pub struct StiffnessViscousLaw {
     eta: f64,
     mass: f64,
+    tangential_ratio: f64,
 }
 
 impl DampingModel for StiffnessViscous {
@@ -115,6 +165,7 @@ impl DampingModel for StiffnessViscous {
         Ok(StiffnessViscousLaw {
             eta: self.eta,
             mass: pair.reduced_mass(),
+            tangential_ratio: self.tangential_ratio,
         })
     }
 }
@@ -123,5 +174,14 @@ impl DampingLaw for StiffnessViscousLaw {
     #[inline]
     fn normal_force(&self, response: &NormalResponse, _overlap: f64, approach_rate: f64) -> f64 {
         self.eta * (self.mass * response.stiffness).sqrt() * approach_rate
+    }
+
+    #[inline]
+    fn tangential_coefficient(&self, response: &NormalResponse, _overlap: f64) -> f64 {
+        if self.tangential_ratio > 0.0 {
+            self.tangential_ratio * self.eta * (self.mass * response.stiffness.max(0.0)).sqrt()
+        } else {
+            0.0
+        }
     }
 }

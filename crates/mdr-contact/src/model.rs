@@ -129,7 +129,8 @@ pub struct ContactOutput {
     pub normal_force: f64,
     /// The normal law's own response (elastic–plastic part).
     pub normal: NormalResponse,
-    /// The tangential law's response.
+    /// The tangential law's response (its spring force; a tangential dashpot of the damping
+    /// sub-model acts on top of it and is included in `force` only).
     pub tangential: TangentialResponse,
 }
 
@@ -212,8 +213,19 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
             },
         );
         state.friction_work += tangential.dissipated;
+        let mut force = input.normal * normal_force + tangential.force;
+        if !tangential.sliding {
+            // Tangential dashpot while the spring sticks (see `DampingLaw::tangential_coefficient`):
+            // F = −η_t v_t, dissipating η_t |v_t|² dt, booked with the normal damping.
+            let eta_t = self.damping.tangential_coefficient(&normal, input.overlap);
+            if eta_t > 0.0 {
+                let v_t = input.relative_velocity - input.normal * normal_speed;
+                force -= v_t * eta_t;
+                state.damping_work += eta_t * v_t.norm_squared() * input.dt;
+            }
+        }
         ContactOutput {
-            force: input.normal * normal_force + tangential.force,
+            force,
             normal_force,
             normal,
             tangential,

@@ -160,6 +160,15 @@ impl DampingLaw for AnyDampingLaw {
             AnyDampingLaw::StiffnessViscous(d) => d.normal_force(response, overlap, approach_rate),
         }
     }
+
+    #[inline]
+    fn tangential_coefficient(&self, response: &NormalResponse, overlap: f64) -> f64 {
+        match self {
+            AnyDampingLaw::None(d) => d.tangential_coefficient(response, overlap),
+            AnyDampingLaw::HertzianViscous(d) => d.tangential_coefficient(response, overlap),
+            AnyDampingLaw::StiffnessViscous(d) => d.tangential_coefficient(response, overlap),
+        }
+    }
 }
 
 /// The rolling-resistance model of a scene: off, or the elastic–plastic spring model.
@@ -222,8 +231,12 @@ pub fn scene_model(
     };
     let damping = match spec.damping {
         DampingSpec::None => AnyDamping::None(NoDamping),
-        DampingSpec::HertzianViscous(g) => AnyDamping::HertzianViscous(HertzianViscous::new(g)?),
-        DampingSpec::StiffnessViscous(e) => AnyDamping::StiffnessViscous(StiffnessViscous::new(e)?),
+        DampingSpec::HertzianViscous(g) => AnyDamping::HertzianViscous(
+            HertzianViscous::new(g)?.with_tangential_ratio(spec.tangential_damping_ratio)?,
+        ),
+        DampingSpec::StiffnessViscous(e) => AnyDamping::StiffnessViscous(
+            StiffnessViscous::new(e)?.with_tangential_ratio(spec.tangential_damping_ratio)?,
+        ),
     };
     let rolling = if spec.rolling_friction > 0.0 {
         AnyRolling(Some(EpsdRolling::new(spec.rolling_friction)?))

@@ -68,6 +68,10 @@ impl TangentialModel for Frictionless {
 impl TangentialLaw for Frictionless {
     type State = ();
     fn update(&self, _state: &mut (), _input: &TangentialInput) -> TangentialResponse {
-        TangentialResponse::default()
+        // No friction: the contact slides freely (so no tangential dashpot acts either).
+        TangentialResponse {
+            sliding: true,
+            ..TangentialResponse::default()
+        }
     }
 }

@@ -310,7 +310,7 @@ pub fn lattice_bed(spec: &BedSpec) -> Result<Bed, BedError> {
 
 /// The reference system of `../shared/bench/lammps/in.bench` (`hertzhist`) on `bed`, with
 /// normal law `normal`: diameter-1, density-1 spheres, Mindlin `μ = 0.5`, normal damping
-/// `γn = 50`, `kn = 2e5` (`E* = 1.5e5`) and LAMMPS's `kt = 2/7 kn` (`G* = kt/2`), the floor
+/// `γn = 50` and tangential damping `γt = γn/2` (LAMMPS `gammat = NULL`), `kn = 2e5` (`E* = 1.5e5`) and LAMMPS's `kt = 2/7 kn` (`G* = kt/2`), the floor
 /// `z = 0` as a rapier half-space, `g = 1` along −z, `dt = 1e-4`, x/y periodic over the bed's box
 /// (docs/performance.md). Returns the stepper (skin 0.1) and the rapier world.
 #[allow(clippy::type_complexity)]
@@ -325,7 +325,7 @@ where
     let boundary = Boundary::periodic_xy((bed.lo[0], bed.hi[0]), (bed.lo[1], bed.hi[1]))?;
     let model = ContactModel::new(normal)
         .with_tangential(Mindlin::new(0.5)?)
-        .with_damping(HertzianViscous::new(50.0)?);
+        .with_damping(HertzianViscous::new(50.0)?.with_tangential_ratio(0.5)?);
     let mut stepper = FastForceStepper::new(model, boundary).skin(0.1)?;
     let grain = stepper.insert_material(Material::new(1.0, 0.3, 1.0)?);
     // kn = 2e5 ⇔ (4/3) E* = kn; LAMMPS NULL kt = 2/7 kn and k_t = 2 G* a ⇔ G* = kt / 2.

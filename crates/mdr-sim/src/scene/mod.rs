@@ -54,6 +54,8 @@ pub struct ContactSpec {
     pub friction: f64,
     /// Damping.
     pub damping: DampingSpec,
+    /// Tangential dashpot over normal dashpot (0: none).
+    pub tangential_damping_ratio: f64,
     /// Rolling-resistance coefficient `μ_r` (0: off).
     pub rolling_friction: f64,
 }

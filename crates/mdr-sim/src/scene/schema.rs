@@ -200,6 +200,10 @@ pub struct ContactSection {
     /// `η` of `stiffness_viscous` (dimensionless).
     #[serde(default)]
     pub damping_eta: Option<f64>,
+    /// Tangential dashpot as a fraction of the normal one (dimensionless, ≥ 0; LAMMPS
+    /// `gammat / gamman`, 0.5 for its `NULL`): `−η_t v_t` while the Mindlin spring sticks.
+    #[serde(default)]
+    pub damping_tangential_ratio: Option<f64>,
     /// Rolling-resistance coefficient `μ_r` (dimensionless); off when absent or 0.
     #[serde(default)]
     pub rolling_friction: Option<f64>,

@@ -135,6 +135,7 @@ fn key_for(name: &str) -> &str {
         "mu" => "friction",
         "gamma_n" => "damping_gamma_n_per_m_s",
         "eta" => "damping_eta",
+        "tangential_damping_ratio" => "damping_tangential_ratio",
         "mu_r" => "rolling_friction",
         other => other,
     }
@@ -651,6 +652,10 @@ impl Checker<'_, '_> {
                             c.damping_gamma_n_per_m_s.is_some(),
                         ),
                         ("damping_eta", c.damping_eta.is_some()),
+                        (
+                            "damping_tangential_ratio",
+                            c.damping_tangential_ratio.is_some(),
+                        ),
                     ],
                     "by damping = \"none\"",
                 );
@@ -710,10 +715,23 @@ impl Checker<'_, '_> {
             },
             None => Some(0.0),
         };
+        let tangential_damping = match c.damping_tangential_ratio {
+            Some(ratio) => {
+                match HertzianViscous::new(0.0).and_then(|d| d.with_tangential_ratio(ratio)) {
+                    Ok(_) => Some(ratio),
+                    Err(e) => {
+                        self.contact_error(&table, e);
+                        None
+                    }
+                }
+            }
+            None => Some(0.0),
+        };
         Some(ContactSpec {
             normal: normal?,
             friction: friction?,
             damping: damping?,
+            tangential_damping_ratio: tangential_damping?,
             rolling_friction: rolling?,
         })
     }
