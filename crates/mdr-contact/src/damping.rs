@@ -9,16 +9,30 @@ use crate::normal::NormalResponse;
 
 /// A damping law bound to one pair.
 pub trait DampingLaw: Send + Sync {
+    /// Normal dashpot coefficient `η_n` (N·s/m, ≥ 0) at overlap `overlap` (m): the damping force
+    /// along the normal is `η_n dδ/dt`.
+    fn normal_coefficient(&self, response: &NormalResponse, overlap: f64) -> f64;
+
+    /// Tangential over normal dashpot coefficient, `η_t/η_n` (≥ 0; LAMMPS `gammat/gamman`).
+    /// While the tangential spring sticks the contact adds the force `−η_t v_t` (`v_t` the
+    /// tangential relative velocity); on gross slip the force is the Coulomb-capped spring force
+    /// alone (the LIGGGHTS `tangential_history` rule; LAMMPS `gran/hertz/history` caps spring
+    /// plus dashpot together, which differs only while sliding). No default: a wrapper must
+    /// forward it.
+    fn tangential_ratio(&self) -> f64;
+
     /// Damping force along the normal (N, positive = repulsive) at overlap `overlap` (m) and
     /// approach rate `approach_rate = dδ/dt` (m/s, positive while the bodies approach).
-    fn normal_force(&self, response: &NormalResponse, overlap: f64, approach_rate: f64) -> f64;
+    #[inline(always)]
+    fn normal_force(&self, response: &NormalResponse, overlap: f64, approach_rate: f64) -> f64 {
+        self.normal_coefficient(response, overlap) * approach_rate
+    }
 
-    /// Tangential dashpot coefficient `η_t` (N·s/m) at overlap `overlap`: while the tangential
-    /// spring sticks the contact adds the force `−η_t v_t` (`v_t` the tangential relative
-    /// velocity); on gross slip the force is the Coulomb-capped spring force alone (the
-    /// LIGGGHTS `tangential_history` rule; LAMMPS `gran/hertz/history` caps spring plus
-    /// dashpot together, which differs only while sliding). No default: a wrapper must forward it.
-    fn tangential_coefficient(&self, response: &NormalResponse, overlap: f64) -> f64;
+    /// Tangential dashpot coefficient `η_t = (η_t/η_n) η_n` (N·s/m) at overlap `overlap`.
+    #[inline(always)]
+    fn tangential_coefficient(&self, response: &NormalResponse, overlap: f64) -> f64 {
+        self.tangential_ratio() * self.normal_coefficient(response, overlap)
+    }
 }
 
 /// Material-level damping parameters.
@@ -43,12 +57,12 @@ impl DampingModel for NoDamping {
 
 impl DampingLaw for NoDamping {
     #[inline]
-    fn normal_force(&self, _: &NormalResponse, _: f64, _: f64) -> f64 {
+    fn normal_coefficient(&self, _: &NormalResponse, _: f64) -> f64 {
         0.0
     }
 
     #[inline]
-    fn tangential_coefficient(&self, _: &NormalResponse, _: f64) -> f64 {
+    fn tangential_ratio(&self) -> f64 {
         0.0
     }
 }
@@ -88,40 +102,35 @@ impl HertzianViscous {
 pub struct HertzianViscousLaw {
     /// `m γ_n √R`.
     coefficient: f64,
-    /// `m γ_t √R`.
-    tangential_coefficient: f64,
+    /// `γ_t / γ_n`.
+    tangential_ratio: f64,
 }
 
 impl DampingModel for HertzianViscous {
     type Law = HertzianViscousLaw;
     fn bind(&self, pair: &ContactPair) -> Result<HertzianViscousLaw> {
-        let coefficient = pair.reduced_mass() * self.gamma_n * pair.effective_radius().sqrt();
         Ok(HertzianViscousLaw {
-            coefficient,
-            tangential_coefficient: self.tangential_ratio * coefficient,
+            coefficient: pair.reduced_mass() * self.gamma_n * pair.effective_radius().sqrt(),
+            tangential_ratio: self.tangential_ratio,
         })
     }
 }
 
 impl DampingLaw for HertzianViscousLaw {
     #[inline(always)]
-    fn normal_force(&self, _: &NormalResponse, overlap: f64, approach_rate: f64) -> f64 {
+    fn normal_coefficient(&self, _: &NormalResponse, overlap: f64) -> f64 {
         // `√δ` written exactly as the normal laws write it, so that the compiler shares one
         // square root between them once the law chain is inlined.
         if overlap > 0.0 {
-            self.coefficient * approach_rate * overlap.sqrt()
+            self.coefficient * overlap.sqrt()
         } else {
             0.0
         }
     }
 
     #[inline(always)]
-    fn tangential_coefficient(&self, _: &NormalResponse, overlap: f64) -> f64 {
-        if overlap > 0.0 {
-            self.tangential_coefficient * overlap.sqrt()
-        } else {
-            0.0
-        }
+    fn tangential_ratio(&self) -> f64 {
+        self.tangential_ratio
     }
 }
 
@@ -172,16 +181,12 @@ impl DampingModel for StiffnessViscous {
 
 impl DampingLaw for StiffnessViscousLaw {
     #[inline]
-    fn normal_force(&self, response: &NormalResponse, _overlap: f64, approach_rate: f64) -> f64 {
-        self.eta * (self.mass * response.stiffness).sqrt() * approach_rate
+    fn normal_coefficient(&self, response: &NormalResponse, _overlap: f64) -> f64 {
+        self.eta * (self.mass * response.stiffness).sqrt()
     }
 
     #[inline]
-    fn tangential_coefficient(&self, response: &NormalResponse, _overlap: f64) -> f64 {
-        if self.tangential_ratio > 0.0 {
-            self.tangential_ratio * self.eta * (self.mass * response.stiffness.max(0.0)).sqrt()
-        } else {
-            0.0
-        }
+    fn tangential_ratio(&self) -> f64 {
+        self.tangential_ratio
     }
 }

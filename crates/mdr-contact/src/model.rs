@@ -193,9 +193,9 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
         }
         let normal_speed = input.relative_velocity.dot(&input.normal);
         let approach_rate = -normal_speed;
-        let damping = self
-            .damping
-            .normal_force(&normal, input.overlap, approach_rate);
+        // One dashpot coefficient for the normal damping and the tangential dashpot.
+        let dashpot = self.damping.normal_coefficient(&normal, input.overlap);
+        let damping = dashpot * approach_rate;
         // No tension: damping may not pull the bodies together.
         let normal_force = (normal.force + damping).max(0.0);
         let applied_damping = normal_force - normal.force;
@@ -217,7 +217,7 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
         if !tangential.sliding {
             // Tangential dashpot while the spring sticks (see `DampingLaw::tangential_coefficient`):
             // F = −η_t v_t, dissipating η_t |v_t|² dt, booked with the normal damping.
-            let eta_t = self.damping.tangential_coefficient(&normal, input.overlap);
+            let eta_t = self.damping.tangential_ratio() * dashpot;
             if eta_t > 0.0 {
                 let v_t = input.relative_velocity - input.normal * normal_speed;
                 force -= v_t * eta_t;

@@ -153,20 +153,20 @@ impl DampingModel for AnyDamping {
 
 impl DampingLaw for AnyDampingLaw {
     #[inline]
-    fn normal_force(&self, response: &NormalResponse, overlap: f64, approach_rate: f64) -> f64 {
+    fn normal_coefficient(&self, response: &NormalResponse, overlap: f64) -> f64 {
         match self {
-            AnyDampingLaw::None(d) => d.normal_force(response, overlap, approach_rate),
-            AnyDampingLaw::HertzianViscous(d) => d.normal_force(response, overlap, approach_rate),
-            AnyDampingLaw::StiffnessViscous(d) => d.normal_force(response, overlap, approach_rate),
+            AnyDampingLaw::None(d) => d.normal_coefficient(response, overlap),
+            AnyDampingLaw::HertzianViscous(d) => d.normal_coefficient(response, overlap),
+            AnyDampingLaw::StiffnessViscous(d) => d.normal_coefficient(response, overlap),
         }
     }
 
     #[inline]
-    fn tangential_coefficient(&self, response: &NormalResponse, overlap: f64) -> f64 {
+    fn tangential_ratio(&self) -> f64 {
         match self {
-            AnyDampingLaw::None(d) => d.tangential_coefficient(response, overlap),
-            AnyDampingLaw::HertzianViscous(d) => d.tangential_coefficient(response, overlap),
-            AnyDampingLaw::StiffnessViscous(d) => d.tangential_coefficient(response, overlap),
+            AnyDampingLaw::None(d) => d.tangential_ratio(),
+            AnyDampingLaw::HertzianViscous(d) => d.tangential_ratio(),
+            AnyDampingLaw::StiffnessViscous(d) => d.tangential_ratio(),
         }
     }
 }
