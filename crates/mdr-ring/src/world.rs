@@ -12,7 +12,7 @@ use crate::hooks::{identity, RingHooks};
 use crate::particles::Particles;
 use mdr_rapier::restitution_law::RestitutionLaw;
 use rapier3d_f64::prelude::*;
-use std::collections::HashMap;
+use std::collections::BTreeMap;
 
 /// A ghost ball: the rapier body of one periodic image of a particle.
 #[derive(Debug, Clone, Copy)]
@@ -47,7 +47,10 @@ pub struct CollisionWorld<L: RestitutionLaw> {
     world: PhysicsWorld,
     hooks: RingHooks<L>,
     real: Vec<RigidBodyHandle>,
-    ghosts: HashMap<(usize, ImageLabel), Ghost>,
+    /// Ordered by key, so that ghosts are created, removed and summed in the same order in every
+    /// run (a `HashMap`'s random order made runs differ: rapier's body slots, and the rounding of
+    /// the ghost velocity sums).
+    ghosts: BTreeMap<(usize, ImageLabel), Ghost>,
     margin: f64,
     images: Vec<Image>,
 }
@@ -68,7 +71,7 @@ impl<L: RestitutionLaw> CollisionWorld<L> {
             world,
             hooks: RingHooks::new(law, dt),
             real: Vec::with_capacity(particles.len()),
-            ghosts: HashMap::new(),
+            ghosts: BTreeMap::new(),
             margin: 2.0 * particles.max_radius() + 2.0 * settings.prediction_distance,
             images: Vec::new(),
         };
