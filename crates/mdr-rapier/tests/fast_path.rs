@@ -187,6 +187,25 @@ fn periodic_setup(
     FastForceStepper<Hertz, Mindlin, HertzianViscous>,
     PhysicsWorld,
 ) {
+    periodic_setup_with(bed, |k| {
+        let linvel = Vector::new(
+            0.3 * ((k * 7919) % 13) as f64 / 13.0 - 0.15,
+            0.3 * ((k * 104729) % 11) as f64 / 11.0 - 0.15,
+            -0.5,
+        );
+        (linvel, Vector::ZERO)
+    })
+}
+
+/// The periodic bed of [`periodic_setup`] with sphere `k` starting at the velocity and angular
+/// velocity `kick(k)`.
+fn periodic_setup_with(
+    bed: &Bed,
+    kick: impl Fn(usize) -> (Vector, Vector),
+) -> (
+    FastForceStepper<Hertz, Mindlin, HertzianViscous>,
+    PhysicsWorld,
+) {
     let boundary = Boundary::periodic_xy((bed.lo[0], bed.hi[0]), (bed.lo[1], bed.hi[1])).unwrap();
     let mut fast = FastForceStepper::new(model(), boundary).skin(0.1).unwrap();
     let m = fast.insert_material(grain());
@@ -204,15 +223,13 @@ fn periodic_setup(
     )
     .unwrap();
     for (k, p) in bed.position.iter().enumerate() {
+        let (linvel, angvel) = kick(k);
         fast.insert_sphere(
             SphereBuilder::new(0.5, m)
                 // Layers squeezed to 0.99 apart, the bottom one on the floor: contacts at once.
                 .translation(Vector::new(p.x, p.y, 0.49 + (p.z - 0.55) * 0.9))
-                .linvel(Vector::new(
-                    0.3 * ((k * 7919) % 13) as f64 / 13.0 - 0.15,
-                    0.3 * ((k * 104729) % 11) as f64 / 11.0 - 0.15,
-                    -0.5,
-                )),
+                .linvel(linvel)
+                .angvel(angvel),
         )
         .unwrap();
     }
@@ -358,34 +375,10 @@ fn orientation_tracking_does_not_change_sphere_trajectories() {
             .build()
             .unwrap()
             .install(|| {
-                let boundary =
-                    Boundary::periodic_xy((bed.lo[0], bed.hi[0]), (bed.lo[1], bed.hi[1])).unwrap();
-                let mut fast = FastForceStepper::new(model(), boundary)
-                    .skin(0.1)
-                    .unwrap()
-                    .track_orientation(orientation);
-                let m = fast.insert_material(grain());
-                let mut world = PhysicsWorld {
-                    gravity: Vector::new(0.0, 0.0, -1.0),
-                    ..PhysicsWorld::default()
-                };
-                fast.configure(&mut world.integration_parameters, 1e-4)
-                    .unwrap();
-                fast.insert_surface(
-                    &mut world,
-                    ColliderBuilder::new(SharedShape::halfspace(Vector::Z)),
-                    None,
-                    m,
-                )
-                .unwrap();
-                for (k, p) in bed.position.iter().enumerate() {
-                    fast.insert_sphere(
-                        SphereBuilder::new(0.5, m)
-                            .translation(Vector::new(p.x, p.y, 0.49 + (p.z - 0.55) * 0.9))
-                            .angvel(Vector::new(0.0, 0.0, 0.1 * (k % 5) as f64)),
-                    )
-                    .unwrap();
-                }
+                let (fast, mut world) = periodic_setup_with(&bed, |k| {
+                    (Vector::ZERO, Vector::new(0.0, 0.0, 0.1 * (k % 5) as f64))
+                });
+                let mut fast = fast.track_orientation(orientation);
                 for _ in 0..300 {
                     fast.step(&mut world).unwrap();
                 }
