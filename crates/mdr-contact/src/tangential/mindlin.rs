@@ -178,14 +178,21 @@ impl TangentialLaw for MindlinLaw {
         let mut xi = state.displacement;
         let old_len2 = xi.norm_squared();
         if old_len2 > 0.0 {
-            // The radius rescale r_num/r_den (ξ = 0 needs none).
-            let (r_num, r_den) = self.rescale(state.contact_radius, a);
             xi -= n * n.dot(&xi);
             let new_len2 = xi.norm_squared();
-            if new_len2 > 0.0 {
-                xi *= ((old_len2 * (r_num * r_num)) / (new_len2 * (r_den * r_den))).sqrt();
+            // The frame factor √(|ξ|²/|ξ_⊥|²) does not wait for the normal law (it needs only
+            // the normal and the stored ξ), so its division and square root overlap with the
+            // normal law's; the radius rescale r_num/r_den (ξ = 0 needs none) follows.
+            let frame = if new_len2 > 0.0 {
+                (old_len2 / new_len2).sqrt()
             } else {
-                xi *= r_num / r_den;
+                1.0
+            };
+            let (r_num, r_den) = self.rescale(state.contact_radius, a);
+            if r_num != r_den {
+                xi *= frame * (r_num / r_den);
+            } else {
+                xi *= frame;
             }
         }
         let du = input.displacement_increment - n * n.dot(&input.displacement_increment);

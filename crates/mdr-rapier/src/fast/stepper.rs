@@ -8,7 +8,8 @@
 //! 2. every particle–surface candidate: [`crate::geometry::sphere_shape`] against the rapier
 //!    collider, then the per-pair kernel [`crate::kernel::evaluate_pair`] (parallel);
 //! 3. every sphere–sphere candidate, in two passes per chunk of the list: the exact overlap test
-//!    alone (branch-free, collecting the touching pairs), then the same kernel on the history
+//!    alone (branch-free, collecting the touching pairs), then, per block of touching pairs, their
+//!    geometry ([`crate::geometry::sphere_sphere`]) and the same kernel on the history
 //!    stored next to each touching pair (parallel, each pair's wrench stored for the gather of
 //!    step 4; with one thread each wrench is added to both particles' force and torque sums
 //!    right away and not stored);
@@ -45,6 +46,8 @@ use rayon::prelude::*;
 
 /// Pairs per parallel work item of the force loops.
 const CHUNK: usize = 2048;
+/// Touching pairs per block of the two-stage pair loop (geometry, then law).
+const BLOCK: usize = 128;
 
 type Law<N, T, D> =
     ContactLaw<<N as NormalModel>::Law, <T as TangentialModel>::Law, <D as DampingModel>::Law>;
@@ -629,37 +632,47 @@ where
                     }
                 }
             }
-            for &k in &touching_pairs[..touching] {
-                let k = k as usize;
-                let (i, j) = (pi[k] as usize, pj[k] as usize);
-                let offset = &offsets[image[k] as usize];
-                let xi = &p.position[i];
-                let xj = p.position[j] + offset.position;
-                let Some(contact) = sphere_sphere(xi, p.radius[i], &xj, p.radius[j]) else {
-                    continue; // not reached: pass 1 made the same test
-                };
-                active[k] = true;
-                let kinematics = ContactKinematics {
-                    overlap: contact.overlap,
-                    normal: contact.normal,
-                    arms: SphereArms {
-                        lever1: p.radius[i] - 0.5 * contact.overlap,
-                        lever2: p.radius[j] - 0.5 * contact.overlap,
-                    },
-                    linvel1: p.linvel[i],
-                    angvel1: p.angvel[i],
-                    linvel2: p.linvel[j] + offset.velocity,
-                    angvel2: p.angvel[j],
-                };
-                let (law, rolling) = &laws[p.species[i] as usize * ns + p.species[j] as usize];
-                let w = evaluate_pair(law, rolling, &mut history[k], &kinematics, dt);
-                if let Some(sums) = sums.as_deref_mut() {
-                    sums[i].0 += w.force;
-                    sums[i].1 += w.torque1;
-                    sums[j].0 += -w.force;
-                    sums[j].1 += w.torque2;
-                } else {
-                    wrench[k] = w;
+            // Pass 2, per block of touching pairs: first the geometry (a square root and a
+            // division per pair, independent of each other, so they overlap instead of heading
+            // each pair's dependency chain through the law), then the law.
+            for block in touching_pairs[..touching].chunks(BLOCK) {
+                let mut geometry = [(0.0f64, Vector3::<f64>::zeros()); BLOCK];
+                for (g, &k) in geometry.iter_mut().zip(block) {
+                    let k = k as usize;
+                    let (i, j) = (pi[k] as usize, pj[k] as usize);
+                    let xj = p.position[j] + offsets[image[k] as usize].position;
+                    // Always `Some`: pass 1 made the same test.
+                    if let Some(c) = sphere_sphere(&p.position[i], p.radius[i], &xj, p.radius[j]) {
+                        *g = (c.overlap, c.normal);
+                    }
+                }
+                for (&k, &(overlap, normal)) in block.iter().zip(&geometry) {
+                    let k = k as usize;
+                    let (i, j) = (pi[k] as usize, pj[k] as usize);
+                    let offset = &offsets[image[k] as usize];
+                    active[k] = true;
+                    let kinematics = ContactKinematics {
+                        overlap,
+                        normal,
+                        arms: SphereArms {
+                            lever1: p.radius[i] - 0.5 * overlap,
+                            lever2: p.radius[j] - 0.5 * overlap,
+                        },
+                        linvel1: p.linvel[i],
+                        angvel1: p.angvel[i],
+                        linvel2: p.linvel[j] + offset.velocity,
+                        angvel2: p.angvel[j],
+                    };
+                    let (law, rolling) = &laws[p.species[i] as usize * ns + p.species[j] as usize];
+                    let w = evaluate_pair(law, rolling, &mut history[k], &kinematics, dt);
+                    if let Some(sums) = sums.as_deref_mut() {
+                        sums[i].0 += w.force;
+                        sums[i].1 += w.torque1;
+                        sums[j].0 += -w.force;
+                        sums[j].1 += w.torque2;
+                    } else {
+                        wrench[k] = w;
+                    }
                 }
             }
             touching
