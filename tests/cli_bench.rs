@@ -42,8 +42,9 @@ fn make_small_bed() -> PathBuf {
     path
 }
 
-fn bench_json(bed: &Path, law: &str, threads: usize) -> serde_json::Value {
-    let output = mdr_dem(&[
+fn bench_json(bed: &Path, law: &str, threads: usize, extra: &[&str]) -> serde_json::Value {
+    let threads = threads.to_string();
+    let mut args = vec![
         "bench",
         "bed",
         "--data",
@@ -51,13 +52,15 @@ fn bench_json(bed: &Path, law: &str, threads: usize) -> serde_json::Value {
         "--law",
         law,
         "--threads",
-        &threads.to_string(),
+        &threads,
         "--warmup",
         "200",
         "--steps",
         "100",
         "--json",
-    ]);
+    ];
+    args.extend_from_slice(extra);
+    let output = mdr_dem(&args);
     assert!(
         output.status.success(),
         "bench bed failed: {}",
@@ -72,7 +75,7 @@ fn bench_bed_json_contract_and_same_trajectories_for_one_and_two_threads() {
     for law in ["hertz", "mdr"] {
         let mut checksums = Vec::new();
         for threads in [1, 2] {
-            let d = bench_json(bed, law, threads);
+            let d = bench_json(bed, law, threads, &[]);
             // The keys the issue fixes, then the ones added since.
             for key in [
                 "particle_steps_per_s",
@@ -95,6 +98,8 @@ fn bench_bed_json_contract_and_same_trajectories_for_one_and_two_threads() {
             assert_eq!(d["particles"].as_u64(), Some(150));
             assert_eq!(d["steps"].as_u64(), Some(100));
             assert_eq!(d["law"].as_str(), Some(law));
+            assert_eq!(d["work_books"].as_bool(), Some(true));
+            assert_eq!(d["orientation"].as_bool(), Some(true));
             // A settled bed: every sphere rests on others or on the floor (2.7 × 2.7 of it).
             let contacts = d["contacts_per_particle"].as_f64().unwrap();
             assert!(contacts > 4.0, "{contacts} contacts per particle");
@@ -114,6 +119,10 @@ fn bench_bed_json_contract_and_same_trajectories_for_one_and_two_threads() {
             checksums[0], checksums[1],
             "{law}: 1 and 2 threads must give the same final state"
         );
+        // Without work books (diagnostics only): the same trajectory, reported as such.
+        let d = bench_json(bed, law, 1, &["--no-work-books"]);
+        assert_eq!(d["work_books"].as_bool(), Some(false));
+        assert_eq!(d["state_checksum"].as_str(), Some(checksums[0].as_str()));
     }
 }
 

@@ -4,9 +4,15 @@
 
 use anyhow::{bail, Context};
 use clap::{Args, Subcommand, ValueEnum};
+use mdr_contact::damping::HertzianViscous;
+use mdr_contact::model::WorkBooks;
 use mdr_contact::normal::{Hertz, MdrElastoPlastic, NormalLaw, NormalModel};
+use mdr_contact::rolling::NoRolling;
+use mdr_contact::tangential::Mindlin;
 use mdr_rapier::fast::bed::{reference_system, settled_bed, Bed, BedSpec};
 use mdr_rapier::fast::rayon;
+use mdr_rapier::fast::FastForceStepper;
+use mdr_rapier::rapier::prelude::PhysicsWorld;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -62,6 +68,10 @@ pub struct BedArgs {
     /// trajectories are unchanged).
     #[arg(long)]
     pub no_orientation: bool,
+    /// Keep no friction and damping work books in the pair histories (LAMMPS keeps none;
+    /// trajectories are unchanged, see `state_checksum`).
+    #[arg(long)]
+    pub no_work_books: bool,
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
@@ -187,6 +197,9 @@ struct BedFigures {
     stepper_bytes_per_particle: f64,
     /// Whether orientations were integrated (`--no-orientation` turns it off).
     orientation: bool,
+    /// Whether the pair histories booked friction and damping work (`--no-work-books` turns
+    /// it off).
+    work_books: bool,
     /// FNV-1a hash (hex) of the bits of every particle's final position, velocity and angular
     /// velocity: two builds (or thread counts) gave the same trajectories iff it is the same.
     state_checksum: String,
@@ -298,10 +311,30 @@ where
             );
         }
     }
-    let (stepper, mut world) = reference_system(normal, bed)?;
-    let mut stepper = stepper
+    let (stepper, world) = reference_system(normal, bed)?;
+    let stepper = stepper
         .skin(args.skin)?
         .track_orientation(!args.no_orientation);
+    if args.no_work_books {
+        measure(stepper.without_work_books(), world, law_name, bed, args)
+    } else {
+        measure(stepper, world, law_name, bed, args)
+    }
+}
+
+/// Warm-up, then the timed steps, then the figures.
+fn measure<N, B>(
+    mut stepper: FastForceStepper<N, Mindlin, HertzianViscous, NoRolling, B>,
+    mut world: PhysicsWorld,
+    law_name: &'static str,
+    bed: &Bed,
+    args: &BedArgs,
+) -> anyhow::Result<BedFigures>
+where
+    N: NormalModel,
+    N::Law: Clone,
+    B: WorkBooks,
+{
     for _ in 0..args.warmup {
         stepper.step(&mut world)?;
     }
@@ -345,6 +378,7 @@ where
         rebuilds: stepper.rebuilds() - rebuilds0,
         floor_contacts: report.surface_contacts,
         orientation: !args.no_orientation,
+        work_books: !args.no_work_books,
         plastic_contact_fraction: if touching > 0 {
             plastic as f64 / touching as f64
         } else {

@@ -52,7 +52,8 @@ pub mod prelude {
         effective_modulus, effective_shear_modulus, ContactPair, Counterpart, Material,
     };
     pub use crate::model::{
-        ContactInput, ContactLaw, ContactModel, ContactOutput, ContactReport, ContactState,
+        Books, ContactInput, ContactLaw, ContactModel, ContactOutput, ContactReport, ContactState,
+        NoBooks, WorkBooks,
     };
     pub use crate::normal::{
         Hertz, HertzLaw, MdrElastoPlastic, MdrLaw, MdrState, NormalLaw, NormalModel,

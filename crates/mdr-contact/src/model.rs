@@ -80,18 +80,82 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> ContactModel<N, T, D> 
     }
 }
 
-/// Per-contact history of a composed model, plus the work books of this contact.
-#[derive(Debug, Clone, Default, PartialEq)]
+/// Where a contact books the work its friction and damping dissipate: a type parameter of
+/// [`ContactState`], so that a state without books ([`NoBooks`]) carries no fields and its update
+/// forms no work term (the trajectory is the same bit for bit; ≈ 4 % of a settled bed's step
+/// per core, docs/performance.md). Plasticity needs no book: its work follows from the normal
+/// law's state ([`NormalLaw::dissipated_work`]).
+pub trait WorkBooks: Default + Clone + Copy + std::fmt::Debug + PartialEq + Send + Sync {
+    /// Add work dissipated by friction (J).
+    fn add_friction_work(&mut self, work: f64);
+    /// Add work dissipated by damping (J).
+    fn add_damping_work(&mut self, work: f64);
+    /// Work dissipated by friction so far (J); NaN when not booked.
+    fn friction_work(&self) -> f64;
+    /// Work dissipated by damping so far (J); NaN when not booked.
+    fn damping_work(&self) -> f64;
+}
+
+/// The work books of one contact (the default of [`ContactState`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct ContactState<NS, TS> {
-    /// Normal law history.
-    pub normal: NS,
-    /// Tangential law history.
-    pub tangential: TS,
+pub struct Books {
     /// Work dissipated by friction so far (J).
     pub friction_work: f64,
     /// Work dissipated by damping so far (J).
     pub damping_work: f64,
+}
+
+impl WorkBooks for Books {
+    #[inline(always)]
+    fn add_friction_work(&mut self, work: f64) {
+        self.friction_work += work;
+    }
+    #[inline(always)]
+    fn add_damping_work(&mut self, work: f64) {
+        self.damping_work += work;
+    }
+    #[inline(always)]
+    fn friction_work(&self) -> f64 {
+        self.friction_work
+    }
+    #[inline(always)]
+    fn damping_work(&self) -> f64 {
+        self.damping_work
+    }
+}
+
+/// No work books: for throughput runs that never read them (LAMMPS keeps none either). Reports
+/// give NaN for the friction and damping work.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct NoBooks;
+
+impl WorkBooks for NoBooks {
+    #[inline(always)]
+    fn add_friction_work(&mut self, _: f64) {}
+    #[inline(always)]
+    fn add_damping_work(&mut self, _: f64) {}
+    #[inline(always)]
+    fn friction_work(&self) -> f64 {
+        f64::NAN
+    }
+    #[inline(always)]
+    fn damping_work(&self) -> f64 {
+        f64::NAN
+    }
+}
+
+/// Per-contact history of a composed model, plus the work books of this contact.
+#[derive(Debug, Clone, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ContactState<NS, TS, B = Books> {
+    /// Normal law history.
+    pub normal: NS,
+    /// Tangential law history.
+    pub tangential: TS,
+    /// Friction and damping work of this contact ([`Books`], or [`NoBooks`] for none).
+    pub books: B,
 }
 
 /// Kinematics of one contact at one step.
@@ -164,8 +228,9 @@ pub struct ContactLaw<NL, TL, DL> {
     pub damping: DL,
 }
 
-/// The state type of a composed law.
-pub type StateOf<NL, TL> = ContactState<<NL as NormalLaw>::State, <TL as TangentialLaw>::State>;
+/// The state type of a composed law, with work books `B` (default [`Books`]).
+pub type StateOf<NL, TL, B = Books> =
+    ContactState<<NL as NormalLaw>::State, <TL as TangentialLaw>::State, B>;
 
 impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
     /// A fresh history (no contact yet).
@@ -176,7 +241,11 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
     /// Advance one contact by one step (always inlined: it is the body of every per-contact hot
     /// loop, and inlining lets the caller drop the parts of the output it does not read).
     #[inline(always)]
-    pub fn update(&self, state: &mut StateOf<NL, TL>, input: &ContactInput) -> ContactOutput {
+    pub fn update<B: WorkBooks>(
+        &self,
+        state: &mut StateOf<NL, TL, B>,
+        input: &ContactInput,
+    ) -> ContactOutput {
         let normal = self.normal.update(&mut state.normal, input.overlap);
         if normal.force <= 0.0 && normal.contact_radius <= 0.0 {
             // Apart (or touching only the residual crater's rim): no force; the tangential
@@ -199,7 +268,9 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
         // No tension: damping may not pull the bodies together.
         let normal_force = (normal.force + damping).max(0.0);
         let applied_damping = normal_force - normal.force;
-        state.damping_work += applied_damping * approach_rate * input.dt;
+        state
+            .books
+            .add_damping_work(applied_damping * approach_rate * input.dt);
         let tangential = self.tangential.update(
             &mut state.tangential,
             &TangentialInput {
@@ -212,7 +283,7 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
                 },
             },
         );
-        state.friction_work += tangential.dissipated;
+        state.books.add_friction_work(tangential.dissipated);
         let mut force = input.normal * normal_force + tangential.force;
         if !tangential.sliding {
             // Tangential dashpot while the spring sticks (see `DampingLaw::tangential_coefficient`):
@@ -221,7 +292,9 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
             if eta_t > 0.0 {
                 let v_t = input.relative_velocity - input.normal * normal_speed;
                 force -= v_t * eta_t;
-                state.damping_work += eta_t * v_t.norm_squared() * input.dt;
+                state
+                    .books
+                    .add_damping_work(eta_t * v_t.norm_squared() * input.dt);
             }
         }
         ContactOutput {
@@ -232,15 +305,16 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
         }
     }
 
-    /// The per-contact quantities users look at.
-    pub fn report(&self, state: &StateOf<NL, TL>, overlap: f64) -> ContactReport {
+    /// The per-contact quantities users look at (NaN friction and damping work with
+    /// [`NoBooks`]).
+    pub fn report<B: WorkBooks>(&self, state: &StateOf<NL, TL, B>, overlap: f64) -> ContactReport {
         ContactReport {
             overlap,
             max_overlap: self.normal.max_overlap(&state.normal),
             residual_overlap: self.normal.residual_overlap(&state.normal),
             plastic_work: self.normal.dissipated_work(&state.normal),
-            friction_work: state.friction_work,
-            damping_work: state.damping_work,
+            friction_work: state.books.friction_work(),
+            damping_work: state.books.damping_work(),
             normal_elastic_energy: self.normal.elastic_energy(&state.normal, overlap),
         }
     }

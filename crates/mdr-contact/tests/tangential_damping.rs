@@ -49,7 +49,7 @@ fn sticking_contact_gets_the_dashpot_force_and_books_its_work() {
         let v = 1e-3 * (0.3 * step as f64).sin();
         let (a, b) = (input(delta, v), input(delta, v));
         let out_plain = plain.update(&mut s_plain, &a);
-        let work_before = s_damped.damping_work;
+        let work_before = s_damped.books.damping_work;
         let out_damped = damped.update(&mut s_damped, &b);
         assert!(!out_damped.tangential.sliding);
         let v_t = b.relative_velocity;
@@ -60,13 +60,13 @@ fn sticking_contact_gets_the_dashpot_force_and_books_its_work() {
             out_damped.force,
             expected
         );
-        let booked = s_damped.damping_work - work_before;
+        let booked = s_damped.books.damping_work - work_before;
         let dissipated = eta_t * v_t.norm_squared() * b.dt;
         assert!((booked - dissipated).abs() <= 1e-12 * dissipated.max(1e-30));
         // The spring itself is the same law either way.
         assert_eq!(out_plain.tangential, out_damped.tangential);
     }
-    assert!(s_damped.damping_work > 0.0);
+    assert!(s_damped.books.damping_work > 0.0);
 }
 
 #[test]
@@ -87,7 +87,7 @@ fn sliding_and_frictionless_contacts_feel_no_dashpot() {
     assert!(out.tangential.sliding);
     let tangential = out.force - Vector3::z() * out.force.z;
     assert!((tangential.norm() - MU * out.normal_force).abs() <= 1e-12 * out.normal_force);
-    assert_eq!(state.damping_work, 0.0);
+    assert_eq!(state.books.damping_work, 0.0);
 
     let frictionless = ContactModel::new(Hertz)
         .with_damping(damping)
@@ -97,7 +97,7 @@ fn sliding_and_frictionless_contacts_feel_no_dashpot() {
     let out = frictionless.update(&mut state, &input(1e-3, 0.01));
     assert_eq!(out.force.x, 0.0);
     assert_eq!(out.force.y, 0.0);
-    assert_eq!(state.damping_work, 0.0);
+    assert_eq!(state.books.damping_work, 0.0);
 }
 
 #[test]

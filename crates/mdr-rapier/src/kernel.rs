@@ -3,7 +3,7 @@
 //! and any faster neighbour-list path) calls this one function, so they agree to round-off.
 
 use mdr_contact::damping::DampingLaw;
-use mdr_contact::model::{ContactInput, ContactLaw, StateOf};
+use mdr_contact::model::{ContactInput, ContactLaw, StateOf, WorkBooks};
 use mdr_contact::normal::NormalLaw;
 use mdr_contact::rolling::{RollingInput, RollingLaw};
 use mdr_contact::tangential::TangentialLaw;
@@ -135,15 +135,16 @@ pub struct PairHistory<S, RS> {
 /// One contact, one step: the law crate's [`ContactLaw::update`] (normal MDR, tangential Mindlin,
 /// damping) and the rolling law, turned into a force and two torques.
 #[inline(always)]
-pub fn evaluate_pair<NL, TL, DL, RL, A>(
+pub fn evaluate_pair<NL, TL, DL, RL, A, B>(
     law: &ContactLaw<NL, TL, DL>,
     rolling: &RL,
-    history: &mut PairHistory<StateOf<NL, TL>, RL::State>,
+    history: &mut PairHistory<StateOf<NL, TL, B>, RL::State>,
     kinematics: &ContactKinematics<A>,
     dt: f64,
 ) -> PairWrench
 where
     A: LeverArms,
+    B: WorkBooks,
     NL: NormalLaw,
     TL: TangentialLaw,
     DL: DampingLaw,

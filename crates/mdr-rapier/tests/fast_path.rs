@@ -404,3 +404,62 @@ fn orientation_tracking_does_not_change_sphere_trajectories() {
         assert_eq!(turned(&off), 0);
     }
 }
+
+#[test]
+fn dropping_the_work_books_mid_run_changes_no_trajectory() {
+    // The friction and damping books are diagnostics: a stepper that drops them halfway keeps
+    // every pair's normal and tangential history and follows the same trajectory bit for bit,
+    // on the serial and the parallel path alike; its reports then give NaN for those works.
+    let bed = lattice_bed(&BedSpec {
+        count: 1000,
+        ..BedSpec::default()
+    })
+    .unwrap();
+    for threads in [1, 2] {
+        let pool = ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let reference = pool.install(|| periodic_run(&bed, 300));
+        let (mut fast, mut world) = periodic_setup(&bed);
+        pool.install(|| {
+            for _ in 0..150 {
+                fast.step(&mut world).unwrap();
+            }
+        });
+        let booked = fast.pairs().history.clone();
+        let booked_bytes = fast.memory_bytes();
+        let damped = booked
+            .iter()
+            .filter(|h| h.contact.books.damping_work > 0.0)
+            .count();
+        let sheared = booked
+            .iter()
+            .filter(|h| h.contact.tangential.displacement.norm() > 0.0)
+            .count();
+        assert!(
+            damped > 100 && sheared > 100,
+            "{damped} damped, {sheared} sheared"
+        );
+        let mut fast = fast.without_work_books();
+        assert!(fast.memory_bytes() < booked_bytes);
+        for (before, after) in booked.iter().zip(&fast.pairs().history) {
+            assert_eq!(before.contact.normal, after.contact.normal);
+            assert_eq!(before.contact.tangential, after.contact.tangential);
+        }
+        pool.install(|| {
+            for _ in 150..300 {
+                fast.step(&mut world).unwrap();
+            }
+        });
+        assert_eq!(reference.particles().position, fast.particles().position);
+        assert_eq!(reference.particles().linvel, fast.particles().linvel);
+        assert_eq!(reference.particles().angvel, fast.particles().angvel);
+        let pairs = fast.pairs();
+        let q = (0..pairs.len()).find(|&q| pairs.active[q]).unwrap();
+        let law = fast.sphere_law(pairs.i[q] as usize, pairs.j[q] as usize);
+        let report = law.report(&pairs.history[q].contact, 1e-3);
+        assert!(report.friction_work.is_nan() && report.damping_work.is_nan());
+        assert!(report.max_overlap > 0.0);
+    }
+}

@@ -59,6 +59,21 @@ impl<H> PairList<H> {
         self.active.iter().filter(|&&a| a).count()
     }
 
+    /// The same list with every history mapped by `f` (e.g. to other work books).
+    pub fn map_history<H2>(self, f: impl FnMut(H) -> H2) -> PairList<H2> {
+        PairList {
+            i: self.i,
+            j: self.j,
+            image: self.image,
+            active: self.active,
+            history: self.history.into_iter().map(f).collect(),
+            wrench: self.wrench,
+            first: self.first,
+            second_start: self.second_start,
+            second: self.second,
+        }
+    }
+
     /// Bytes held by the list's buffers (capacity).
     pub fn bytes(&self) -> usize {
         self.i.capacity() * 4

@@ -52,6 +52,18 @@ impl<H: Default> SurfacePairs<H> {
         self.particle.is_empty()
     }
 
+    /// The same pairs with every history mapped by `f` (e.g. to other work books).
+    pub fn map_history<H2>(self, f: impl FnMut(H) -> H2) -> SurfacePairs<H2> {
+        SurfacePairs {
+            particle: self.particle,
+            surface: self.surface,
+            active: self.active,
+            history: self.history.into_iter().map(f).collect(),
+            wrench: self.wrench,
+            start: self.start,
+        }
+    }
+
     /// Bytes held (capacity).
     pub fn bytes(&self) -> usize {
         self.particle.capacity() * 4
