@@ -366,9 +366,9 @@ impl NormalLaw for MdrLaw {
             return NormalResponse::default();
         }
         let loading = d >= state.max_overlap;
-        if loading {
-            state.max_overlap = d;
-        }
+        // Stored unconditionally: in a vibrating bed loading and unloading alternate at random,
+        // and a conditional store would be a mispredicted branch.
+        state.max_overlap = state.max_overlap.max(d);
         let s = state.max_overlap - self.yield_displacement;
         if d >= s {
             // Elastic or plastic loading (eqs. 5, 10–13 integrated), or elastic unloading and
