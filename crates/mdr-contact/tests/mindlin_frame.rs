@@ -19,8 +19,8 @@ fn a_turning_contact_plane_keeps_the_displacement_length_for_small_and_large_til
     let xi = Vector3::new(3e-4, -1e-4, 0.0);
     // Tilts of the normal about the x axis: t = (n·ξ)²/|ξ|² from 1e-16 to 0.5, across the
     // switch at t = 1e-6.
-    for tilt in [1e-8, 1e-5, 3e-4, 9.9e-4, 1.01e-3, 3e-3, 0.1, 0.7] {
-        let n = Vector3::new(0.0, (tilt as f64).sin(), (tilt as f64).cos());
+    for tilt in [1e-8_f64, 1e-5, 3e-4, 9.9e-4, 1.01e-3, 3e-3, 0.1, 0.7] {
+        let n = Vector3::new(0.0, tilt.sin(), tilt.cos());
         let mut state = MindlinState {
             displacement: xi,
             contact_radius: response.contact_radius,
