@@ -685,17 +685,17 @@ where
             // Pass 2, per block of touching pairs: first the geometry (a square root and a
             // division per pair, independent of each other, so they overlap instead of heading
             // each pair's dependency chain through the law), then the law.
+            let mut geometry: Vec<(f64, Vector3<f64>)> = Vec::with_capacity(BLOCK);
             for block in touching_pairs[..touching].chunks(BLOCK) {
-                let mut geometry = [(0.0f64, Vector3::<f64>::zeros()); BLOCK];
-                for (g, &k) in geometry.iter_mut().zip(block) {
+                geometry.clear();
+                geometry.extend(block.iter().map(|&k| {
                     let k = k as usize;
                     let (i, j) = (pi[k] as usize, pj[k] as usize);
                     let xj = p.position[j] + offsets[image[k] as usize].position;
                     // Always `Some`: pass 1 made the same test.
-                    if let Some(c) = sphere_sphere(&p.position[i], p.radius[i], &xj, p.radius[j]) {
-                        *g = (c.overlap, c.normal);
-                    }
-                }
+                    sphere_sphere(&p.position[i], p.radius[i], &xj, p.radius[j])
+                        .map_or((0.0, Vector3::zeros()), |c| (c.overlap, c.normal))
+                }));
                 for (&k, &(overlap, normal)) in block.iter().zip(&geometry) {
                     let k = k as usize;
                     let (i, j) = (pi[k] as usize, pj[k] as usize);
