@@ -268,9 +268,8 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
         // No tension: damping may not pull the bodies together.
         let normal_force = (normal.force + damping).max(0.0);
         let applied_damping = normal_force - normal.force;
-        state
-            .books
-            .add_damping_work(applied_damping * approach_rate * input.dt);
+        // Both dashpots' work of this step, booked once below.
+        let mut damping_power = applied_damping * approach_rate;
         let tangential = self.tangential.update(
             &mut state.tangential,
             &TangentialInput {
@@ -283,7 +282,10 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
                 },
             },
         );
-        state.books.add_friction_work(tangential.dissipated);
+        if tangential.dissipated != 0.0 {
+            // Only a slip dissipates: a sticking contact (the common case) skips the book.
+            state.books.add_friction_work(tangential.dissipated);
+        }
         let mut force = input.normal * normal_force + tangential.force;
         if !tangential.sliding {
             // Tangential dashpot while the spring sticks (see `DampingLaw::tangential_coefficient`):
@@ -292,11 +294,10 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
             if eta_t > 0.0 {
                 let v_t = input.relative_velocity - input.normal * normal_speed;
                 force -= v_t * eta_t;
-                state
-                    .books
-                    .add_damping_work(eta_t * v_t.norm_squared() * input.dt);
+                damping_power += eta_t * v_t.norm_squared();
             }
         }
+        state.books.add_damping_work(damping_power * input.dt);
         ContactOutput {
             force,
             normal_force,
