@@ -196,7 +196,7 @@ where
     }
 
     /// Keep no friction and damping work books in the pair histories ([`NoBooks`]): the same
-    /// trajectory bit for bit, about 4 % less time per step on a settled bed
+    /// trajectory bit for bit, 0–1 % less time per step on a settled bed
     /// (docs/performance.md); the histories' reports then give NaN for those works. Histories
     /// are carried over, so this may be called at any point of a run.
     pub fn without_work_books(self) -> FastForceStepper<N, T, D, R, NoBooks> {
