@@ -283,7 +283,7 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
             },
         );
         if tangential.dissipated != 0.0 {
-            // Only a slip dissipates: a sticking contact (the common case) skips the book.
+            // Most contacts stick and dissipate nothing here: they skip the book.
             state.books.add_friction_work(tangential.dissipated);
         }
         let mut force = input.normal * normal_force + tangential.force;

@@ -157,9 +157,10 @@ impl TangentialLaw for MindlinLaw {
 
     /// One step of model.md §5. The arithmetic is arranged for the per-contact hot loop (the
     /// results are those of the textbook sequence to round-off):
-    /// - the plane projection and the radius rescale are folded into one scalar factor
-    ///   `√(|ξ|² r_num² / (|ξ_⊥|² r_den²))` (`r_num/r_den` = `a/a_prev`, `a_prev/a` or 1, see
-    ///   [`MindlinForm`]): one division and one square root, applied once;
+    /// - the plane projection's length factor `√(|ξ|²/|ξ_⊥|²)` needs only the normal and the
+    ///   stored ξ, so it does not wait for the normal law; for the small tilts of a dense bed it
+    ///   is a series (one division, no square root), and the radius rescale `r_num/r_den`
+    ///   (`a/a_prev`, `a_prev/a` or 1, see [`MindlinForm`]) multiplies it only when it is not 1;
     /// - the Coulomb test compares squares, `k² |ξ|² > (μ F_N)²`, so the stick branch (the common
     ///   one) takes no square root after the projection; `|ξ|` is formed only on gross slip;
     /// - the stored elastic energy reuses `|ξ|²` (times `keep²` after a slip) instead of a new norm.
