@@ -463,3 +463,40 @@ fn dropping_the_work_books_mid_run_changes_no_trajectory() {
         assert!(report.max_overlap > 0.0);
     }
 }
+
+#[test]
+fn rolling_resistance_can_be_added_to_a_filled_stepper() {
+    // `with_rolling` after the spheres are in: the laws are bound again and the lists found again
+    // at the next step. With μ_r = 0 the run is the one without rolling resistance, bit for bit;
+    // with μ_r > 0 the rolling springs load and the spinning spheres turn differently.
+    let bed = lattice_bed(&BedSpec {
+        count: 300,
+        ..BedSpec::default()
+    })
+    .unwrap();
+    let spin = |k: usize| (Vector::ZERO, Vector::new(0.3 * (k % 7) as f64, 0.0, 0.0));
+    let (mut plain, mut world) = periodic_setup_with(&bed, spin);
+    for _ in 0..200 {
+        plain.step(&mut world).unwrap();
+    }
+    let run = |mu_r: f64| {
+        let (fast, mut world) = periodic_setup_with(&bed, spin);
+        let mut fast = fast.with_rolling(EpsdRolling::new(mu_r).unwrap());
+        for _ in 0..200 {
+            fast.step(&mut world).unwrap();
+        }
+        fast
+    };
+    let free = run(0.0);
+    assert_eq!(free.particles().position, plain.particles().position);
+    assert_eq!(free.particles().angvel, plain.particles().angvel);
+    let resisted = run(0.1);
+    let loaded = resisted
+        .pairs()
+        .history
+        .iter()
+        .filter(|h| h.rolling.torque.norm() > 0.0)
+        .count();
+    assert!(loaded > 50, "{loaded} loaded rolling springs");
+    assert_ne!(resisted.particles().angvel, plain.particles().angvel);
+}

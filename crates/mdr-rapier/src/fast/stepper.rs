@@ -166,40 +166,17 @@ where
 {
     /// Add a rolling-resistance sub-model (call before inserting particles).
     pub fn with_rolling<R2: RollingModel>(self, rolling: R2) -> FastForceStepper<N, T, D, R2, B> {
-        FastForceStepper {
-            model: self.model,
-            rolling,
-            boundary: self.boundary,
-            skin: self.skin,
-            materials: self.materials,
-            moduli: self.moduli,
-            particles: self.particles,
-            built_at: self.built_at,
-            sphere_laws: Vec::new(),
-            surface_laws: Vec::new(),
-            laws_species: 0,
-            surfaces: self.surfaces,
-            pairs: PairList::default(),
-            old_pairs: PairList::default(),
-            builder: self.builder,
-            surface_pairs: SurfacePairs::default(),
-            old_surface_pairs: SurfacePairs::default(),
-            surface_candidates: self.surface_candidates,
-            reactions: self.reactions,
-            sums: self.sums,
-            orientation: self.orientation,
-            needs_build: true,
-            max_displacement: 0.0,
-            report: self.report,
-            rebuilds: self.rebuilds,
-        }
+        // The bound laws and the histories depend on the rolling law: both start afresh.
+        self.retyped(rolling, Vec::new(), Vec::new(), |_| {
+            (PairList::default(), SurfacePairs::default())
+        })
     }
 
     /// Keep no friction and damping work books in the pair histories ([`NoBooks`]): the same
     /// trajectory bit for bit, 0–1 % less time per step on a settled bed
     /// (docs/performance.md); the histories' reports then give NaN for those works. Histories
     /// are carried over, so this may be called at any point of a run.
-    pub fn without_work_books(self) -> FastForceStepper<N, T, D, R, NoBooks> {
+    pub fn without_work_books(mut self) -> FastForceStepper<N, T, D, R, NoBooks> {
         fn unbooked<NS, TS, B, RS>(
             h: PairHistory<ContactState<NS, TS, B>, RS>,
         ) -> PairHistory<ContactState<NS, TS, NoBooks>, RS> {
@@ -212,29 +189,59 @@ where
                 rolling: h.rolling,
             }
         }
+        let rolling = self.rolling.clone();
+        let sphere_laws = std::mem::take(&mut self.sphere_laws);
+        let surface_laws = std::mem::take(&mut self.surface_laws);
+        self.retyped(rolling, sphere_laws, surface_laws, |s| {
+            (
+                std::mem::take(&mut s.pairs).map_history(unbooked),
+                std::mem::take(&mut s.surface_pairs).map_history(unbooked),
+            )
+        })
+    }
+
+    /// The same stepper with rolling model `rolling`, bound laws `sphere_laws`/`surface_laws`
+    /// (empty sphere laws: bound again, and the pairs found again, by a build at the next step)
+    /// and the pair lists `lists(&mut self)` returns; every other field moves over.
+    #[allow(clippy::type_complexity)]
+    fn retyped<R2: RollingModel, B2: WorkBooks>(
+        mut self,
+        rolling: R2,
+        sphere_laws: Vec<(Law<N, T, D>, R2::Law)>,
+        surface_laws: Vec<(Law<N, T, D>, R2::Law)>,
+        lists: impl FnOnce(
+            &mut Self,
+        ) -> (
+            PairList<FastHistory<N, T, R2, B2>>,
+            SurfacePairs<FastHistory<N, T, R2, B2>>,
+        ),
+    ) -> FastForceStepper<N, T, D, R2, B2> {
+        let (pairs, surface_pairs) = lists(&mut self);
+        // No bound laws: the next step must build (which binds them and finds the pairs).
+        let fresh = sphere_laws.is_empty();
         FastForceStepper {
             model: self.model,
-            rolling: self.rolling,
+            rolling,
             boundary: self.boundary,
             skin: self.skin,
             materials: self.materials,
             moduli: self.moduli,
             particles: self.particles,
             built_at: self.built_at,
-            sphere_laws: self.sphere_laws,
-            surface_laws: self.surface_laws,
-            laws_species: self.laws_species,
+            laws_species: if fresh { 0 } else { self.laws_species },
+            sphere_laws,
+            surface_laws,
             surfaces: self.surfaces,
-            pairs: self.pairs.map_history(unbooked),
+            pairs,
             old_pairs: PairList::default(),
             builder: self.builder,
-            surface_pairs: self.surface_pairs.map_history(unbooked),
+            surface_pairs,
             old_surface_pairs: SurfacePairs::default(),
             surface_candidates: self.surface_candidates,
             reactions: self.reactions,
             sums: self.sums,
             orientation: self.orientation,
-            needs_build: self.needs_build,
+            needs_build: self.needs_build || fresh,
             max_displacement: self.max_displacement,
             report: self.report,
             rebuilds: self.rebuilds,
