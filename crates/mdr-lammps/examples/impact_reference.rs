@@ -10,12 +10,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .skip(1)
         .map(|a| a.parse::<f64>())
         .collect::<Result<_, _>>()?;
-    let (radius, speeds) = args.split_first().ok_or("usage: impact_reference RADIUS SPEED...")?;
+    let (radius, speeds) = args
+        .split_first()
+        .ok_or("usage: impact_reference RADIUS SPEED...")?;
     let steel = Material::paper_steel();
     let pair = ContactPair::sphere_on_sphere(*radius, &steel, *radius, &steel)?;
     let law = MdrElastoPlastic::paper().bind(&pair)?;
     for v in speeds {
-        let e = law.impact(&MdrState::default(), pair.reduced_mass(), *v).restitution;
+        let e = law
+            .impact(&MdrState::default(), pair.reduced_mass(), *v)
+            .restitution;
         println!("{v} {e:.12}");
     }
     Ok(())

@@ -308,14 +308,14 @@ unsafe fn compute_with<const ROLLING: bool>(
                         delta.x * force.z,
                         delta.y * force.z,
                     ];
-                    for c in 0..6 {
-                        virial[c] += share * v[c];
+                    for (sum, vc) in virial.iter_mut().zip(v) {
+                        *sum += share * vc;
                     }
                     if !tally.vatom.is_null() {
-                        for c in 0..6 {
-                            *tally.vatom.add(6 * i + c) += 0.5 * v[c];
+                        for (c, vc) in v.iter().enumerate() {
+                            *tally.vatom.add(6 * i + c) += 0.5 * vc;
                             if j_owned {
-                                *tally.vatom.add(6 * j + c) += 0.5 * v[c];
+                                *tally.vatom.add(6 * j + c) += 0.5 * vc;
                             }
                         }
                     }
