@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Side by side on the settled 10,000-sphere bed (benches/lammps/settled.data), one run after the
+# other on this machine: LAMMPS gran/hertz/history, LAMMPS granular mdr (Zunker–Kamrin), the
+# plugin pair_style mdrdem (MDR + Mindlin + damping, the parameters of `mdr-dem bench bed --law
+# mdr`), each with 1 and 2 MPI ranks; then `mdr-dem bench bed --law mdr`.
+# Usage: benches/compare_lammps_plugin.sh [nbench]   (timed steps after 2,000 warm-up steps;
+# default 10000). Prints one table of particle-steps per second (LAMMPS's Matom-step/s).
+set -euo pipefail
+repo=$(cd "$(dirname "$0")/.." && pwd)
+nbench=${1:-10000}
+plugin=$("$repo/crates/mdr-lammps/build-plugin.sh" | tail -1)
+venv=$("$repo/crates/mdr-lammps/install-lammps.sh" | tail -1)
+export LD_LIBRARY_PATH="$venv/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+export OMP_NUM_THREADS=1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cp "$repo/benches/lammps/in.bench" "$repo/benches/lammps/settled.data" "$work/"
+cd "$work"
+# the plugin variant of in.bench: same bed, warm-up, neighbour settings and floor
+sed -e '/^if "${model} == hertzhist"/i if "${model} == plugin" then \&\n  "plugin load '"$plugin"'" \&\n  "pair_style mdrdem" \&\n  "pair_coeff * * youngs ${E} poisson ${nu} qc 10.0 theta 0.37 friction 0.5 damping 50.0 tangential_damping 0.5 estar 1.5e5 gstar $(2.0e5/7.0)" \&\n  "fix floor all wall/gran hertz/history 2.0e5 NULL 50.0 NULL 0.5 0 zplane 0.0 NULL"' in.bench > in.plugin
+rate() { grep -A2 "^Loop time" "$1" | tail -1 | awk '{for (i=1;i<=NF;i++) if ($i=="Matom-step/s") print $(i-1)}' | tail -1; }
+printf '%-28s %6s %14s %14s\n' law ranks "M steps/s" "per core"
+for model in hertzhist mdr plugin; do
+  for np in 1 2; do
+    "$venv/bin/mpirun" -np $np "$venv/bin/lmp" -in in.plugin -var model $model -var nbench "$nbench" \
+      -log log.$model.$np -screen none
+    r=$(rate log.$model.$np)
+    printf '%-28s %6d %14s %14s\n' "lammps-$model" $np "$r" "$(python3 -c "print(f'{$r/$np:.3f}')")"
+  done
+done
+cd "$repo"
+cargo build -q --release --locked --bin mdr-dem
+json=$(target/release/mdr-dem bench bed --law mdr --data benches/lammps/settled.data --steps "$nbench" --json)
+r=$(python3 -c "import json,sys; d=json.loads(sys.argv[1]); print(f\"{d['particle_steps_per_s']/1e6:.3f}\")" "$json" 2>/dev/null || echo "?")
+printf '%-28s %6d %14s %14s\n' "mdr-dem bench bed --law mdr" 1 "$r" "$r"
+echo "json: $json"

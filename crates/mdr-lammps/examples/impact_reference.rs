@@ -1,0 +1,26 @@
+//! Reference coefficient of restitution of a head-on impact of two equal steel spheres (the
+//! paper's values, Fig. 2), from mdr-contact's closed-form energy route (eq. 14, model.md §4):
+//! the same `e_n` the single-impact validator gives, for the pair's `E*`, `R = r/2`, `m = m₁/2`.
+//! Usage: `impact_reference RADIUS SPEED...` (m, m/s); prints `speed e_n` lines.
+use mdr_contact::material::{ContactPair, Material};
+use mdr_contact::normal::{MdrElastoPlastic, MdrState, NormalModel};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<f64> = std::env::args()
+        .skip(1)
+        .map(|a| a.parse::<f64>())
+        .collect::<Result<_, _>>()?;
+    let (radius, speeds) = args
+        .split_first()
+        .ok_or("usage: impact_reference RADIUS SPEED...")?;
+    let steel = Material::paper_steel();
+    let pair = ContactPair::sphere_on_sphere(*radius, &steel, *radius, &steel)?;
+    let law = MdrElastoPlastic::paper().bind(&pair)?;
+    for v in speeds {
+        let e = law
+            .impact(&MdrState::default(), pair.reduced_mass(), *v)
+            .restitution;
+        println!("{v} {e:.12}");
+    }
+    Ok(())
+}

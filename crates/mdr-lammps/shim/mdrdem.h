@@ -1,0 +1,54 @@
+/* C ABI of the mdr-lammps Rust library (crates/mdr-lammps/src/ffi.rs, src/compute.rs).
+   The structs mirror the #[repr(C)] structs of src/compute.rs field for field. */
+#ifndef MDRDEM_H
+#define MDRDEM_H
+#include <stddef.h>
+#include <stdint.h>
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct {
+  const double *x, *v, *omega;
+  double *f, *torque;
+  const double *radius, *rmass;
+  const int *atom_type;
+  int nlocal, nall;
+} MdrdemAtoms;
+
+typedef struct {
+  int inum;
+  const int *ilist;
+  const int *numneigh;
+  const int *const *firstneigh;
+  int neighmask;
+  const int64_t *offset;
+  int *touch;
+  double *history;
+  int dnum;
+} MdrdemNeighbours;
+
+typedef struct {
+  int newton_pair, eflag_global, vflag_global;
+  double *eng_vdwl, *virial, *eatom, *vatom;
+} MdrdemTally;
+
+void *mdrdem_new(int ntypes);
+void mdrdem_free(void *handle);
+int mdrdem_coeff(void *handle, int ilo, int ihi, int jlo, int jhi, int nwords,
+                 const char *const *words, char *err, size_t errlen);
+int mdrdem_init_one(void *handle, int i, int j, char *err, size_t errlen);
+int mdrdem_is_set(const void *handle, int i, int j);
+int mdrdem_history_size(const void *handle);
+void mdrdem_partner_signs(double *out /* 10 values */);
+int mdrdem_compute(const void *handle, const MdrdemAtoms *atoms, const MdrdemNeighbours *list,
+                   const MdrdemTally *tally, double dt, char *err, size_t errlen);
+int mdrdem_single(const void *handle, int itype, int jtype, const double *radius_mass /* ri rj mi mj */,
+                  const double *delta, const double *relative_velocity, const double *omega_i,
+                  const double *omega_j, const double *history, double dt, double *out /* 5 */,
+                  char *err, size_t errlen);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,379 @@
+//! The batched force loop: one call per neighbour list. For every pair of the half list it
+//! binds the pair's law (cached while consecutive pairs share types, radii and masses), loads the
+//! contact's history from the per-neighbour history array, calls mdr-contact's
+//! [`ContactLaw::update`](mdr_contact::model::ContactLaw::update) and the rolling law, and adds
+//! forces, torques and the energy/virial tallies.
+//!
+//! Contact kinematics are those of two spheres in mdr-rapier's kernel (`SphereArms`): the contact
+//! point sits at mid-overlap, `lever = r − δ/2` from each centre, so the contact-point velocity
+//! of `i` relative to `j` is `v_i − v_j − (ℓ_i ω_i + ℓ_j ω_j) × n` and the torques are
+//! `−ℓ n × F` on each body (plus the rolling torque).
+
+use crate::coeffs::{CoeffTable, PairModel};
+use crate::error::PluginError;
+use crate::history::{load, store, HistoryLayout};
+use mdr_contact::damping::HertzianViscousLaw;
+use mdr_contact::material::ContactPair;
+use mdr_contact::model::{ContactInput, ContactLaw};
+use mdr_contact::normal::{MdrLaw, NormalLaw};
+use mdr_contact::rolling::{EpsdRollingLaw, RollingInput, RollingLaw, RollingModel};
+use mdr_contact::tangential::MindlinLaw;
+use nalgebra::Vector3;
+
+/// Per-atom arrays of LAMMPS (`atom->x[0]` etc.: `3 × nall` contiguous doubles).
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct MdrdemAtoms {
+    /// Positions, `3 × nall`.
+    pub x: *const f64,
+    /// Velocities, `3 × nall`.
+    pub v: *const f64,
+    /// Angular velocities, `3 × nall`.
+    pub omega: *const f64,
+    /// Forces (accumulated into), `3 × nall`.
+    pub f: *mut f64,
+    /// Torques (accumulated into), `3 × nall`.
+    pub torque: *mut f64,
+    /// Radii, `nall`.
+    pub radius: *const f64,
+    /// Masses, `nall`.
+    pub rmass: *const f64,
+    /// Atom types (1-based), `nall`.
+    pub atom_type: *const i32,
+    /// Owned atoms.
+    pub nlocal: i32,
+    /// Owned + ghost atoms.
+    pub nall: i32,
+}
+
+/// A half neighbour list and its per-neighbour history (`offset[i] + jj` indexes the history
+/// of the `jj`-th neighbour of atom `i`: flag `touch[k]`, values `history[k·dnum ..]`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct MdrdemNeighbours {
+    /// Number of `i` atoms.
+    pub inum: i32,
+    /// The `i` atoms.
+    pub ilist: *const i32,
+    /// Neighbour count of each atom.
+    pub numneigh: *const i32,
+    /// Neighbours of each atom (masked with `neighmask`).
+    pub firstneigh: *const *const i32,
+    /// The bits of a neighbour entry that hold the atom index (LAMMPS `NEIGHMASK`).
+    pub neighmask: i32,
+    /// First history slot of each atom's neighbours, `nall`.
+    pub offset: *const i64,
+    /// Touch flag per neighbour (1 while the contact has a history).
+    pub touch: *mut i32,
+    /// History values per neighbour, `dnum` each.
+    pub history: *mut f64,
+    /// Values per contact (must equal the layout's size).
+    pub dnum: i32,
+}
+
+/// Energy and virial tallies (LAMMPS `Pair::ev_tally_xyz` conventions).
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct MdrdemTally {
+    /// `force->newton_pair`.
+    pub newton_pair: i32,
+    /// Add to `eng_vdwl` (the normal elastic energy of every contact).
+    pub eflag_global: i32,
+    /// Add to `virial[6]`.
+    pub vflag_global: i32,
+    /// Global energy accumulator.
+    pub eng_vdwl: *mut f64,
+    /// Global virial accumulator, 6 values.
+    pub virial: *mut f64,
+    /// Per-atom energy, `nall` (null when not requested).
+    pub eatom: *mut f64,
+    /// Per-atom virial, `6 × nall` (null when not requested).
+    pub vatom: *mut f64,
+}
+
+type Law = ContactLaw<MdrLaw, MindlinLaw, HertzianViscousLaw>;
+
+/// The law of the last bound pair and what it was bound to (types, radii, masses, bitwise).
+struct BoundCache {
+    key: [u64; 6],
+    law: Law,
+    rolling: EpsdRollingLaw,
+}
+
+#[inline(always)]
+fn bind(
+    model: &PairModel,
+    ri: f64,
+    rj: f64,
+    mi: f64,
+    mj: f64,
+) -> Result<(Law, EpsdRollingLaw), mdr_contact::ContactError> {
+    // Effective radius and reduced mass of two spheres, as ContactPair::sphere_on_sphere.
+    let pair = ContactPair::new(
+        model.effective_modulus,
+        model.effective_shear_modulus,
+        ri * rj / (ri + rj),
+        mi * mj / (mi + mj),
+    )?;
+    Ok((model.model.bind(&pair)?, model.rolling.bind(&pair)?))
+}
+
+#[inline(always)]
+unsafe fn vec3(p: *const f64, i: usize) -> Vector3<f64> {
+    Vector3::new(*p.add(3 * i), *p.add(3 * i + 1), *p.add(3 * i + 2))
+}
+
+#[inline(always)]
+unsafe fn add3(p: *mut f64, i: usize, v: &Vector3<f64>) {
+    *p.add(3 * i) += v.x;
+    *p.add(3 * i + 1) += v.y;
+    *p.add(3 * i + 2) += v.z;
+}
+
+/// One call for a whole neighbour list.
+///
+/// # Safety
+/// Every pointer must be valid for the sizes documented on the structs (LAMMPS's own arrays),
+/// `offset[i] + numneigh[i] ≤ len(touch)` for every listed `i`, and `history` must hold
+/// `dnum` values per `touch` entry.
+pub unsafe fn compute(
+    table: &CoeffTable,
+    atoms: &MdrdemAtoms,
+    list: &MdrdemNeighbours,
+    tally: &MdrdemTally,
+    dt: f64,
+) -> Result<(), PluginError> {
+    let layout = HistoryLayout::for_table(table);
+    if list.dnum as usize != layout.size() {
+        return Err(PluginError::Abi("dnum differs from the history layout"));
+    }
+    if layout.rolling {
+        compute_with::<true>(table, atoms, list, tally, dt)
+    } else {
+        compute_with::<false>(table, atoms, list, tally, dt)
+    }
+}
+
+unsafe fn compute_with<const ROLLING: bool>(
+    table: &CoeffTable,
+    atoms: &MdrdemAtoms,
+    list: &MdrdemNeighbours,
+    tally: &MdrdemTally,
+    dt: f64,
+) -> Result<(), PluginError> {
+    let dnum = list.dnum as usize;
+    let nlocal = atoms.nlocal as usize;
+    let newton = tally.newton_pair != 0;
+    let mask = list.neighmask;
+    let eflag = tally.eflag_global != 0 || !tally.eatom.is_null();
+    let vflag = tally.vflag_global != 0 || !tally.vatom.is_null();
+    let mut cache: Option<BoundCache> = None;
+    let mut energy = 0.0;
+    let mut virial = [0.0; 6];
+    for ii in 0..list.inum as usize {
+        let i = *list.ilist.add(ii) as usize;
+        let jlist = *list.firstneigh.add(i);
+        let jnum = *list.numneigh.add(i) as usize;
+        let base = *list.offset.add(i) as usize;
+        let xi = vec3(atoms.x, i);
+        let ri = *atoms.radius.add(i);
+        let itype = *atoms.atom_type.add(i);
+        for jj in 0..jnum {
+            let j = (*jlist.add(jj) & mask) as usize;
+            let k = base + jj;
+            let delta = xi - vec3(atoms.x, j);
+            let rsq = delta.norm_squared();
+            let rj = *atoms.radius.add(j);
+            let radsum = ri + rj;
+            let touching = rsq < radsum * radsum;
+            let touched = *list.touch.add(k) != 0;
+            if !touching && !touched {
+                continue;
+            }
+            let jtype = *atoms.atom_type.add(j);
+            let mi = *atoms.rmass.add(i);
+            let mj = *atoms.rmass.add(j);
+            let key = [
+                itype as u64,
+                jtype as u64,
+                ri.to_bits(),
+                rj.to_bits(),
+                mi.to_bits(),
+                mj.to_bits(),
+            ];
+            if cache.as_ref().is_none_or(|c| c.key != key) {
+                let model =
+                    table
+                        .model(itype as usize, jtype as usize)
+                        .ok_or(PluginError::NotSet {
+                            i: itype as usize,
+                            j: jtype as usize,
+                        })?;
+                let (law, rolling) = bind(model, ri, rj, mi, mj)
+                    .map_err(|source| PluginError::Contact { i, j, source })?;
+                cache = Some(BoundCache { key, law, rolling });
+            }
+            let bound = cache.as_ref().expect("bound above");
+            let values = std::slice::from_raw_parts_mut(list.history.add(k * dnum), dnum);
+            let (mut state, mut roll_state) = load::<ROLLING>(values);
+            let r = rsq.sqrt();
+            let overlap = radsum - r;
+            if !touching {
+                // Apart after a contact: the law sees the separation (MDR keeps d_max for a
+                // re-touch, Mindlin and rolling springs are released); no force.
+                bound.law.update(
+                    &mut state,
+                    &ContactInput {
+                        overlap,
+                        normal: Vector3::z(),
+                        relative_velocity: Vector3::zeros(),
+                        dt,
+                    },
+                );
+                if ROLLING {
+                    bound.rolling.update(
+                        &mut roll_state,
+                        &RollingInput {
+                            normal: Vector3::z(),
+                            rotation_increment: Vector3::zeros(),
+                            normal_force: 0.0,
+                            normal_stiffness: 0.0,
+                        },
+                    );
+                }
+                store::<ROLLING>(values, &state, &roll_state);
+                continue;
+            }
+            *list.touch.add(k) = 1;
+            let normal = delta * (1.0 / r);
+            let lever_i = ri - 0.5 * overlap;
+            let lever_j = rj - 0.5 * overlap;
+            let wi = vec3(atoms.omega, i);
+            let wj = vec3(atoms.omega, j);
+            let relative_velocity = (vec3(atoms.v, i) - vec3(atoms.v, j))
+                - (wi * lever_i + wj * lever_j).cross(&normal);
+            let out = bound.law.update(
+                &mut state,
+                &ContactInput {
+                    overlap,
+                    normal,
+                    relative_velocity,
+                    dt,
+                },
+            );
+            let force = out.force;
+            let moment = normal.cross(&force);
+            let mut torque_i = moment * -lever_i;
+            let mut torque_j = moment * -lever_j;
+            if ROLLING {
+                let roll = bound.rolling.update(
+                    &mut roll_state,
+                    &RollingInput {
+                        normal,
+                        rotation_increment: (wi - wj) * dt,
+                        normal_force: out.normal_force,
+                        normal_stiffness: out.normal.stiffness,
+                    },
+                );
+                torque_i += roll.torque;
+                torque_j -= roll.torque;
+            }
+            store::<ROLLING>(values, &state, &roll_state);
+            add3(atoms.f, i, &force);
+            add3(atoms.torque, i, &torque_i);
+            let j_owned = newton || j < nlocal;
+            if j_owned {
+                add3(atoms.f, j, &(-force));
+                add3(atoms.torque, j, &torque_j);
+            }
+            if eflag || vflag {
+                // ev_tally_xyz: a pair with a ghost j under newton off counts half.
+                let share = if j_owned { 1.0 } else { 0.5 };
+                if eflag {
+                    let e = bound.law.normal.elastic_energy(&state.normal, overlap);
+                    energy += share * e;
+                    if !tally.eatom.is_null() {
+                        *tally.eatom.add(i) += 0.5 * e;
+                        if j_owned {
+                            *tally.eatom.add(j) += 0.5 * e;
+                        }
+                    }
+                }
+                if vflag {
+                    let v = [
+                        delta.x * force.x,
+                        delta.y * force.y,
+                        delta.z * force.z,
+                        delta.x * force.y,
+                        delta.x * force.z,
+                        delta.y * force.z,
+                    ];
+                    for (sum, vc) in virial.iter_mut().zip(v) {
+                        *sum += share * vc;
+                    }
+                    if !tally.vatom.is_null() {
+                        for (c, vc) in v.iter().enumerate() {
+                            *tally.vatom.add(6 * i + c) += 0.5 * vc;
+                            if j_owned {
+                                *tally.vatom.add(6 * j + c) += 0.5 * vc;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    if tally.eflag_global != 0 && !tally.eng_vdwl.is_null() {
+        *tally.eng_vdwl += energy;
+    }
+    if tally.vflag_global != 0 && !tally.virial.is_null() {
+        for (c, v) in virial.iter().enumerate() {
+            *tally.virial.add(c) += v;
+        }
+    }
+    Ok(())
+}
+
+/// Force and torques of one contact from one history, without advancing the history (for
+/// LAMMPS `single()`, i.e. `compute pair/local`). Returns `(force on i, normal force, overlap)`.
+pub fn evaluate_one(
+    model: &PairModel,
+    sphere_i: (f64, f64),
+    sphere_j: (f64, f64),
+    kinematics: (&Vector3<f64>, &Vector3<f64>, &Vector3<f64>, &Vector3<f64>),
+    values: &[f64],
+    rolling: bool,
+    dt: f64,
+) -> Result<(Vector3<f64>, f64, f64), PluginError> {
+    let (ri, mi) = sphere_i;
+    let (rj, mj) = sphere_j;
+    let (delta, vrel_linear, wi, wj) = kinematics;
+    let (law, _) = bind(model, ri, rj, mi, mj).map_err(|source| PluginError::Contact {
+        i: 0,
+        j: 1,
+        source,
+    })?;
+    let r = delta.norm();
+    let overlap = ri + rj - r;
+    if overlap <= 0.0 {
+        return Ok((Vector3::zeros(), 0.0, overlap));
+    }
+    let (mut state, _) = if rolling {
+        load::<true>(values)
+    } else {
+        load::<false>(values)
+    };
+    let normal = delta / r;
+    let relative_velocity =
+        vrel_linear - (wi * (ri - 0.5 * overlap) + wj * (rj - 0.5 * overlap)).cross(&normal);
+    let out = law.update(
+        &mut state,
+        &ContactInput {
+            overlap,
+            normal,
+            relative_velocity,
+            dt,
+        },
+    );
+    Ok((out.force, out.normal_force, overlap))
+}

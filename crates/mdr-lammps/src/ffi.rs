@@ -1,0 +1,240 @@
+//! The C ABI the C++ shim calls (declared again in `shim/mdrdem.h`). Every function catches
+//! panics and reports errors as a message in a caller-provided buffer, so that the shim can raise
+//! a LAMMPS error instead of crashing.
+
+use crate::coeffs::{CoeffLine, CoeffTable};
+use crate::compute::{compute, evaluate_one, MdrdemAtoms, MdrdemNeighbours, MdrdemTally};
+use crate::error::PluginError;
+use crate::history::{HistoryLayout, PARTNER_SIGNS, ROLLING_SIZE};
+use nalgebra::Vector3;
+use std::ffi::{c_char, c_int, c_void, CStr};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+/// Copy `message` into `err` (`errlen` bytes, NUL-terminated, truncated if needed).
+fn write_error(err: *mut c_char, errlen: usize, message: &str) {
+    if err.is_null() || errlen == 0 {
+        return;
+    }
+    let bytes = message.as_bytes();
+    let n = bytes.len().min(errlen - 1);
+    // SAFETY: the caller provides `errlen` writable bytes at `err`.
+    unsafe {
+        std::ptr::copy_nonoverlapping(bytes.as_ptr(), err.cast::<u8>(), n);
+        *err.add(n) = 0;
+    }
+}
+
+/// Run `body`, turning an error or a panic into `-1` and a message.
+fn guarded(
+    err: *mut c_char,
+    errlen: usize,
+    body: impl FnOnce() -> Result<c_int, PluginError>,
+) -> c_int {
+    match catch_unwind(AssertUnwindSafe(body)) {
+        Ok(Ok(v)) => v,
+        Ok(Err(e)) => {
+            write_error(err, errlen, &e.to_string());
+            -1
+        }
+        Err(_) => {
+            write_error(err, errlen, "internal error (panic) in the mdrdem plugin");
+            -1
+        }
+    }
+}
+
+fn table<'a>(handle: *const c_void) -> Result<&'a CoeffTable, PluginError> {
+    if handle.is_null() {
+        return Err(PluginError::Abi("null handle"));
+    }
+    // SAFETY: non-null handles come from `mdrdem_new`.
+    Ok(unsafe { &*handle.cast::<CoeffTable>() })
+}
+
+fn table_mut<'a>(handle: *mut c_void) -> Result<&'a mut CoeffTable, PluginError> {
+    if handle.is_null() {
+        return Err(PluginError::Abi("null handle"));
+    }
+    // SAFETY: non-null handles come from `mdrdem_new`; the shim owns it exclusively.
+    Ok(unsafe { &mut *handle.cast::<CoeffTable>() })
+}
+
+/// A coefficient table for atom types `1..=ntypes`; free it with [`mdrdem_free`].
+#[no_mangle]
+pub extern "C" fn mdrdem_new(ntypes: c_int) -> *mut c_void {
+    let n = ntypes.max(0) as usize;
+    Box::into_raw(Box::new(CoeffTable::new(n))).cast()
+}
+
+/// Free a table from [`mdrdem_new`] (null is ignored).
+///
+/// # Safety
+/// `handle` must come from [`mdrdem_new`] and not be used afterwards.
+#[no_mangle]
+pub unsafe extern "C" fn mdrdem_free(handle: *mut c_void) {
+    if !handle.is_null() {
+        drop(Box::from_raw(handle.cast::<CoeffTable>()));
+    }
+}
+
+/// Apply one `pair_coeff` line (the words after `I J`) to types `ilo..=ihi` × `jlo..=jhi`.
+/// Returns the number of type pairs set, or −1 with a message naming the keyword.
+///
+/// # Safety
+/// `words` holds `nwords` NUL-terminated strings; `err` has `errlen` writable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn mdrdem_coeff(
+    handle: *mut c_void,
+    ilo: c_int,
+    ihi: c_int,
+    jlo: c_int,
+    jhi: c_int,
+    nwords: c_int,
+    words: *const *const c_char,
+    err: *mut c_char,
+    errlen: usize,
+) -> c_int {
+    guarded(err, errlen, || {
+        let table = table_mut(handle)?;
+        if nwords > 0 && words.is_null() {
+            return Err(PluginError::Abi("null words"));
+        }
+        let mut parsed = Vec::with_capacity(nwords.max(0) as usize);
+        for w in 0..nwords.max(0) as usize {
+            let p = *words.add(w);
+            if p.is_null() {
+                return Err(PluginError::Abi("null word"));
+            }
+            parsed.push(CStr::from_ptr(p).to_string_lossy().into_owned());
+        }
+        let line = CoeffLine::parse(&parsed)?;
+        let to = |v: c_int| v.max(0) as usize;
+        let count = table.set((to(ilo), to(ihi)), (to(jlo), to(jhi)), line)?;
+        Ok(count as c_int)
+    })
+}
+
+/// Build the model of type pair `(i, j)` (LAMMPS `init_one`); 0, or −1 with a message.
+///
+/// # Safety
+/// `err` has `errlen` writable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn mdrdem_init_one(
+    handle: *mut c_void,
+    i: c_int,
+    j: c_int,
+    err: *mut c_char,
+    errlen: usize,
+) -> c_int {
+    guarded(err, errlen, || {
+        table_mut(handle)?.init_one(i.max(0) as usize, j.max(0) as usize)?;
+        Ok(0)
+    })
+}
+
+/// Whether type pair `(i, j)` has an explicit `pair_coeff` line (1) or not (0).
+#[no_mangle]
+pub extern "C" fn mdrdem_is_set(handle: *const c_void, i: c_int, j: c_int) -> c_int {
+    match table(handle) {
+        Ok(t) if i >= 1 && j >= 1 && (i.max(j) as usize) <= t.ntypes() => {
+            t.line(i as usize, j as usize).is_some() as c_int
+        }
+        _ => 0,
+    }
+}
+
+/// Values per contact in the history (after every `init_one`): 5, or 10 with rolling.
+#[no_mangle]
+pub extern "C" fn mdrdem_history_size(handle: *const c_void) -> c_int {
+    match table(handle) {
+        Ok(t) => HistoryLayout::for_table(t).size() as c_int,
+        Err(_) => 0,
+    }
+}
+
+/// Write the sign of each history slot as seen from the partner atom (`out` holds 10 values).
+///
+/// # Safety
+/// `out` must have room for 10 doubles.
+#[no_mangle]
+pub unsafe extern "C" fn mdrdem_partner_signs(out: *mut f64) {
+    if !out.is_null() {
+        std::ptr::copy_nonoverlapping(PARTNER_SIGNS.as_ptr(), out, ROLLING_SIZE);
+    }
+}
+
+/// Forces, torques and tallies of a whole half neighbour list; 0, or −1 with a message.
+///
+/// # Safety
+/// See [`crate::compute::compute`].
+#[no_mangle]
+pub unsafe extern "C" fn mdrdem_compute(
+    handle: *const c_void,
+    atoms: *const MdrdemAtoms,
+    list: *const MdrdemNeighbours,
+    tally: *const MdrdemTally,
+    dt: f64,
+    err: *mut c_char,
+    errlen: usize,
+) -> c_int {
+    guarded(err, errlen, || {
+        if atoms.is_null() || list.is_null() || tally.is_null() {
+            return Err(PluginError::Abi("null argument"));
+        }
+        compute(table(handle)?, &*atoms, &*list, &*tally, dt)?;
+        Ok(0)
+    })
+}
+
+/// One contact without advancing its history (LAMMPS `single()`): writes the force on `i`
+/// (3 values), the normal force and the overlap to `out` (5 values). 0, or −1 with a message.
+///
+/// # Safety
+/// Vector arguments hold 3 doubles, `history` the layout's size, `out` 5 doubles.
+#[no_mangle]
+pub unsafe extern "C" fn mdrdem_single(
+    handle: *const c_void,
+    itype: c_int,
+    jtype: c_int,
+    radius_mass: *const f64,
+    delta: *const f64,
+    relative_velocity: *const f64,
+    omega_i: *const f64,
+    omega_j: *const f64,
+    history: *const f64,
+    dt: f64,
+    out: *mut f64,
+    err: *mut c_char,
+    errlen: usize,
+) -> c_int {
+    guarded(err, errlen, || {
+        let t = table(handle)?;
+        let model = t
+            .model(itype.max(0) as usize, jtype.max(0) as usize)
+            .ok_or(PluginError::NotSet {
+                i: itype.max(0) as usize,
+                j: jtype.max(0) as usize,
+            })?;
+        let v3 = |p: *const f64| Vector3::new(*p, *p.add(1), *p.add(2));
+        let layout = HistoryLayout::for_table(t);
+        let values = std::slice::from_raw_parts(history, layout.size());
+        let rm = std::slice::from_raw_parts(radius_mass, 4);
+        let (force, fn_, overlap) = evaluate_one(
+            model,
+            (rm[0], rm[2]),
+            (rm[1], rm[3]),
+            (
+                &v3(delta),
+                &v3(relative_velocity),
+                &v3(omega_i),
+                &v3(omega_j),
+            ),
+            values,
+            layout.rolling,
+            dt,
+        )?;
+        let o = std::slice::from_raw_parts_mut(out, 5);
+        o.copy_from_slice(&[force.x, force.y, force.z, fn_, overlap]);
+        Ok(0)
+    })
+}
