@@ -21,9 +21,11 @@ impl Values {
         let kwargs = PyDict::new(py);
         kwargs.set_item("dtype", "float64")?;
         let array = numpy
-            .call_method("ascontiguousarray", (obj,), Some(&kwargs))
+            .call_method("asarray", (obj,), Some(&kwargs))
             .map_err(|e| invalid(argument, format!("not an array of numbers ({e})")))?;
+        // ascontiguousarray makes a 0-d array 1-d: remember whether a scalar came in.
         let scalar = array.getattr("ndim")?.extract::<usize>()? == 0;
+        let array = numpy.call_method1("ascontiguousarray", (array,))?;
         let array = array
             .cast_into::<PyArrayDyn<f64>>()
             .map_err(|e| invalid(argument, e))?;
