@@ -137,13 +137,17 @@ fn default_data() -> PyResult<PathBuf> {
     if let Ok(cwd) = std::env::current_dir() {
         candidates.extend(cwd.ancestors().map(|a| a.join(rel)));
     }
-    candidates.iter().find(|c| c.is_file()).cloned().ok_or_else(|| {
-        invalid(
-            "data",
-            "the reference bed `shared/bench/lammps/settled.data` was not found next to the \
+    candidates
+        .iter()
+        .find(|c| c.is_file())
+        .cloned()
+        .ok_or_else(|| {
+            invalid(
+                "data",
+                "the reference bed `shared/bench/lammps/settled.data` was not found next to the \
              repository or above the working directory; pass data=PATH or count=N",
-        )
-    })
+            )
+        })
 }
 
 /// Throughput of the fast force-mode path on a settled bed (as `mdr-dem bench bed`): the LAMMPS
@@ -227,9 +231,9 @@ pub fn bench_bed<'py>(
                 .map_err(|e| PyOSError::new_err(format!("reading {}: {e}", path.display())))?
         }
     };
-    if (0..bed.len()).any(|i| {
-        (bed.diameter[i] - 1.0).abs() > 1e-12 || (bed.density[i] - 1.0).abs() > 1e-12
-    }) {
+    if (0..bed.len())
+        .any(|i| (bed.diameter[i] - 1.0).abs() > 1e-12 || (bed.density[i] - 1.0).abs() > 1e-12)
+    {
         return Err(invalid(
             "data",
             "bench_bed expects the reference bed (every sphere of diameter 1 and density 1)",
@@ -246,7 +250,10 @@ pub fn bench_bed<'py>(
         .map_err(PyRuntimeError::new_err)?;
     let dict = PyDict::new(py);
     let particle_steps = (figures.particles * steps) as f64;
-    dict.set_item("particle_steps_per_s", particle_steps / figures.wall_seconds)?;
+    dict.set_item(
+        "particle_steps_per_s",
+        particle_steps / figures.wall_seconds,
+    )?;
     dict.set_item("ms_per_step", 1e3 * figures.wall_seconds / steps as f64)?;
     dict.set_item("wall_seconds", figures.wall_seconds)?;
     dict.set_item("contacts_per_particle", figures.contacts_per_particle)?;

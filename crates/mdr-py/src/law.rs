@@ -240,7 +240,10 @@ pub struct MdrLaw {
 impl MdrLaw {
     fn advance(&self, state: Option<&Bound<'_, MdrState>>, overlap: f64) -> PyResult<f64> {
         if !overlap.is_finite() {
-            return Err(invalid("overlap", format!("{overlap} (must be finite, in m)")));
+            return Err(invalid(
+                "overlap",
+                format!("{overlap} (must be finite, in m)"),
+            ));
         }
         Ok(match state {
             Some(state) => {
@@ -439,17 +442,19 @@ impl MdrLaw {
         steps: usize,
     ) -> PyResult<ImpactTrace> {
         if !(v0.is_finite() && v0 > 0.0) {
-            return Err(invalid("v0", format!("{v0} (must be finite and > 0, in m/s)")));
+            return Err(invalid(
+                "v0",
+                format!("{v0} (must be finite and > 0, in m/s)"),
+            ));
         }
         let method = parse_method(method, springs)?.unwrap_or(Method::Closed);
         check_steps(steps)?;
         let impact = Impact::new(self.setup.pair, NormalSpec::Mdr(self.setup.model), v0)
             .method(method)
             .steps_per_contact(steps);
-        let (outcome, points) = py
-            .detach(|| impact.trace())
-            .map_err(errors::impact("v0"))?;
-        let column = |f: fn(&mdr_impact::TracePoint) -> f64| array1(py, points.iter().map(f).collect());
+        let (outcome, points) = py.detach(|| impact.trace()).map_err(errors::impact("v0"))?;
+        let column =
+            |f: fn(&mdr_impact::TracePoint) -> f64| array1(py, points.iter().map(f).collect());
         Ok(ImpactTrace {
             t: column(|p| p.time),
             overlap: column(|p| p.overlap),
@@ -501,10 +506,9 @@ pub fn parse_method(method: &str, springs: Option<usize>) -> PyResult<Option<Met
         }
     }
     match method {
-        "closed" if springs.is_some() => Err(invalid(
-            "springs",
-            "it applies to method=\"springs\" only",
-        )),
+        "closed" if springs.is_some() => {
+            Err(invalid("springs", "it applies to method=\"springs\" only"))
+        }
         "closed" => Ok(Some(Method::Closed)),
         "springs" => Ok(Some(Method::Springs {
             springs: springs.unwrap_or(DEFAULT_SPRINGS),

@@ -152,7 +152,10 @@ fn config_from(dict: Option<&Bound<'_, PyDict>>) -> PyResult<RingConfig> {
             "sample_orbits" => config.sample_orbits = number(&key, &value)?,
             "density" => config.density = number(&key, &value)?,
             "gravity" => {
-                if value.extract::<bool>().map_err(|_| invalid(&key, "must be True or False"))? {
+                if value
+                    .extract::<bool>()
+                    .map_err(|_| invalid(&key, "must be True or False"))?
+                {
                     config = config.gravity(SelfGravity::default());
                 }
             }
@@ -168,8 +171,7 @@ fn config_from(dict: Option<&Bound<'_, PyDict>>) -> PyResult<RingConfig> {
 }
 
 fn sample_dict<'py>(py: Python<'py>, sample: &Sample) -> PyResult<Bound<'py, PyAny>> {
-    let value = serde_json::to_value(sample)
-        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let value = serde_json::to_value(sample).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
     json_to_py(py, &value)
 }
 
@@ -283,7 +285,10 @@ impl Ring {
         callback: Option<Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         if !(orbits.is_finite() && orbits > 0.0) {
-            return Err(invalid("orbits", format!("{orbits} (must be finite and > 0)")));
+            return Err(invalid(
+                "orbits",
+                format!("{orbits} (must be finite and > 0)"),
+            ));
         }
         if let Some(cb) = &callback {
             if !cb.is_callable() {

@@ -48,7 +48,10 @@ fn check_scale(scale: f64) -> PyResult<f64> {
     if scale.is_finite() && scale > 0.0 {
         Ok(scale)
     } else {
-        Err(invalid("scale", format!("{scale} (must be finite and > 0)")))
+        Err(invalid(
+            "scale",
+            format!("{scale} (must be finite and > 0)"),
+        ))
     }
 }
 
@@ -61,7 +64,11 @@ fn check_mu(mu: f64) -> PyResult<f64> {
 }
 
 /// A column of outcomes.
-fn column(py: Python<'_>, outcomes: &[ImpactOutcome], f: impl Fn(&ImpactOutcome) -> f64) -> Py<PyAny> {
+fn column(
+    py: Python<'_>,
+    outcomes: &[ImpactOutcome],
+    f: impl Fn(&ImpactOutcome) -> f64,
+) -> Py<PyAny> {
     array1(py, outcomes.iter().map(f).collect())
 }
 
@@ -105,11 +112,17 @@ pub fn curve<'py>(
         None => {
             for (name, v) in [("v_min", v_min), ("v_max", v_max)] {
                 if !(v.is_finite() && v > 0.0) {
-                    return Err(invalid(name, format!("{v} (must be finite and > 0, in m/s)")));
+                    return Err(invalid(
+                        name,
+                        format!("{v} (must be finite and > 0, in m/s)"),
+                    ));
                 }
             }
             if v_max <= v_min {
-                return Err(invalid("v_max", format!("{v_max} must exceed v_min {v_min}")));
+                return Err(invalid(
+                    "v_max",
+                    format!("{v_max} must exceed v_min {v_min}"),
+                ));
             }
             if points < 2 {
                 return Err(invalid("points", format!("{points} (at least 2)")));
@@ -131,9 +144,15 @@ pub fn curve<'py>(
     let dict = PyDict::new(py);
     dict.set_item("v0_m_per_s", column(py, &outcomes, |o| o.speed))?;
     dict.set_item("e_n", column(py, &outcomes, |o| o.normal_restitution))?;
-    dict.set_item("e_n_scaled", column(py, &outcomes, |o| scale * o.normal_restitution))?;
+    dict.set_item(
+        "e_n_scaled",
+        column(py, &outcomes, |o| scale * o.normal_restitution),
+    )?;
     dict.set_item("d_max_m", column(py, &outcomes, |o| o.max_overlap))?;
-    dict.set_item("d_residual_m", column(py, &outcomes, |o| o.residual_overlap))?;
+    dict.set_item(
+        "d_residual_m",
+        column(py, &outcomes, |o| o.residual_overlap),
+    )?;
     dict.set_item("contact_time_s", column(py, &outcomes, |o| o.contact_time))?;
     dict.set_item("f_max_n", column(py, &outcomes, |o| o.peak_force))?;
     dict.set_item("yield_speed_m_per_s", yield_speed)?;
@@ -363,10 +382,16 @@ pub fn oblique<'py>(
         ));
     }
     if !(speed.is_finite() && speed > 0.0) {
-        return Err(invalid("speed", format!("{speed} (must be finite and > 0, in m/s)")));
+        return Err(invalid(
+            "speed",
+            format!("{speed} (must be finite and > 0, in m/s)"),
+        ));
     }
     if !spin.is_finite() {
-        return Err(invalid("spin", format!("{spin} (must be finite, in rad/s)")));
+        return Err(invalid(
+            "spin",
+            format!("{spin} (must be finite, in rad/s)"),
+        ));
     }
     let mu = check_mu(mu)?;
     check_steps(steps)?;
@@ -375,7 +400,10 @@ pub fn oblique<'py>(
         Some(a) => Values::read(py, "angles", a)?.data,
         None => vec![5.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0, 85.0],
     };
-    if let Some(bad) = angles.iter().find(|a| !(a.is_finite() && (0.0..90.0).contains(*a))) {
+    if let Some(bad) = angles
+        .iter()
+        .find(|a| !(a.is_finite() && (0.0..90.0).contains(*a)))
+    {
         return Err(invalid(
             "angles",
             format!("{bad} (angles from the normal in [0, 90) degrees)"),
@@ -437,7 +465,9 @@ pub fn oblique<'py>(
     dict.set_item("e_n", column(py, &outcomes, |o| o.normal_restitution))?;
     dict.set_item(
         "e_t",
-        column(py, &outcomes, |o| o.tangential_restitution.unwrap_or(f64::NAN)),
+        column(py, &outcomes, |o| {
+            o.tangential_restitution.unwrap_or(f64::NAN)
+        }),
     )?;
     dict.set_item(
         "rebound_angle_deg",

@@ -162,13 +162,13 @@ def test_run_scene_rejects_a_bad_file(tmp_path):
 
 
 def test_bench_bed_on_a_small_generated_bed():
-    out = mdr_dem.bench_bed(count=64, settle_steps=500, steps=20, warmup=5)
-    assert out["particles"] == 64 and out["steps"] == 20 and out["law"] == "hertz"
+    out = mdr_dem.bench_bed(count=200, settle_steps=500, steps=20, warmup=5)
+    assert out["particles"] == 200 and out["steps"] == 20 and out["law"] == "hertz"
     assert out["particle_steps_per_s"] > 0
     assert len(out["state_checksum"]) == 16
-    again = mdr_dem.bench_bed(count=64, settle_steps=500, steps=20, warmup=5)
+    again = mdr_dem.bench_bed(count=200, settle_steps=500, steps=20, warmup=5)
     assert again["state_checksum"] == out["state_checksum"]
-    mdr = mdr_dem.bench_bed(count=64, settle_steps=500, steps=20, warmup=5, law="mdr")
+    mdr = mdr_dem.bench_bed(count=200, settle_steps=500, steps=20, warmup=5, law="mdr")
     assert mdr["law"] == "mdr"
     with pytest.raises(ValueError, match="`threads`"):
-        mdr_dem.bench_bed(count=64, threads=0)
+        mdr_dem.bench_bed(count=200, threads=0)
