@@ -29,7 +29,7 @@ echo "== building the wheel (cargo profile $profile)"
 wheels="$(mktemp -d)"
 trap 'rm -rf "$wheels"' EXIT
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$repo/target}"
-(cd "$here" && "$venv/bin/maturin" build --quiet --profile "$profile" --interpreter "$py" \
+(cd "$here" && "$venv/bin/maturin" build --quiet --locked --profile "$profile" --interpreter "$py" \
   --out "$wheels")
 "$py" -m pip install --quiet --disable-pip-version-check --no-deps --force-reinstall \
   "$wheels"/*.whl
