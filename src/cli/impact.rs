@@ -1,4 +1,4 @@
-//! `mdr-dem impact …`: the single-impact validator (issue 3). Flags are parsed and checked here;
+//! `mdr-dem impact …`: the single-impact validator. Flags are parsed and checked here;
 //! the physics lives in `mdr-contact` and the integration in `mdr-impact`.
 //!
 //! Every `impact` subcommand takes the common material/law flags ([`CommonArgs`]); the same keys
@@ -155,7 +155,7 @@ pub struct CommonArgs {
     /// Friction coefficient μ (oblique impacts) [default: 0.2].
     #[arg(long, allow_negative_numbers = true)]
     pub mu: Option<f64>,
-    /// Scale applied to the model's e_n (model.md §3) [default: 0.95].
+    /// Scale applied to the model's e_n (docs/theory.md §7) [default: 0.95].
     #[arg(long, allow_negative_numbers = true)]
     pub scale: Option<f64>,
     /// closed (closed-form law) or springs (discrete spring bed in time) [default: closed; oblique:

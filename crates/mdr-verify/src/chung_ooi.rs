@@ -261,7 +261,7 @@ pub fn test2(resolution: Resolution) -> Result<TestReport> {
 pub const TEST3_HARDENING_RATIO: f64 = 0.0;
 
 /// The critical line load `q_c` (N/m) that gives restitution `target` at speed `v` for `pair`
-/// by the law's time-free energy route (model.md §4), by bisection in `log q_c`.
+/// by the law's time-free energy route (docs/theory.md §4), by bisection in `log q_c`.
 pub fn line_load_for_restitution(
     pair: &mdr_contact::ContactPair,
     hardening_ratio: f64,
