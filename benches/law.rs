@@ -1,4 +1,4 @@
-//! Cost of one force evaluation of each contact law (issue 2): Hertz, the MDR closed form, the
+//! Cost of one force evaluation of each contact law: Hertz, the MDR closed form, the
 //! MDR spring bed (1,000 springs) and the O(1) Mindlin tangential update.
 //!
 //! Every normal law runs the same realistic overlap sequence: 8 impacts (state reset between

@@ -1,4 +1,4 @@
-//! `mdr-dem bench make-bed` and `mdr-dem bench bed` (issue 6): the JSON contract, trajectories
+//! `mdr-dem bench make-bed` and `mdr-dem bench bed`: the JSON contract, trajectories
 //! that do not depend on the number of threads, and bad values named by their flag.
 
 use std::path::{Path, PathBuf};
@@ -76,7 +76,7 @@ fn bench_bed_json_contract_and_same_trajectories_for_one_and_two_threads() {
         let mut checksums = Vec::new();
         for threads in [1, 2] {
             let d = bench_json(bed, law, threads, &[]);
-            // The keys the issue fixes, then the ones added since.
+            // The contract's keys.
             for key in [
                 "particle_steps_per_s",
                 "ms_per_step",

@@ -1,4 +1,4 @@
-//! The `mdr-dem sim drop|pair` command line (issue 4): the CSV contract, the material/law flags
+//! The `mdr-dem sim drop|pair` command line: the CSV contract, the material/law flags
 //! and `--config` shared with `mdr-dem impact`, and bad values named by their flag.
 
 use std::process::{Command, Output};

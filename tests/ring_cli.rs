@@ -1,4 +1,4 @@
-//! `mdr-dem sim ring` contract: `--json` prints one object with the keys of issue 8, `--out`
+//! `mdr-dem sim ring` contract: `--json` prints one object with the documented keys, `--out`
 //! writes the time series, the summary, the plots and VTK frames; bad input is a typed error.
 
 use std::process::Command;

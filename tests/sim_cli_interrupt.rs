@@ -1,4 +1,4 @@
-//! `mdr-dem sim run` and Ctrl-C (issue 5): SIGINT while the run is under way makes it write a
+//! `mdr-dem sim run` and Ctrl-C: SIGINT while the run is under way makes it write a
 //! final checkpoint and exit with success, printing the `--resume` command; resuming from that
 //! checkpoint (with a `duration_s` that ends shortly after it) completes normally.
 

@@ -1,6 +1,6 @@
-//! `mdr-dem bench …`: throughput benchmarks (issue 6). `bench bed` runs the fast force-mode path
-//! on the settled 10,000-sphere bed of `../shared/bench/lammps/` with the system of that
-//! directory's `in.bench` (`hertzhist`), or with the MDR law; see `docs/performance.md`.
+//! `mdr-dem bench …`: throughput benchmarks. `bench bed` runs the fast force-mode path on the
+//! settled 10,000-sphere bed of `benches/lammps/` with the system of that directory's `in.bench`
+//! (`hertzhist`), or with the MDR law; see `docs/performance.md`.
 
 use anyhow::{bail, Context};
 use clap::{Args, Subcommand, ValueEnum};
@@ -39,8 +39,7 @@ pub enum LawArg {
 /// Flags of `bench bed`.
 #[derive(Debug, Args)]
 pub struct BedArgs {
-    /// LAMMPS data file of the bed (default: `../shared/bench/lammps/settled.data` next to the
-    /// repository).
+    /// LAMMPS data file of the bed (default: the repository's `benches/lammps/settled.data`).
     #[arg(long)]
     pub data: Option<PathBuf>,
     /// Contact law.
@@ -126,16 +125,16 @@ fn rayon_pool(threads: usize) -> anyhow::Result<rayon::ThreadPool> {
         .build()?)
 }
 
-/// The shared reference bed, looked for next to the repository (compile-time location) and then
-/// upwards from the working directory.
+/// The reference bed `benches/lammps/settled.data`, looked for in the working directory and its
+/// ancestors (a copy of the repository), then in the repository this binary was built from.
 fn default_data() -> anyhow::Result<PathBuf> {
-    let rel = Path::new("shared/bench/lammps/settled.data");
+    let rel = Path::new("benches/lammps/settled.data");
     let mut tried = Vec::new();
-    let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut candidates: Vec<PathBuf> = repo.ancestors().skip(1).map(|a| a.join(rel)).collect();
+    let mut candidates: Vec<PathBuf> = Vec::new();
     if let Ok(cwd) = std::env::current_dir() {
         candidates.extend(cwd.ancestors().map(|a| a.join(rel)));
     }
+    candidates.push(Path::new(env!("CARGO_MANIFEST_DIR")).join(rel));
     for c in candidates {
         if c.is_file() {
             return Ok(c);
@@ -143,7 +142,7 @@ fn default_data() -> anyhow::Result<PathBuf> {
         tried.push(c.display().to_string());
     }
     bail!(
-        "the reference bed `../shared/bench/lammps/settled.data` was not found (looked at {}); \
+        "the reference bed `benches/lammps/settled.data` was not found (looked at {}); \
          pass --data PATH",
         tried.join(", ")
     )

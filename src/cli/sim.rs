@@ -1,4 +1,4 @@
-//! `mdr-dem sim …`: simulations in rapier (drop/pair: issue 4; run: issue 5; ring: issue 8).
+//! `mdr-dem sim …`: simulations in rapier: one impact (drop, pair), scenes (run), ring (ring).
 //! Each subcommand parses its flags here and calls a small function; the physics lives in the
 //! library crates.
 

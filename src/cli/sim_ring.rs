@@ -1,4 +1,4 @@
-//! `mdr-dem sim ring`: a planetary-ring shearing box (issue 8) with REBOUND's shearing-sheet
+//! `mdr-dem sim ring`: a planetary-ring shearing box with REBOUND's shearing-sheet
 //! defaults; the physics lives in `mdr-ring` ([`mdr_ring::app::run`]).
 
 use anyhow::Context;

@@ -1,5 +1,5 @@
 //! `mdr-dem sim run SCENE.toml [--resume CHECKPOINT] [--quiet] [--out DIR]`: a granular scene
-//! from a TOML file (issue 5). Checks the file, runs it with a progress bar, writes VTK frames,
+//! from a TOML file. Checks the file, runs it with a progress bar, writes VTK frames,
 //! the energy books, plots and checkpoints; Ctrl-C writes a final checkpoint and exits cleanly.
 
 use anyhow::Context;

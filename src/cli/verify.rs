@@ -1,5 +1,5 @@
 //! `mdr-dem verify [--test N] [--plot DIR] [--quick]`: the Chung & Ooi (2011) benchmark tests
-//! (issue 7) on the validator and the rapier force mode, with figures that overlay the
+//! on the validator and the rapier force mode, with figures that overlay the
 //! references. The tests themselves live in `mdr-verify`.
 
 use anyhow::{bail, Context};

@@ -1,5 +1,5 @@
 //! Materials and the pair quantities of a contact: `E*` (eq. 3), `G*`, effective radius and
-//! reduced mass (model.md §1, §5).
+//! reduced mass (docs/theory.md §1, §5).
 
 use crate::error::{finite, positive, ContactError, Result};
 
@@ -83,7 +83,7 @@ pub fn effective_modulus(a: &Material, b: &Material) -> f64 {
     1.0 / compliance
 }
 
-/// Effective shear modulus `G*` of two materials (model.md §5):
+/// Effective shear modulus `G*` of two materials (docs/theory.md §5):
 /// `1/G* = (2 − ν₁)/(4 G₁) + (2 − ν₂)/(4 G₂)`.
 pub fn effective_shear_modulus(a: &Material, b: &Material) -> f64 {
     let compliance = (2.0 - a.poisson_ratio) / (4.0 * a.shear_modulus())
@@ -109,7 +109,7 @@ pub enum Counterpart {
     },
 }
 
-/// The quantities of one contact pair that every law needs (model.md §1):
+/// The quantities of one contact pair that every law needs (docs/theory.md §1):
 /// effective modulus `E*`, effective shear modulus `G*`, effective radius `R` and reduced mass `m`.
 ///
 /// ```
@@ -205,7 +205,7 @@ impl ContactPair {
         self.effective_modulus
     }
 
-    /// Effective shear modulus `G*` (Pa), model.md §5.
+    /// Effective shear modulus `G*` (Pa), docs/theory.md §5.
     pub fn effective_shear_modulus(&self) -> f64 {
         self.effective_shear_modulus
     }

@@ -1,4 +1,4 @@
-//! The MDR closed form (model.md §4): yield onset at `u_c = π q_c / (2 E*)` (eq. 11, closed form
+//! The MDR closed form (docs/theory.md §4): yield onset at `u_c = π q_c / (2 E*)` (eq. 11, closed form
 //! and spring bed), and the time-free energy route of `MdrLaw::impact` against time stepping and
 //! its limits.
 

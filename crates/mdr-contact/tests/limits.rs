@@ -1,4 +1,4 @@
-//! Limits and invariants of the MDR law (model.md §4, `docs/theory.md` §4): Hertz limits,
+//! Limits and invariants of the MDR law (`docs/theory.md` §4): Hertz limits,
 //! no tension, continuity across branch changes, energy balance of closed cycles.
 
 use mdr_contact::normal::{SpringBed, SpringBedState};

@@ -1,5 +1,5 @@
 //! The two forms of the O(1) Mindlin law (`MindlinForm`) on a contact whose radius changes while
-//! it is sheared without slip. In the MDR spring bed (model.md §5) springs that enter a growing
+//! it is sheared without slip. In the MDR spring bed (docs/theory.md §5) springs that enter a growing
 //! contact start unstretched, so `ΔF = 2 G* a Δδ_x` — the incremental (`Force`) form — while the
 //! `Displacement` form `F = 2 G* a δ_x` also stiffens the displacement stored before the contact
 //! grew. The test fails if the force form stops following the bed, or if the two forms coincide.

@@ -1,5 +1,5 @@
 //! The numerical MDR transform (eq. 1) against the closed forms: 1e-6 relative away from the
-//! singular point x = 0 (the brief's accuracy; the achieved error is far smaller).
+//! singular point x = 0 (the required accuracy; the achieved error is far smaller).
 
 use mdr_contact::profile::{
     power_law_factor, Cone, FlatPunch, NumericalProfile, PowerLaw, Profile, Sphere,

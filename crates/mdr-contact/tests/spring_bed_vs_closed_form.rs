@@ -1,5 +1,5 @@
 //! The discrete spring bed (eqs. 2, 6, 9–13, 2,001 springs) against the continuum closed form
-//! (model.md §4, `MdrLaw`) on random load/unload/reload histories with separation and re-touch:
+//! (docs/theory.md §4, `MdrLaw`) on random load/unload/reload histories with separation and re-touch:
 //! the force must agree within 0.2 % of the peak force of the history at every point.
 //!
 //! The two implementations share nothing but the parameters: the bed integrates eq. (10)–(13)

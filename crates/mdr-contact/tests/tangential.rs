@@ -1,4 +1,4 @@
-//! Tangential laws (model.md §5, `docs/theory.md` §5): the MDR spring bed with per-spring
+//! Tangential laws (`docs/theory.md` §5): the MDR spring bed with per-spring
 //! stick/slip reproduces Cattaneo–Mindlin partial slip, `F_x = μ F_N (1 − (c/a)³)` with
 //! `F_x = μ F_N (1 − (1 − δ_x/δ_slip)^{3/2})`, `δ_slip = μ E* d / G*`, within 1 %; without slip
 //! the O(1) Mindlin law equals the spring bed (`F = 2 G* a δ_x`).
@@ -79,7 +79,7 @@ fn elastic_spring_bed_reproduces_cattaneo_mindlin() {
 #[test]
 fn flattened_plastic_contact_is_cattaneo_mindlin_with_radius_r_over_theta() {
     // After plastic loading to d_max and unloading to (1 − θ)s < d < s, the normal pressure is
-    // Hertzian with radius R/θ about the residual depth (model.md §4), so partial slip follows
+    // Hertzian with radius R/θ about the residual depth (docs/theory.md §4), so partial slip follows
     // Cattaneo–Mindlin with that contact: F_N, a = sqrt(R e/θ), δ_slip = μ E* e / G*,
     // e = d − (1 − θ)s.
     let pair = pair();

@@ -8,7 +8,7 @@ use mdr_contact::prelude::*;
 const GAMMA_N: f64 = 50.0;
 const MU: f64 = 0.5;
 
-/// The settled-bed pair of `../shared/bench/lammps` (E* = 1.5e5, R = 0.25, m = π/12).
+/// The settled-bed pair of `benches/lammps` (E* = 1.5e5, R = 0.25, m = π/12).
 fn pair() -> ContactPair {
     ContactPair::new(1.5e5, 28_571.0, 0.25, std::f64::consts::PI / 12.0).unwrap()
 }

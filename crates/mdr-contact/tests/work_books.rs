@@ -7,7 +7,7 @@ use mdr_contact::prelude::*;
 
 #[test]
 fn states_without_books_follow_the_booked_ones_bit_for_bit() {
-    // The settled-bed pair of `../shared/bench/lammps` with the MDR law, Mindlin friction and both
+    // The settled-bed pair of `benches/lammps` with the MDR law, Mindlin friction and both
     // dashpots: an impact that yields, shears, slides and unloads.
     let pair = ContactPair::new(1.5e5, 28_571.0, 0.25, std::f64::consts::PI / 12.0).unwrap();
     let law = ContactModel::new(MdrElastoPlastic::new(10.0, 0.37).unwrap())

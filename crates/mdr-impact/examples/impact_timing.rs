@@ -1,4 +1,4 @@
-//! Wall-clock and CPU time of the two benchmark workloads of issue 3, for machines where other
+//! Wall-clock and CPU time of the two validator benchmark workloads (`benches/impact.rs`), for machines where other
 //! jobs share the cores (CPU seconds do not depend on how many other processes run):
 //! a 200-point curve with the 2,000-spring bed at 2,000 steps per contact, and 100,000
 //! closed-form (energy route) velocities.

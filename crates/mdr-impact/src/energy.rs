@@ -1,4 +1,4 @@
-//! The time-free energy route for the parabolic profile (model.md §4): the kinetic energy is
+//! The time-free energy route for the parabolic profile (docs/theory.md §4): the kinetic energy is
 //! spent on plastic loading up to `d_max` ([`MdrLaw::impact`]), and `e_n² = W_unload / W_load`.
 //! The contact time follows from the same energies by quadrature of `dt = dδ / v(δ)`.
 

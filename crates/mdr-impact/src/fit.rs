@@ -1,6 +1,6 @@
 //! Least-squares fit of the MDR law to measured restitution data: any subset of
 //! {`q_c`, `Θ/E*`, scale} is adjusted so that `scale · e_n(v; q_c, Θ/E*)` (energy route,
-//! model.md §4) matches the measured `(v0, e)` pairs.
+//! docs/theory.md §4) matches the measured `(v0, e)` pairs.
 //!
 //! The optimiser is argmin's Nelder–Mead on the sum of squared residuals, in internal coordinates
 //! that keep the parameters in range (`ln q_c`, logit of `Θ/E*`). The uncertainties come from the
@@ -22,7 +22,7 @@ pub enum FitParameter {
     CriticalLineLoad,
     /// Hardening ratio `Θ/E*`, eq. (12).
     HardeningRatio,
-    /// The scale factor applied to the model's `e_n` (model.md §3).
+    /// The scale factor applied to the model's `e_n` (docs/theory.md §7).
     Scale,
 }
 

@@ -90,7 +90,7 @@ impl Impact {
         }
     }
 
-    /// The paper's Fig. 2 setup (model.md §3) at speed `speed` (m/s).
+    /// The paper's Fig. 2 setup (docs/theory.md §7) at speed `speed` (m/s).
     pub fn paper(speed: f64) -> Self {
         Self::new(ContactPair::paper_fig2(), NormalSpec::paper(), speed)
     }

@@ -33,7 +33,7 @@ impl NormalSpec {
 /// How the normal law is represented.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Method {
-    /// The closed-form law (for `mdr`: the continuum closed form of model.md §4).
+    /// The closed-form law (for `mdr`: the continuum closed form of docs/theory.md §4).
     #[default]
     Closed,
     /// The discrete MDR spring bed (eq. 6 with eqs. 10–13) with this many springs, integrated in
@@ -60,7 +60,7 @@ pub enum Route {
     Auto,
     /// Always integrate the equation of motion (eq. 15) in time.
     TimeIntegration,
-    /// The time-free energy route `e_n² = W_unload / W_load` (model.md §4); closed-form MDR,
+    /// The time-free energy route `e_n² = W_unload / W_load` (docs/theory.md §4); closed-form MDR,
     /// head-on impacts only.
     Energy,
 }
@@ -68,10 +68,10 @@ pub enum Route {
 /// The tangential law of an oblique impact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum TangentialSpec {
-    /// The MDR spring-bed tangential law with per-spring stick/slip (model.md §5); needs the
+    /// The MDR spring-bed tangential law with per-spring stick/slip (docs/theory.md §5); needs the
     /// spring bed as normal law ([`Method::Springs`]).
     SpringBed,
-    /// The O(1) incremental Mindlin law with a Coulomb cap (model.md §5, `k_t = 2 G* a`); works
+    /// The O(1) incremental Mindlin law with a Coulomb cap (docs/theory.md §5, `k_t = 2 G* a`); works
     /// with every normal law.
     #[default]
     Mindlin,

@@ -28,6 +28,6 @@ pub use integrate::TracePoint;
 pub use law::{Method, NormalSpec, Route, TangentialSpec, DEFAULT_SPRINGS};
 pub use sweep::{log_spaced, Progress, Sweep};
 
-/// The scale factor the paper applies to the model curve (model.md §3): the best measured
+/// The scale factor the paper applies to the model curve (docs/theory.md §7): the best measured
 /// elastic-range restitution of the experiment, 0.95.
 pub const PAPER_SCALE: f64 = 0.95;

@@ -5,12 +5,12 @@ use mdr_contact::normal::{thornton_restitution, MdrElastoPlastic, NormalModel, T
 use mdr_contact::{ContactPair, Material};
 use mdr_impact::{Impact, NormalSpec, Route, Sweep};
 
-/// Steel ball of the paper (model.md §3).
+/// Steel ball of the paper (docs/theory.md §7).
 fn paper_pair() -> ContactPair {
     ContactPair::paper_fig2()
 }
 
-/// Yield speed from the energy argument of model.md §4, written out here from the paper's
+/// Yield speed from the energy argument of docs/theory.md §4, written out here from the paper's
 /// numbers (independent of the law crate): `m v²/2 = (8/15) E* √R u_c^{5/2}`,
 /// `u_c = π q_c / (2 E*)` (eq. 11), `E* = E / (2 (1 − ν²))` (eq. 16).
 fn paper_yield_speed_by_hand() -> f64 {
@@ -136,7 +136,7 @@ fn elastic_special_cases() {
 }
 
 /// Two equal free spheres behave as one sphere of the effective radius `R/2` and reduced mass
-/// `m/2` on a half-space (model.md §1), and differently from the plain half-space case.
+/// `m/2` on a half-space (docs/theory.md §1), and differently from the plain half-space case.
 #[test]
 fn equal_spheres_equal_half_space_with_effective_radius_and_reduced_mass() {
     let steel = Material::paper_steel();

@@ -92,7 +92,7 @@ impl ParticleSet {
             ))
     }
 
-    /// `(E*, G*)` of two materials (Pa), eq. (3) and model.md §5.
+    /// `(E*, G*)` of two materials (Pa), eq. (3) and docs/theory.md §5.
     #[inline]
     pub fn pair_moduli(&self, a: MaterialHandle, b: MaterialHandle) -> (f64, f64) {
         self.moduli[a.0 as usize * self.materials.len() + b.0 as usize]

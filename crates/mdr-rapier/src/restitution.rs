@@ -1,5 +1,5 @@
 //! Restitution mode: hard spheres whose impacts rapier resolves with impulses, each manifold's
-//! restitution set from the MDR law's energy route (model.md §4) at the approach speed and the
+//! restitution set from the MDR law's energy route (docs/theory.md §4) at the approach speed and the
 //! pair's plastic history.
 //!
 //! The history (the largest indentation `d_max` of the pair) lives in an [`ImpactHistory`]: a
@@ -401,7 +401,7 @@ impl PhysicsHooks for RestitutionHooks {
         let state = self.history.state(slot);
         let kinetic = 0.5 * mass * approach * approach;
         // Energy that fits within the old unloading branch is returned: elastic re-impact
-        // (model.md §4); skip the root solve.
+        // (docs/theory.md §4); skip the root solve.
         let restitution = if kinetic <= law.stored_energy(state.max_overlap, state.max_overlap) {
             1.0
         } else {

@@ -4,7 +4,7 @@
 //! switch laws per run; [`crate::RestitutionHooks`] is the MDR-only hook with its lock-free store.
 //!
 //! - [`MdrRestitution`]: the MDR elasto-plastic law of `mdr-contact` through its energy route
-//!   ([`MdrLaw::impact`], model.md §4, eqs. 7–14); the history is the pair's largest indentation.
+//!   ([`MdrLaw::impact`], docs/theory.md §4, eqs. 7–14); the history is the pair's largest indentation.
 //! - [`BridgesLaw`]: the empirical law of Bridges, Hatzes & Lin (1984, Nature 309, 333) for
 //!   frost-covered ice at 165 K, `ε(v) = min(1, 0.32 (v / 1 cm s⁻¹)^−0.234)` — REBOUND's default.
 //! - [`ConstantRestitution`]: one ε for every impact.

@@ -107,7 +107,7 @@ pub struct SceneOutcome {
 }
 
 impl ImpactScene {
-    /// The paper's steel ball (R = 0.635 cm, model.md §3) on a steel half-space at `speed`.
+    /// The paper's steel ball (R = 0.635 cm, docs/theory.md §7) on a steel half-space at `speed`.
     pub fn paper_drop(speed: f64) -> Self {
         Self {
             radius: 0.635e-2,

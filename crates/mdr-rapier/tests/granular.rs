@@ -303,7 +303,7 @@ fn frictional_pile_settles_with_the_tangential_dashpot() {
     settle_with(10, 2, 0.6, 0.3, 1.0);
 }
 
-/// The full settling test of the issue: 1,000 spheres (`cargo test --release -- --ignored`).
+/// The full settling test: 1,000 spheres (`cargo test --release -- --ignored`).
 #[test]
 #[ignore]
 fn pile_of_1000_spheres_settles_with_damping() {

@@ -22,7 +22,7 @@ use std::time::Instant;
 pub const REBOUND_OMEGA: f64 = 1.3143527e-4;
 
 /// Settings of a ring run. [`RingConfig::default`] is REBOUND's shearing-sheet example
-/// (`examples/shearing_sheet`, `../shared/bench/rebound/ring.py`).
+/// (`examples/shearing_sheet`, `benches/rebound/ring.py`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RingConfig {
     /// Orbital frequency `Ω` (1/s).

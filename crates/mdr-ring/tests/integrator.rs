@@ -1,5 +1,5 @@
 //! Free motion in Hill's frame: the SEI keeps a collisionless particle's epicycle amplitude,
-//! vertical amplitude and guiding centre to 1e-6 over 100 orbits (issue 8); rapier's plain
+//! vertical amplitude and guiding centre to 1e-6 over 100 orbits; rapier's plain
 //! integration of the Coriolis and tidal terms as an external force does not.
 
 use mdr_ring::hill::{HillFrame, Sei};
@@ -120,7 +120,7 @@ fn rapier_drift(orbits: usize) -> Drift {
 
 #[test]
 fn rapier_external_force_integration_drifts() {
-    // Ten orbits already exceed the 1e-6 budget of the issue by orders of magnitude.
+    // Ten orbits already exceed the 1e-6 budget by orders of magnitude.
     let d = rapier_drift(10);
     eprintln!(
         "rapier, 10 orbits: x_g {:.2e}, y_g {:.2e}, epicycle {:.2e}, vertical {:.2e}",

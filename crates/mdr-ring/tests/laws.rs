@@ -81,7 +81,7 @@ fn mdr_ice_law_follows_bridges_over_ring_impact_speeds() {
         let (a, b) = (mdr.first_impact(&pair, v), bridges.at(v));
         assert!((a - b).abs() < 0.06, "v = {v}: MDR {a}, Bridges {b}");
     }
-    // High-speed limit sqrt(Θ/E*) (model.md §4).
+    // High-speed limit sqrt(Θ/E*) (docs/theory.md §4).
     let fast = mdr.first_impact(&pair, 10.0);
     assert!((fast - 0.2f64.sqrt()).abs() < 0.02, "e(10 m/s) = {fast}");
 }

@@ -7,7 +7,7 @@
 //!   (1961), with `C = 0.58`, `k = 1.5`, `ρ_b = 0.6 ρ_p`);
 //! - rotating drum: dynamic angle of repose of the free surface;
 //! - drop: coefficient of restitution of the first bounce (compared with the law's energy route,
-//!   `MdrLaw::impact`, model.md §4).
+//!   `MdrLaw::impact`, docs/theory.md §4).
 
 use crate::scene::schema::WallKind;
 use crate::scene::{Headline, NormalSpec, Scene};
@@ -426,7 +426,7 @@ impl Tracker {
                     if let Some(reference) = reference {
                         r.push("law_energy_route_restitution", reference);
                         text.push_str(&format!(
-                            "\n  law's energy route (closed form, model.md §4) at that speed: e_n = {reference:.5} \
+                            "\n  law's energy route (closed form, docs/theory.md §4) at that speed: e_n = {reference:.5} \
                              (difference {:.3} %)",
                             100.0 * (e / reference - 1.0)
                         ));

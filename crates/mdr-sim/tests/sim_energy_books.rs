@@ -70,7 +70,7 @@ fn frictionless_column_collapse_keeps_the_energy_sum_within_one_percent() {
 /// With Mindlin friction the books hold too: slip work is booked as friction, the stored
 /// tangential energy as elastic, and the energy the spring gains or loses without work because
 /// its stiffness follows the contact radius (and a shrinking contact rescales its displacement)
-/// as `stiffness_tangential_j`. Bounds: the 1 % of the start value, and 0.05 % (measured
+/// as `stiffness_tangential_j`. Bounds: the required 1 % of the start value, and 0.05 % (measured
 /// 0.018 %; 0.14 % without the stiffness book, which the last assertion checks is needed).
 #[test]
 fn frictional_column_collapse_books_friction_within_one_percent() {
@@ -122,7 +122,7 @@ fn frictional_column_collapse_books_friction_within_one_percent() {
 
 /// With rolling resistance (Ai et al.'s elastic–plastic spring, μ_r = 0.1) the books hold as
 /// well: the rolling springs' energy `|M_r|²/(2 k_r)` is booked as `elastic_rolling_j` and the
-/// plastic rolling rotation's work as `rolling_j`. Besides the 1 % of the start value
+/// plastic rolling rotation's work as `rolling_j`. Besides the required 1 % of the start value
 /// (which includes the whole potential energy above the floor), the drift is held to 2 % of the
 /// energy the collapse releases and to half the rolling work: leaving the rolling work out of
 /// the sum would break both (it is ~7 % of the released energy). The energy the tangential and

@@ -59,7 +59,7 @@ fn frames_collection_csv_and_plots_are_written_and_read_back() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// The long run of the issue: the column scene at reduced size (4 × 4 × 5 = 80 spheres instead
+/// The long run: the column scene at reduced size (4 × 4 × 5 = 80 spheres instead
 /// of 8 × 8 × 10, with `scenes/column.toml`'s contact model: μ = 0.5, rolling resistance
 /// μ_r = 0.1) for 10⁶ steps (3.9 s of simulated time at 50 steps per contact) stays free of NaN
 /// and no particle escapes what energy allows: nothing passes through the floor, no particle

@@ -1,6 +1,6 @@
 //! The MDR elasto-plastic law with nonlocal plasticity and linear hardening (Lyashenko & Popov
 //! 2018), in its continuum closed form for the parabolic profile `g(x) = x²/R`
-//! (model.md §4; derivation in `docs/theory.md` §4). O(1) time and O(1) state per contact.
+//! (`docs/theory.md` §4). O(1) time and O(1) state per contact.
 //!
 //! Every spring of the MDR bed (eqs. 9–13) sees the same indentation `d`, so the plastic state of
 //! the whole bed is fixed by the largest indentation reached so far, `d_max`: the spring at `x`
@@ -127,7 +127,7 @@ pub struct MdrState {
     pub max_overlap: f64,
 }
 
-/// Outcome of one impact evaluated with the time-free energy route (model.md §4).
+/// Outcome of one impact evaluated with the time-free energy route (docs/theory.md §4).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EnergyRouteImpact {
     /// Coefficient of restitution `e_n = sqrt(W_returned / W_in)`, eq. (14).
@@ -257,7 +257,7 @@ impl MdrLaw {
     }
 
     /// Speed (m/s) at which a body of mass `mass` (kg) coming from far first indents to `u_c`:
-    /// `m v_y²/2 = (8/15) E* √R u_c^{5/2}` (model.md §4). Below it the impact is elastic.
+    /// `m v_y²/2 = (8/15) E* √R u_c^{5/2}` (docs/theory.md §4). Below it the impact is elastic.
     pub fn yield_speed(&self, mass: f64) -> f64 {
         (2.0 * self.loading_work(self.yield_displacement) / mass).sqrt()
     }
@@ -265,7 +265,7 @@ impl MdrLaw {
     /// One impact at normal approach speed `speed` (m/s) of reduced mass `mass` (kg) on a contact
     /// with history `state`, without time stepping: the kinetic energy is spent first on the
     /// elastic reloading branch up to the old `d_max`, then on plastic loading; the restitution is
-    /// `e² = W_returned / W_in` (model.md §4). A re-impact whose energy fits within the old branch
+    /// `e² = W_returned / W_in` (docs/theory.md §4). A re-impact whose energy fits within the old branch
     /// is elastic (`e = 1`).
     pub fn impact(&self, state: &MdrState, mass: f64, speed: f64) -> EnergyRouteImpact {
         let kinetic = 0.5 * mass * speed * speed;
@@ -341,7 +341,7 @@ impl MdrLaw {
         d
     }
 
-    /// Force on the loading branch, `d = d_max` (model.md §4).
+    /// Force on the loading branch, `d = d_max` (docs/theory.md §4).
     #[inline]
     fn loading_force(&self, d: f64) -> f64 {
         let s = d - self.yield_displacement;
@@ -357,7 +357,7 @@ impl NormalLaw for MdrLaw {
     type State = MdrState;
 
     /// The hot path of many-particle runs. Loading (`d = d_max`) and unloading with `d ≥ s`
-    /// share one formula, `F = F_H(d) − (1 − θ) F_H(s₊)` with `s = d_max − u_c` (model.md §4),
+    /// share one formula, `F = F_H(d) − (1 − θ) F_H(s₊)` with `s = d_max − u_c` (docs/theory.md §4),
     /// so the common case is one branch and two square roots (`√d`, `√s`); the contact radius
     /// reuses `√d` through the precomputed `√R`.
     #[inline]

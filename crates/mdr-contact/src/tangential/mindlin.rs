@@ -1,4 +1,4 @@
-//! The O(1) incremental Mindlin law with a Coulomb cap (model.md §5; LAMMPS `tangential
+//! The O(1) incremental Mindlin law with a Coulomb cap (docs/theory.md §5; LAMMPS `tangential
 //! mindlin/rescale`): one 3D tangential displacement per contact, kept in the contact plane.
 
 use super::{TangentialInput, TangentialLaw, TangentialModel, TangentialResponse};
@@ -155,7 +155,7 @@ impl MindlinLaw {
 impl TangentialLaw for MindlinLaw {
     type State = MindlinState;
 
-    /// One step of model.md §5. The arithmetic is arranged for the per-contact hot loop (the
+    /// One step of docs/theory.md §5. The arithmetic is arranged for the per-contact hot loop (the
     /// results are those of the textbook sequence to round-off):
     /// - the plane projection's length factor `√(|ξ|²/|ξ_⊥|²)` needs only the normal and the
     ///   stored ξ, so it does not wait for the normal law; for the small tilts of a dense bed it

@@ -1,5 +1,5 @@
 //! The MDR spring-bed tangential law with per-spring stick/slip and Coulomb friction
-//! (model.md §5; `docs/theory.md` §5).
+//! (`docs/theory.md` §5).
 //!
 //! Every spring of a [`SpringBed`] also has a tangential stiffness `k_x = G* Δx`. While a spring
 //! sticks, its tangential displacement `u_x` follows the relative tangential displacement of the

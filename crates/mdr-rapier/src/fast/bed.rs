@@ -235,7 +235,7 @@ impl Bed {
 
 /// Parameters of [`settled_bed`]: monodisperse spheres poured from a jittered lattice onto the
 /// floor `z = 0` of an x/y-periodic box and settled with the reference system of
-/// `../shared/bench/lammps` (`kn = 2e5` Hertz, `γn = 50`, `μ = 0.5`, `g = 1`, `dt = 1e-4`).
+/// `benches/lammps` (`kn = 2e5` Hertz, `γn = 50`, `μ = 0.5`, `g = 1`, `dt = 1e-4`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BedSpec {
     /// Number of spheres.
@@ -308,7 +308,7 @@ pub fn lattice_bed(spec: &BedSpec) -> Result<Bed, BedError> {
     Ok(bed)
 }
 
-/// The reference system of `../shared/bench/lammps/in.bench` (`hertzhist`) on `bed`, with
+/// The reference system of `benches/lammps/in.bench` (`hertzhist`) on `bed`, with
 /// normal law `normal`: diameter-1, density-1 spheres, Mindlin `μ = 0.5`, normal damping
 /// `γn = 50` and tangential damping `γt = γn/2` (LAMMPS `gammat = NULL`), `kn = 2e5` (`E* = 1.5e5`) and LAMMPS's `kt = 2/7 kn` (`G* = kt/2`), the floor
 /// `z = 0` as a rapier half-space, `g = 1` along −z, `dt = 1e-4`, x/y periodic over the bed's box
