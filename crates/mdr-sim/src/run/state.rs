@@ -474,7 +474,7 @@ impl RngRecord {
 pub struct CheckpointData {
     /// Scene name (messages only).
     pub scene_name: String,
-    /// Fingerprint of the scene (see [`fingerprint`]).
+    /// Fingerprint of the scene (see the private `fingerprint` function).
     pub fingerprint: u32,
     /// Bits of the time step.
     pub dt_bits: u64,
