@@ -131,7 +131,8 @@ pub struct RunReport {
     /// Gravity solver: `tree`, `direct` or `none`.
     pub gravity: &'static str,
     /// Wake pitch angle from the surface density's autocorrelation (degrees from the azimuthal
-    /// direction, positive trailing; docs/rings.md §10).
+    /// direction, positive trailing; docs/rings.md §10); null without wakes (anisotropy below
+    /// [`WAKE_MIN_ANISOTROPY`]).
     pub wake_pitch_deg: Option<f64>,
     /// Wake wavelength: distance to the autocorrelation's first side maximum perpendicular to the
     /// wakes (m); null when there is none within half the box.
@@ -146,6 +147,10 @@ pub struct RunReport {
 /// Level of the autocorrelation that outlines its central ellipse (Salo et al. 2004 use the
 /// half-maximum contour).
 pub const WAKE_LEVEL: f64 = 0.5;
+
+/// Below this axis ratio of the central ellipse the autocorrelation has no preferred direction
+/// (uniform random particles give about 1): no pitch angle or wavelength is reported.
+pub const WAKE_MIN_ANISOTROPY: f64 = 1.5;
 
 /// Cell of the surface-density grid for a box of side `side` (m): 2.5 m (about one and a half mean
 /// particle radii; wakes are tens of metres wide), at most 128 cells per side so that the direct
@@ -241,8 +246,12 @@ fn run_with<L: RestitutionLaw>(options: &RunOptions, law: L) -> Result<RunReport
         surface_density,
         self_gravity: options.config.gravity.is_some(),
         gravity: options.config.gravity.map_or("none", |g| g.solver.name()),
-        wake_pitch_deg: wakes.map(|w| w.pitch_deg),
-        wake_wavelength_m: wakes.and_then(|w| w.wavelength_m),
+        wake_pitch_deg: wakes
+            .filter(|w| w.anisotropy >= WAKE_MIN_ANISOTROPY)
+            .map(|w| w.pitch_deg),
+        wake_wavelength_m: wakes
+            .filter(|w| w.anisotropy >= WAKE_MIN_ANISOTROPY)
+            .and_then(|w| w.wavelength_m),
         wake_anisotropy: wakes.map(|w| w.anisotropy),
         samples: result.samples,
     };

@@ -37,6 +37,10 @@ pub struct SurfaceDensity {
     pub slide: f64,
     /// `Σ` of each cell (kg/m²), index `iy * nx + ix`.
     pub sigma: Vec<f64>,
+    /// Variance of `Σ` per cell that the discreteness of the particles alone contributes,
+    /// `Σ_i (m_i / A_cell)² / cells` (kg²/m⁴): Poisson shot noise, uncorrelated between cells, so
+    /// it is removed from the zero lag of the autocorrelation only.
+    pub shot_noise: f64,
 }
 
 impl SurfaceDensity {
@@ -48,6 +52,12 @@ impl SurfaceDensity {
         let (dx, dy) = (domain.lx() / nx as f64, domain.ly() / ny as f64);
         let mut sigma = vec![0.0; nx * ny];
         let area = dx * dy;
+        let shot_noise = particles
+            .mass
+            .iter()
+            .map(|m| (m / area).powi(2))
+            .sum::<f64>()
+            / (nx * ny) as f64;
         for (p, m) in particles.position.iter().zip(&particles.mass) {
             let ix = (((p.x / domain.lx() + 0.5) * nx as f64).floor() as isize)
                 .rem_euclid(nx as isize) as usize;
@@ -62,6 +72,7 @@ impl SurfaceDensity {
             dy,
             slide: domain.shear_offset(time).rem_euclid(domain.ly()),
             sigma,
+            shot_noise,
         }
     }
 
@@ -82,14 +93,20 @@ impl SurfaceDensity {
         self.sigma[(y * nx + x) as usize]
     }
 
-    /// The normalised autocorrelation `C(Δx, Δy) = ⟨δΣ(r) δΣ(r + Δ)⟩ / ⟨δΣ²⟩` for lags up to half
-    /// the box each way (direct sum, O(cells × lags)).
+    /// The normalised autocorrelation `C(Δx, Δy) = ⟨δΣ(r) δΣ(r + Δ)⟩ / (⟨δΣ²⟩ − shot noise)` for
+    /// lags up to half the box each way (direct sum, O(cells × lags)); `C(0)` is set to 1.
     pub fn autocorrelation(&self) -> Autocorrelation {
         let mean = self.mean();
         let (hx, hy) = (self.nx as isize / 2, self.ny as isize / 2);
         let (wx, wy) = ((2 * hx + 1) as usize, (2 * hy + 1) as usize);
         let delta: Vec<f64> = self.sigma.iter().map(|s| s - mean).collect();
-        let variance = delta.iter().map(|d| d * d).sum::<f64>() / delta.len() as f64;
+        let raw = delta.iter().map(|d| d * d).sum::<f64>() / delta.len() as f64;
+        // Structured variance: the shot noise removed (kept raw if the noise is all there is).
+        let variance = if raw - self.shot_noise > 0.2 * raw {
+            raw - self.shot_noise
+        } else {
+            raw
+        };
         let mut values = vec![0.0; wx * wy];
         for ly in -hy..=hy {
             for lx in -hx..=hx {
@@ -100,8 +117,11 @@ impl SurfaceDensity {
                         sum += d0 * (self.at(ix + lx, iy + ly) - mean);
                     }
                 }
-                values[((ly + hy) as usize) * wx + (lx + hx) as usize] =
-                    sum / delta.len() as f64 / variance.max(f64::MIN_POSITIVE);
+                values[((ly + hy) as usize) * wx + (lx + hx) as usize] = if lx == 0 && ly == 0 {
+                    1.0
+                } else {
+                    sum / delta.len() as f64 / variance.max(f64::MIN_POSITIVE)
+                };
             }
         }
         Autocorrelation {

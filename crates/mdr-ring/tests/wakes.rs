@@ -30,6 +30,7 @@ fn stripes(n: usize, side: f64, a: f64, b: f64) -> SurfaceDensity {
         dy: cell,
         slide: 0.0,
         sigma,
+        shot_noise: 0.0,
     }
 }
 
@@ -99,6 +100,7 @@ fn sheared_cosine(n: usize, side: f64, slide: f64, a: f64, b: f64) -> (SurfaceDe
         dy: cell,
         slide,
         sigma,
+        shot_noise: 0.0,
     };
     (grid, kx, ky)
 }
