@@ -378,8 +378,8 @@ impl Tree {
         };
         let mut bounds = [start; 5];
         scratch.clear();
-        for q in 0..4 {
-            bounds[q] = start + scratch.len();
+        for (q, bound) in bounds.iter_mut().take(4).enumerate() {
+            *bound = start + scratch.len();
             scratch.extend(
                 self.order[start..end]
                     .iter()
