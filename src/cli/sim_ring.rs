@@ -1,5 +1,5 @@
-//! `mdr-dem sim ring`: a planetary-ring shearing box with REBOUND's shearing-sheet
-//! defaults; the physics lives in `mdr-ring` ([`mdr_ring::app::run`]).
+//! `mdr-dem sim ring`: a planetary-ring shearing box with REBOUND's shearing-sheet defaults; the
+//! physics lives in `mdr-ring` ([`mdr_ring::app::run`]).
 
 use anyhow::Context;
 use clap::{Args, ValueEnum};
@@ -18,6 +18,18 @@ pub enum RingLawArg {
     Bridges,
     /// A constant ε (--eps).
     Constant,
+}
+
+/// Self-gravity solver of `sim ring`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum RingGravityArg {
+    /// Barnes–Hut tree over the box and its ghost boxes, O(N log N) (REBOUND's method); what a
+    /// bare `--gravity` selects.
+    Tree,
+    /// Direct sum over the same ghost boxes, O(N²) (`--ghost-boxes 0`: nearest image only).
+    Direct,
+    /// No self-gravity (the default without the flag).
+    None,
 }
 
 /// Flags of `sim ring`; defaults are REBOUND's shearing sheet (Ω = 1.3143527e-4 s⁻¹,
@@ -51,9 +63,19 @@ pub struct RingArgs {
     /// Time step (orbits).
     #[arg(long, default_value_t = 1e-3)]
     pub dt_orbits: f64,
-    /// Direct-sum self-gravity (O(N²), for small boxes).
-    #[arg(long)]
-    pub gravity: bool,
+    /// Self-gravity: `tree` (what `--gravity` alone selects), `direct` or `none` (the default).
+    #[arg(long, value_enum, num_args = 0..=1, default_missing_value = "tree")]
+    pub gravity: Option<RingGravityArg>,
+    /// Opening angle θ of the tree (a node of side w at distance d is taken whole when w < θ d).
+    #[arg(long, default_value_t = mdr_ring::gravity::DEFAULT_OPENING_ANGLE)]
+    pub opening_angle: f64,
+    /// Ghost boxes on each side summed by the gravity solver (REBOUND: 2; direct only: 0 = nearest
+    /// image).
+    #[arg(long, default_value_t = mdr_ring::gravity::DEFAULT_GHOST_BOXES)]
+    pub ghost_boxes: usize,
+    /// Plummer softening length of the gravity (m).
+    #[arg(long, default_value_t = 0.1)]
+    pub softening: f64,
     /// MDR: Young's modulus of ice (Pa).
     #[arg(long, default_value_t = 9.0e9)]
     pub youngs: f64,
@@ -70,10 +92,10 @@ pub struct RingArgs {
     #[arg(long)]
     pub json: bool,
     /// Output directory: timeseries.csv, summary.json, equilibration.svg, restitution.svg,
-    /// frames/*.vtk.
+    /// frames/ring_*.vtk and frames/sigma_*.png (surface density).
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Interval between VTK frames (orbits); needs --out.
+    /// Interval between frames (VTK and surface-density PNG, orbits); needs --out.
     #[arg(long, default_value_t = 1.0)]
     pub frame_orbits: f64,
     /// No progress lines on stderr.
@@ -102,8 +124,22 @@ pub fn run_ring(args: &RingArgs) -> anyhow::Result<()> {
     } else if let Some(sigma) = args.surface_density {
         config = config.surface_density(sigma);
     }
-    if args.gravity {
-        config = config.gravity(SelfGravity::default());
+    let solver = match args.gravity {
+        None | Some(RingGravityArg::None) => None,
+        Some(RingGravityArg::Tree) => Some(GravitySolver::Tree {
+            opening_angle: args.opening_angle,
+            ghost_boxes: args.ghost_boxes,
+        }),
+        Some(RingGravityArg::Direct) => Some(GravitySolver::Direct {
+            ghost_boxes: args.ghost_boxes,
+        }),
+    };
+    if let Some(solver) = solver {
+        config = config.gravity(SelfGravity {
+            softening: args.softening,
+            solver,
+            ..SelfGravity::default()
+        });
     }
     let options = RunOptions {
         config,
@@ -138,6 +174,17 @@ pub fn run_ring(args: &RingArgs) -> anyhow::Result<()> {
         println!(
             "{:.3} collisions per particle per orbit, {:.3} s wall per orbit",
             s.collisions_per_particle_per_orbit, s.wall_s_per_orbit
+        );
+        let shown = |v: Option<f64>| v.map_or("none".to_string(), |v| format!("{v:.1}"));
+        println!(
+            "gravity {}, Toomre Q = {:.2}, wakes: pitch {} deg, wavelength {} m, anisotropy {}",
+            report.gravity,
+            s.toomre_q,
+            shown(report.wake_pitch_deg),
+            shown(report.wake_wavelength_m),
+            report
+                .wake_anisotropy
+                .map_or("none".to_string(), |v| format!("{v:.2}"))
         );
     }
     Ok(())

@@ -1,17 +1,20 @@
 //! One ring run from options to files, shared by `mdr-dem sim ring` and the examples: pick the
 //! law, run, and write the time series (`timeseries.csv`), the summary (`summary.json`), the
 //! equilibration plot (`equilibration.svg`), the law's `e(v)` next to Bridges'
-//! (`restitution.svg`) and VTK frames (`frames/ring_NNNN.vtk`).
+//! (`restitution.svg`), VTK frames (`frames/ring_NNNN.vtk`) and surface-density images
+//! (`frames/sigma_NNNN.png`); the wake pitch angle and wavelength come from the surface density's
+//! autocorrelation averaged over the second half of the run (one snapshot per orbit).
 
 use crate::diagnostics::{Sample, Summary};
 use crate::error::Result;
 use crate::law::{BridgesLaw, ConstantRestitution, ImpactPair, MdrRestitution, RestitutionLaw};
 use crate::output::{
-    write_equilibration_svg, write_json, write_panels_svg, write_samples_csv, write_vtk_frame,
-    Curve, Panel,
+    write_equilibration_svg, write_json, write_panels_svg, write_samples_csv,
+    write_surface_density_png, write_vtk_frame, Curve, Panel,
 };
 use crate::particles::Population;
 use crate::run::{RingConfig, RingSimulation};
+use crate::wakes::{Autocorrelation, SurfaceDensity};
 use plotters::style::{BLACK, BLUE, GREEN, RED};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -125,9 +128,35 @@ pub struct RunReport {
     pub surface_density: f64,
     /// Self-gravity on.
     pub self_gravity: bool,
+    /// Gravity solver: `tree`, `direct` or `none`.
+    pub gravity: &'static str,
+    /// Wake pitch angle from the surface density's autocorrelation (degrees from the azimuthal
+    /// direction, positive trailing; docs/rings.md §10); null without wakes (anisotropy below
+    /// [`WAKE_MIN_ANISOTROPY`]).
+    pub wake_pitch_deg: Option<f64>,
+    /// Wake wavelength: distance to the autocorrelation's first side maximum perpendicular to the
+    /// wakes (m); null when there is none within half the box.
+    pub wake_wavelength_m: Option<f64>,
+    /// Axis ratio of the autocorrelation's central ellipse (1: no preferred direction).
+    pub wake_anisotropy: Option<f64>,
     /// The time series (not serialised; written as CSV).
     #[serde(skip)]
     pub samples: Vec<Sample>,
+}
+
+/// Level of the autocorrelation that outlines its central ellipse (Salo et al. 2004 use the
+/// half-maximum contour).
+pub const WAKE_LEVEL: f64 = 0.5;
+
+/// Below this axis ratio of the central ellipse the autocorrelation has no preferred direction
+/// (uniform random particles give about 1): no pitch angle or wavelength is reported.
+pub const WAKE_MIN_ANISOTROPY: f64 = 1.5;
+
+/// Cell of the surface-density grid for a box of side `side` (m): 2.5 m (about one and a half mean
+/// particle radii; wakes are tens of metres wide), at most 128 cells per side so that the direct
+/// autocorrelation stays cheap.
+pub fn wake_cell(side: f64) -> f64 {
+    (side / 128.0).max(2.5)
 }
 
 /// Run and write the outputs.
@@ -154,9 +183,25 @@ fn run_with<L: RestitutionLaw>(options: &RunOptions, law: L) -> Result<RunReport
             "ring t = 0 orbits",
         )?;
     }
+    let domain = *ring.domain();
+    let period = domain.frame().period();
+    let cell = wake_cell(domain.lx().max(domain.ly()));
+    if let (Some(dir), Some(_)) = (&frames_dir, frame_every) {
+        let grid = SurfaceDensity::of(&domain, ring.particles(), 0.0, cell);
+        write_surface_density_png(&dir.join("sigma_0000.png"), &grid, "t = 0 orbits")?;
+    }
+    let mut correlations = Vec::new();
+    let samples_per_orbit = (1.0 / options.config.sample_orbits).round().max(1.0) as u64;
+    let orbits = options.orbits;
     let progress = options.progress;
     let result = ring.run(options.orbits, |sample, particles| {
         index += 1;
+        let last = sample.t_orbits >= orbits - 1e-9;
+        let second_half = sample.t_orbits >= 0.5 * orbits - 1e-9;
+        if second_half && (index % samples_per_orbit == 0 || last) {
+            let grid = SurfaceDensity::of(&domain, particles, sample.t_orbits * period, cell);
+            correlations.push(grid.autocorrelation());
+        }
         if progress && index % 10 == 0 {
             eprintln!(
                 "orbit {:6.1}  c {:.3} mm/s  z_rms {:.2} m  FF0 {:.3}  collisions {}  wall {:.1} s",
@@ -172,7 +217,16 @@ fn run_with<L: RestitutionLaw>(options: &RunOptions, law: L) -> Result<RunReport
             if index % every == 0 && frame_error.is_none() {
                 let path = dir.join(format!("ring_{:04}.vtk", index / every));
                 let title = format!("ring t = {:.2} orbits", sample.t_orbits);
-                if let Err(e) = write_vtk_frame(&path, particles, &title) {
+                let grid = SurfaceDensity::of(&domain, particles, sample.t_orbits * period, cell);
+                let png = dir.join(format!("sigma_{:04}.png", index / every));
+                let written = write_vtk_frame(&path, particles, &title).and_then(|_| {
+                    write_surface_density_png(
+                        &png,
+                        &grid,
+                        &format!("t = {:.2} orbits", sample.t_orbits),
+                    )
+                });
+                if let Err(e) = written {
                     frame_error = Some(e);
                 }
             }
@@ -182,6 +236,7 @@ fn run_with<L: RestitutionLaw>(options: &RunOptions, law: L) -> Result<RunReport
         return Err(e);
     }
     let surface_density = ring.particles().total_mass() / ring.domain().area();
+    let wakes = Autocorrelation::average(&correlations).map(|c| c.wakes(WAKE_LEVEL));
     let report = RunReport {
         summary: result.summary,
         law: LawRecord::from(&options.law),
@@ -190,6 +245,14 @@ fn run_with<L: RestitutionLaw>(options: &RunOptions, law: L) -> Result<RunReport
         box_m: options.config.box_size,
         surface_density,
         self_gravity: options.config.gravity.is_some(),
+        gravity: options.config.gravity.map_or("none", |g| g.solver.name()),
+        wake_pitch_deg: wakes
+            .filter(|w| w.anisotropy >= WAKE_MIN_ANISOTROPY)
+            .map(|w| w.pitch_deg),
+        wake_wavelength_m: wakes
+            .filter(|w| w.anisotropy >= WAKE_MIN_ANISOTROPY)
+            .and_then(|w| w.wavelength_m),
+        wake_anisotropy: wakes.map(|w| w.anisotropy),
         samples: result.samples,
     };
     if let Some(dir) = &options.out {

@@ -122,6 +122,9 @@ pub struct Summary {
     pub wall_s_per_orbit: f64,
     /// Dynamical optical depth `π Σ r² / (L_x L_y)`.
     pub optical_depth: f64,
+    /// Toomre's `Q = σ_x Ω / (3.36 G Σ)` with REBOUND's G ([`crate::wakes::toomre_q`]), whether
+    /// or not self-gravity is on.
+    pub toomre_q: f64,
 }
 
 /// Average the samples with `t ≥ t_end/2` (at least the last one).
@@ -164,6 +167,12 @@ pub fn summarize(
         filling_factor_z0: mean(|s| s.filling_factor_z0),
         collisions_per_particle_per_orbit: collision_rate,
         wall_s_per_orbit: samples.last().map_or(f64::NAN, |s| s.wall_s / orbits),
+        toomre_q: crate::wakes::toomre_q(
+            mean(|s| s.sigma_x),
+            omega,
+            crate::gravity::GRAVITATIONAL_CONSTANT,
+            particles.total_mass() / domain.area(),
+        ),
         optical_depth: std::f64::consts::PI * particles.radius.iter().map(|r| r * r).sum::<f64>()
             / domain.area(),
     }

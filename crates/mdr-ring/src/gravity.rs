@@ -1,8 +1,22 @@
-//! Optional self-gravity by direct summation over the nearest shear-periodic image of every other
-//! particle, with Plummer softening. O(N²) per step: for small boxes (a few thousand particles);
-//! off by default, as in the REBOUND comparison (`--grav none`).
+//! Self-gravity of the shearing box with Plummer softening (docs/rings.md §9), by one of two
+//! solvers over the same shear-periodic images:
+//!
+//! - [`GravitySolver::Tree`]: a Barnes–Hut tree (Barnes & Hut 1986) over the particles of the box,
+//!   walked once for every ghost box, O(N log N) per step — the method of REBOUND's shearing sheet
+//!   (Rein & Liu 2012, A&A 537, A128, §3.3–3.4);
+//! - [`GravitySolver::Direct`]: the direct sum, O(N²) per ghost box — the exact reference for the
+//!   tree, and with `ghost_boxes = 0` the nearest-image sum of the first version of this crate.
+//!
+//! **Images.** Ghost box `(i, j)` (`|i|, |j| ≤ g`) is the box shifted by
+//! `(i L_x, j L_y + w(−i S(t)))`, where `S(t)` is the shear offset and `w(u) = u − L_y round(u/L_y)`
+//! brings the sliding offset back into `[−L_y/2, L_y/2]`: the image of particle `b` in it is the
+//! boundary's image labelled `(i, j + round(i S / L_y))` ([`ghost_box_label`],
+//! [`crate::boundary::ShearingBox::images_near_box`]). The shifts of `(i, j)` and `(−i, −j)` are
+//! opposite, so the direct sum conserves momentum exactly (REBOUND's `reb_boundary_get_ghostbox`
+//! places its ghost boxes the same way).
 
-use crate::boundary::ShearingBox;
+use crate::boundary::{ImageLabel, ShearingBox};
+use crate::error::{in_range, positive, Result, RingError};
 use crate::particles::Particles;
 use rapier3d_f64::math::Vector;
 use rayon::prelude::*;
@@ -10,25 +24,150 @@ use rayon::prelude::*;
 /// Newton's constant (m³ kg⁻¹ s⁻²), REBOUND's value.
 pub const GRAVITATIONAL_CONSTANT: f64 = 6.67428e-11;
 
-/// Direct-sum self-gravity.
+/// REBOUND's ring setup opens tree nodes with `opening_angle2 = 0.5`: `θ = √0.5`.
+pub const DEFAULT_OPENING_ANGLE: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
+/// REBOUND's ring setup sums over two ghost boxes on each side (`N_ghost_x = N_ghost_y = 2`).
+pub const DEFAULT_GHOST_BOXES: usize = 2;
+
+/// Most particles in a leaf of the tree: their forces are summed directly when the leaf is opened.
+const LEAF_SIZE: usize = 8;
+
+/// How the accelerations are computed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum GravitySolver {
+    /// Direct summation over every image in the ghost boxes (`ghost_boxes = 0`: over the nearest
+    /// image of every other particle only).
+    Direct {
+        /// Ghost boxes on each side, radially and azimuthally (0: nearest image).
+        ghost_boxes: usize,
+    },
+    /// Barnes–Hut tree with monopole nodes, walked once per ghost box.
+    Tree {
+        /// Opening angle `θ`: a node of side `w` at distance `d` from the target (to its centre of
+        /// mass) is taken whole when `w < θ d` and the target lies outside it.
+        opening_angle: f64,
+        /// Ghost boxes on each side (≥ 1).
+        ghost_boxes: usize,
+    },
+}
+
+impl GravitySolver {
+    /// The tree with REBOUND's settings (`θ = √0.5`, two ghost boxes each side).
+    pub fn tree() -> Self {
+        GravitySolver::Tree {
+            opening_angle: DEFAULT_OPENING_ANGLE,
+            ghost_boxes: DEFAULT_GHOST_BOXES,
+        }
+    }
+
+    /// `tree` or `direct`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            GravitySolver::Direct { .. } => "direct",
+            GravitySolver::Tree { .. } => "tree",
+        }
+    }
+
+    /// Ghost boxes on each side.
+    pub fn ghost_boxes(&self) -> usize {
+        match *self {
+            GravitySolver::Direct { ghost_boxes } | GravitySolver::Tree { ghost_boxes, .. } => {
+                ghost_boxes
+            }
+        }
+    }
+}
+
+/// Self-gravity: constant, softening and solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SelfGravity {
     /// Gravitational constant (m³ kg⁻¹ s⁻²).
     pub constant: f64,
     /// Plummer softening length (m).
     pub softening: f64,
+    /// The solver.
+    pub solver: GravitySolver,
 }
 
 impl Default for SelfGravity {
+    /// The nearest-image direct sum (the first version's self-gravity); [`SelfGravity::tree`] is
+    /// what `mdr-dem sim ring --gravity` uses.
     fn default() -> Self {
         Self {
             constant: GRAVITATIONAL_CONSTANT,
             softening: 0.1,
+            solver: GravitySolver::Direct { ghost_boxes: 0 },
         }
     }
 }
 
+/// `u − L round(u/L)`: `u` brought into `[−L/2, L/2]`.
+fn centred(u: f64, l: f64) -> f64 {
+    u - l * (u / l).round()
+}
+
+/// Shift `(Δx, Δy)` of ghost box `(i, j)` at `time` (module documentation).
+pub fn ghost_box_shift(domain: &ShearingBox, i: i64, j: i64, time: f64) -> (f64, f64) {
+    let sliding = centred(-(i as f64) * domain.shear_offset(time), domain.ly());
+    (i as f64 * domain.lx(), j as f64 * domain.ly() + sliding)
+}
+
+/// The boundary's label of the image in ghost box `(i, j)` at `time`
+/// (`(i, j + round(i S / L_y))`, module documentation).
+pub fn ghost_box_label(domain: &ShearingBox, i: i64, j: i64, time: f64) -> ImageLabel {
+    let whole = (-(i as f64) * domain.shear_offset(time) / domain.ly()).round() as i64;
+    ImageLabel {
+        radial: i as i8,
+        azimuthal: j - whole,
+    }
+}
+
+fn ghost_shifts(domain: &ShearingBox, g: usize, time: f64) -> Vec<(f64, f64)> {
+    let g = g as i64;
+    let mut shifts = Vec::with_capacity(((2 * g + 1) * (2 * g + 1)) as usize);
+    for i in -g..=g {
+        for j in -g..=g {
+            shifts.push(ghost_box_shift(domain, i, j, time));
+        }
+    }
+    shifts
+}
+
 impl SelfGravity {
+    /// The Barnes–Hut tree with REBOUND's settings, G and softening 0.1 m as REBOUND's ring.
+    pub fn tree() -> Self {
+        Self {
+            solver: GravitySolver::tree(),
+            ..Self::default()
+        }
+    }
+
+    /// Check the settings (names the offending parameter).
+    pub fn validate(&self) -> Result<()> {
+        positive("gravitational_constant", self.constant)?;
+        positive("softening", self.softening)?;
+        match self.solver {
+            GravitySolver::Direct { ghost_boxes } => {
+                in_range("ghost_boxes", ghost_boxes as f64, 0.0, 8.0, "[0, 8]")?;
+            }
+            GravitySolver::Tree {
+                opening_angle,
+                ghost_boxes,
+            } => {
+                in_range("opening_angle", opening_angle, 0.0, 1.5, "[0, 1.5]")?;
+                if !(1..=8).contains(&ghost_boxes) {
+                    return Err(RingError::OutOfRange {
+                        name: "ghost_boxes",
+                        value: ghost_boxes as f64,
+                        range: "[1, 8] for the tree",
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Separation from `a` to the nearest image of `b` at `time`: the radial box offset is chosen
     /// first (it carries the shear offset along y), then the azimuthal one.
     pub fn nearest_image(domain: &ShearingBox, a: Vector, b: Vector, time: f64) -> Vector {
@@ -41,8 +180,45 @@ impl SelfGravity {
         d
     }
 
-    /// Accelerations of all particles (m/s²).
+    /// Accelerations of all particles (m/s²) at `time`, by the configured solver. Parallel over
+    /// particles; each particle's sum runs in a fixed order, so the result does not depend on the
+    /// number of threads.
     pub fn accelerations(
+        &self,
+        domain: &ShearingBox,
+        particles: &Particles,
+        time: f64,
+    ) -> Vec<Vector> {
+        match self.solver {
+            GravitySolver::Direct { ghost_boxes: 0 } => {
+                self.nearest_image_sum(domain, particles, time)
+            }
+            GravitySolver::Direct { ghost_boxes } => {
+                self.ghost_box_sum(domain, particles, time, ghost_boxes)
+            }
+            GravitySolver::Tree {
+                opening_angle,
+                ghost_boxes,
+            } => {
+                let tree = Tree::build(particles);
+                let shifts = ghost_shifts(domain, ghost_boxes, time);
+                let theta2 = opening_angle * opening_angle;
+                let eps2 = self.softening * self.softening;
+                (0..particles.len())
+                    .into_par_iter()
+                    .map(|i| {
+                        let mut acc = Vector::ZERO;
+                        for &shift in &shifts {
+                            acc += tree.walk(i, particles.position[i], shift, theta2, eps2);
+                        }
+                        acc * self.constant
+                    })
+                    .collect()
+            }
+        }
+    }
+
+    fn nearest_image_sum(
         &self,
         domain: &ShearingBox,
         particles: &Particles,
@@ -69,5 +245,219 @@ impl SelfGravity {
                 acc
             })
             .collect()
+    }
+
+    fn ghost_box_sum(
+        &self,
+        domain: &ShearingBox,
+        particles: &Particles,
+        time: f64,
+        ghost_boxes: usize,
+    ) -> Vec<Vector> {
+        let eps2 = self.softening * self.softening;
+        let shifts = ghost_shifts(domain, ghost_boxes, time);
+        (0..particles.len())
+            .into_par_iter()
+            .map(|i| {
+                let a = particles.position[i];
+                let mut acc = Vector::ZERO;
+                for &(sx, sy) in &shifts {
+                    let central = sx == 0.0 && sy == 0.0;
+                    for j in 0..particles.len() {
+                        if central && j == i {
+                            continue;
+                        }
+                        let b = particles.position[j];
+                        let d = Vector::new(b.x + sx - a.x, b.y + sy - a.y, b.z - a.z);
+                        let r2 = d.length_squared() + eps2;
+                        acc += d * (particles.mass[j] / (r2 * r2.sqrt()));
+                    }
+                }
+                acc * self.constant
+            })
+            .collect()
+    }
+}
+
+/// A node of the quadtree (x, y; the thin ring needs no split in z): a square cell, its mass and
+/// centre of mass (3-D), and either four children or a range of particles.
+#[derive(Debug, Clone, Copy)]
+struct Node {
+    centre_x: f64,
+    centre_y: f64,
+    half: f64,
+    mass: f64,
+    com: Vector,
+    /// Index of the first of four consecutive children (0: a leaf; the root is never a child).
+    children: u32,
+    start: u32,
+    end: u32,
+}
+
+/// A Barnes–Hut quadtree over the particles (Barnes & Hut 1986, Nature 324, 446), with the
+/// particles' positions and masses stored in tree order.
+struct Tree {
+    nodes: Vec<Node>,
+    /// Particle index of each position in tree order.
+    order: Vec<u32>,
+    position: Vec<Vector>,
+    mass: Vec<f64>,
+}
+
+impl Tree {
+    fn build(particles: &Particles) -> Self {
+        let n = particles.len();
+        let (mut lo_x, mut lo_y, mut hi_x, mut hi_y) = (
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        );
+        for p in &particles.position {
+            lo_x = lo_x.min(p.x);
+            lo_y = lo_y.min(p.y);
+            hi_x = hi_x.max(p.x);
+            hi_y = hi_y.max(p.y);
+        }
+        let half = 0.5 * (hi_x - lo_x).max(hi_y - lo_y).max(1e-9) * (1.0 + 1e-9);
+        let mut tree = Tree {
+            nodes: Vec::with_capacity(2 * n / LEAF_SIZE + 8),
+            order: (0..n as u32).collect(),
+            position: Vec::new(),
+            mass: Vec::new(),
+        };
+        tree.nodes.push(Node {
+            centre_x: 0.5 * (lo_x + hi_x),
+            centre_y: 0.5 * (lo_y + hi_y),
+            half,
+            mass: 0.0,
+            com: Vector::ZERO,
+            children: 0,
+            start: 0,
+            end: n as u32,
+        });
+        let mut scratch = Vec::with_capacity(n);
+        tree.split(0, particles, &mut scratch, 0);
+        tree.position = tree
+            .order
+            .iter()
+            .map(|&k| particles.position[k as usize])
+            .collect();
+        tree.mass = tree
+            .order
+            .iter()
+            .map(|&k| particles.mass[k as usize])
+            .collect();
+        tree
+    }
+
+    /// Fill in node `index` (mass, centre of mass) and split it if it holds more than a leaf.
+    fn split(&mut self, index: usize, particles: &Particles, scratch: &mut Vec<u32>, depth: u32) {
+        let node = self.nodes[index];
+        let (start, end) = (node.start as usize, node.end as usize);
+        let (mut mass, mut moment) = (0.0, Vector::ZERO);
+        for &k in &self.order[start..end] {
+            let m = particles.mass[k as usize];
+            mass += m;
+            moment += particles.position[k as usize] * m;
+        }
+        self.nodes[index].mass = mass;
+        self.nodes[index].com = if mass > 0.0 {
+            moment / mass
+        } else {
+            Vector::new(node.centre_x, node.centre_y, 0.0)
+        };
+        // Depth cap: coincident particles would otherwise split forever.
+        if end - start <= LEAF_SIZE || depth >= 48 {
+            return;
+        }
+        // Stable partition into the quadrants (x-, y-), (x+, y-), (x-, y+), (x+, y+).
+        let quadrant = |k: u32| {
+            let p = particles.position[k as usize];
+            usize::from(p.x >= node.centre_x) + 2 * usize::from(p.y >= node.centre_y)
+        };
+        let mut bounds = [start; 5];
+        scratch.clear();
+        for (q, bound) in bounds.iter_mut().take(4).enumerate() {
+            *bound = start + scratch.len();
+            scratch.extend(
+                self.order[start..end]
+                    .iter()
+                    .copied()
+                    .filter(|&k| quadrant(k) == q),
+            );
+        }
+        bounds[4] = end;
+        self.order[start..end].copy_from_slice(scratch);
+        let first = self.nodes.len();
+        self.nodes[index].children = first as u32;
+        let h = 0.5 * node.half;
+        for q in 0..4 {
+            self.nodes.push(Node {
+                centre_x: node.centre_x + if q & 1 == 1 { h } else { -h },
+                centre_y: node.centre_y + if q & 2 == 2 { h } else { -h },
+                half: h,
+                mass: 0.0,
+                com: Vector::ZERO,
+                children: 0,
+                start: bounds[q] as u32,
+                end: bounds[q + 1] as u32,
+            });
+        }
+        for q in 0..4 {
+            if bounds[q + 1] > bounds[q] {
+                self.split(first + q, particles, scratch, depth + 1);
+            }
+        }
+    }
+
+    /// `Σ m_j d / (|d|² + ε²)^{3/2}` (without G) on the particle `target` at `p` from the tree
+    /// shifted by `(sx, sy)`.
+    fn walk(
+        &self,
+        target: usize,
+        p: Vector,
+        (sx, sy): (f64, f64),
+        theta2: f64,
+        eps2: f64,
+    ) -> Vector {
+        let central = sx == 0.0 && sy == 0.0;
+        // The target seen from the unshifted tree.
+        let (qx, qy) = (p.x - sx, p.y - sy);
+        let mut acc = Vector::ZERO;
+        let mut stack = [0u32; 200];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let node = &self.nodes[stack[top] as usize];
+            if node.mass == 0.0 {
+                continue;
+            }
+            let d = Vector::new(node.com.x - qx, node.com.y - qy, node.com.z - p.z);
+            let r2 = d.length_squared();
+            let width = 2.0 * node.half;
+            let inside =
+                (qx - node.centre_x).abs() <= node.half && (qy - node.centre_y).abs() <= node.half;
+            if node.children == 0 {
+                for k in node.start as usize..node.end as usize {
+                    if central && self.order[k] as usize == target {
+                        continue;
+                    }
+                    let b = self.position[k];
+                    let d = Vector::new(b.x - qx, b.y - qy, b.z - p.z);
+                    let r2 = d.length_squared() + eps2;
+                    acc += d * (self.mass[k] / (r2 * r2.sqrt()));
+                }
+            } else if !inside && width * width < theta2 * r2 {
+                let r2 = r2 + eps2;
+                acc += d * (node.mass / (r2 * r2.sqrt()));
+            } else {
+                for c in 0..4 {
+                    stack[top] = node.children + c;
+                    top += 1;
+                }
+            }
+        }
+        acc
     }
 }

@@ -11,7 +11,9 @@
 //! - restitution laws (MDR energy route, Bridges, constant) behind one trait live in the plugin,
 //!   [`mdr_rapier::restitution_law`], re-exported here as [`law`];
 //! - [`hooks`], [`world`]: rapier collision step with ghost images and the restitution hook;
-//! - [`gravity`]: optional direct-sum self-gravity;
+//! - [`gravity`]: optional self-gravity, Barnes–Hut tree or direct sum over shear-periodic ghost
+//!   boxes;
+//! - [`wakes`]: surface-density grid, its autocorrelation, wake pitch angle and wavelength, Toomre Q;
 //! - [`diagnostics`], [`run`], [`output`]: measurements, the time loop, CSV/JSON/VTK/SVG;
 //! - [`app`]: one run from options to files (used by `mdr-dem sim ring`).
 //!
@@ -34,6 +36,7 @@ pub mod hooks;
 pub mod output;
 pub mod particles;
 pub mod run;
+pub mod wakes;
 pub mod world;
 
 pub use error::{Result, RingError};
@@ -44,7 +47,7 @@ pub mod prelude {
     pub use crate::boundary::ShearingBox;
     pub use crate::diagnostics::{Sample, Summary};
     pub use crate::error::{Result, RingError};
-    pub use crate::gravity::SelfGravity;
+    pub use crate::gravity::{GravitySolver, SelfGravity};
     pub use crate::hill::{HillFrame, Sei};
     pub use crate::particles::{Particles, Population, SizeDistribution};
     pub use crate::run::{RingConfig, RingSimulation, RunResult, REBOUND_OMEGA};

@@ -247,3 +247,62 @@ pub fn write_equilibration_svg(path: &Path, runs: &[(String, &[Sample])]) -> Res
         ],
     )
 }
+
+/// The surface density of the patch as a PNG image (grey scale, white = dense, `Σ/⟨Σ⟩` from 0 to
+/// 2.5; x radial to the right, y azimuthal upwards, axes in metres), the way ring papers show
+/// gravitational wakes. Written to a temporary file in the same directory and renamed.
+pub fn write_surface_density_png(
+    path: &Path,
+    grid: &crate::wakes::SurfaceDensity,
+    title: &str,
+) -> Result<()> {
+    register_embedded_font();
+    let io = |source| RingError::Io {
+        path: path.display().to_string(),
+        source,
+    };
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(io)?;
+    }
+    // The encoder picks the format from the extension: keep `.png` on the temporary name.
+    let tmp = path.with_extension(format!("tmp{}.png", std::process::id()));
+    draw_surface_density(&tmp, grid, title).map_err(|e| output_error(path, e))?;
+    std::fs::rename(&tmp, path).map_err(io)
+}
+
+fn draw_surface_density(
+    path: &Path,
+    grid: &crate::wakes::SurfaceDensity,
+    title: &str,
+) -> DrawResult {
+    let (lx, ly) = (grid.dx * grid.nx as f64, grid.dy * grid.ny as f64);
+    let root = BitMapBackend::new(path, (640, 600)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(format!("surface density, {title}"), ("sans-serif", 18))
+        .margin(10)
+        .x_label_area_size(40)
+        .y_label_area_size(50)
+        .build_cartesian_2d(-0.5 * lx..0.5 * lx, -0.5 * ly..0.5 * ly)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("x (radial) [m]")
+        .y_desc("y (azimuthal) [m]")
+        .draw()?;
+    let mean = grid.mean().max(f64::MIN_POSITIVE);
+    chart.draw_series((0..grid.ny).flat_map(|iy| {
+        (0..grid.nx).map(move |ix| {
+            let level = (grid.sigma[iy * grid.nx + ix] / mean / 2.5).clamp(0.0, 1.0);
+            let grey = (255.0 * level).round() as u8;
+            let x0 = -0.5 * lx + ix as f64 * grid.dx;
+            let y0 = -0.5 * ly + iy as f64 * grid.dy;
+            Rectangle::new(
+                [(x0, y0), (x0 + grid.dx, y0 + grid.dy)],
+                RGBColor(grey, grey, grey).filled(),
+            )
+        })
+    }))?;
+    root.present()?;
+    Ok(())
+}

@@ -138,8 +138,7 @@ impl RingConfig {
             });
         }
         if let Some(g) = self.gravity {
-            positive("gravitational_constant", g.constant)?;
-            positive("softening", g.softening)?;
+            g.validate()?;
         }
         Ok(())
     }
