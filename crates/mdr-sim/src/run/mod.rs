@@ -128,6 +128,8 @@ pub(crate) struct Sim<'a> {
     checkpoints: Vec<PathBuf>,
     /// Scratch: per-particle state for the trackers.
     view: ViewBuffers,
+    /// Spheres below `delete_below_m` leave the run (crate::walls::Sink).
+    sink: Option<crate::walls::Sink>,
 }
 
 #[derive(Default)]
@@ -196,6 +198,7 @@ impl<'a> Sim<'a> {
             samples: Vec::new(),
             checkpoints: Vec::new(),
             view: ViewBuffers::default(),
+            sink: crate::walls::scene_sink(scene),
         })
     }
 
@@ -349,6 +352,7 @@ impl<'a> Sim<'a> {
                 stopped_early = true;
                 break;
             }
+            self.scene_events();
             self.compute_forces()?;
             let last = k >= total;
             let sampling = k % energy_every == 0 || k % frame_every == 0 || last;
@@ -422,6 +426,27 @@ impl<'a> Sim<'a> {
             wall_seconds: started.elapsed().as_secs_f64(),
             files,
         })
+    }
+
+    /// Walls due to be removed and spheres below the sink (idempotent: a resumed run redoes
+    /// them at its first step).
+    fn scene_events(&mut self) {
+        let world = &mut self.built.world;
+        let up = -self
+            .scene
+            .gravity
+            .try_normalize(0.0)
+            .unwrap_or(-Vector3::z());
+        crate::walls::remove_due_walls(
+            &self.scene.walls,
+            self.step as f64 * self.scene.dt,
+            &up,
+            world,
+            &self.built.wall_bodies,
+        );
+        if let Some(sink) = &self.sink {
+            sink.apply_to_bodies(&mut world.bodies, &self.built.particle_bodies);
+        }
     }
 
     fn compute_forces(&mut self) -> Result<(), SimError> {
@@ -630,6 +655,13 @@ impl<'a> Sim<'a> {
             return Ok(());
         }
         files.push(csv);
+        let series_csv = out.join(format!("{name}_headline.csv"));
+        if !self.tracker.series_names().is_empty() {
+            self.tracker
+                .write_csv(&series_csv, &self.samples)
+                .map_err(output(&series_csv))?;
+            files.push(series_csv);
+        }
         let svg = out.join(format!("{name}_energy.svg"));
         plot::write_energy_plot(&svg, &format!("{name}: energy books"), &self.energy)
             .map_err(output(&svg))?;
