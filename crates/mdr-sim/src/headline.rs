@@ -811,7 +811,7 @@ mod tests {
     /// `C` and `k`: exactly, then within what the scatter allows.
     #[test]
     fn beverloo_fit_recovers_c_and_k_from_synthetic_rates() {
-        let (c, k, d, rho_b, g) = (0.58, 1.5, 0.003, 1500.0, 9.81);
+        let (c, k, d, rho_b, g): (f64, f64, f64, f64, f64) = (0.58, 1.5, 0.003, 1500.0, 9.81);
         let law = |dd: f64| c * rho_b * g.sqrt() * (dd - k * d).powf(2.5);
         let diameters = [0.018, 0.024, 0.03, 0.036];
         let exact: Vec<(f64, f64)> = diameters.iter().map(|&dd| (dd, law(dd))).collect();

@@ -467,13 +467,15 @@ pub fn read_mesh(path: &Path, scale: f64, offset: Vector3<f64>) -> Result<WallPi
     Ok(WallPiece::TriMesh { vertices, indices })
 }
 
+/// A signed-distance function of a wall piece (m, negative inside).
+pub type DistanceFn<'a> = Box<dyn Fn(&Vector3<f64>) -> f64 + 'a>;
+
 impl WallPiece {
     /// A signed-distance function of the piece (m, negative inside) for the placement check:
     /// exact for convex hulls (parry's point projection on the hull, built once here), as
     /// [`WallPiece::signed_distance`] otherwise. A slanted hull (a cone's piece) has a bounding
     /// box that reaches deep into the container, so the box bound would refuse valid placements.
-    pub fn distance_fn(&self) -> Box<dyn Fn(&Vector3<f64>) -> f64 + '_> {
-        use rapier3d_f64::parry::query::PointQuery;
+    pub fn distance_fn(&self) -> DistanceFn<'_> {
         if let WallPiece::ConvexHull { points } = self {
             let pts: Vec<_> = points.iter().map(mdr_rapier::convert::to_glam).collect();
             if let Some(shape) = rapier3d_f64::prelude::SharedShape::convex_hull(&pts) {
