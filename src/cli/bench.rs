@@ -25,6 +25,29 @@ pub enum BenchCommand {
     Bed(BedArgs),
     /// Generate a settled bed by lattice + settling and write it as a LAMMPS data file.
     MakeBed(MakeBedArgs),
+    /// Throughput of a scene file's steps (forces, energy books, headline tracker, integration;
+    /// no output files) after untimed warm-up steps: particle-steps per second (wall and CPU),
+    /// ms per step, contacts per particle, peak memory.
+    Scene(SceneArgs),
+}
+
+/// Flags of `bench scene`.
+#[derive(Debug, Args)]
+pub struct SceneArgs {
+    /// The scene file (TOML).
+    pub scene: PathBuf,
+    /// Timed steps.
+    #[arg(long, default_value_t = 1_000)]
+    pub steps: u64,
+    /// Untimed steps before the timed ones (the first neighbour-list build, allocations).
+    #[arg(long, default_value_t = 100)]
+    pub warmup: u64,
+    /// Worker threads.
+    #[arg(long, default_value_t = 1)]
+    pub threads: usize,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Contact law of `bench bed`.
@@ -101,6 +124,7 @@ pub struct MakeBedArgs {
 pub fn run(cmd: BenchCommand) -> anyhow::Result<()> {
     match cmd {
         BenchCommand::Bed(args) => run_bed(&args),
+        BenchCommand::Scene(args) => run_scene_bench(&args),
         BenchCommand::MakeBed(args) => {
             let pool = rayon_pool(args.threads)?;
             let spec = BedSpec {
@@ -391,4 +415,118 @@ where
             format!("{:016x}", fnv1a(vectors.flat_map(|v| [v.x, v.y, v.z])))
         },
     })
+}
+
+/// Figures of one `bench scene` run.
+#[derive(Debug, serde::Serialize)]
+struct SceneFigures {
+    particle_steps_per_s: f64,
+    /// Particle-steps per CPU second of the timed loop (all threads).
+    cpu_particle_steps_per_s: f64,
+    ms_per_step: f64,
+    /// Sphere–sphere contacts per particle at the last step (`2 × pairs / particles`, as
+    /// LAMMPS `contact/atom` and `bench bed`).
+    contacts_per_particle: f64,
+    /// Sphere–wall contacts at the last step.
+    wall_contacts: usize,
+    peak_rss_mb: f64,
+    threads: usize,
+    particles: usize,
+    steps: u64,
+    warmup: u64,
+    cpu_seconds: f64,
+    wall_seconds: f64,
+    /// `"neighbour_list"` or `"rapier"` (`force_path`), or `"restitution"`.
+    path: &'static str,
+    /// Neighbour-list builds during the timed steps (neighbour-list path).
+    rebuilds: Option<u64>,
+    scene: String,
+}
+
+fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
+    if args.steps == 0 {
+        bail!("--steps = 0 is outside the allowed range [1, inf) (timed steps)");
+    }
+    let pool = rayon_pool(args.threads)?;
+    let scene = mdr_sim::scene::load_scene(&args.scene).map_err(|p| anyhow::anyhow!("{p}"))?;
+    let figures = pool.install(|| -> anyhow::Result<SceneFigures> {
+        let mut steps = mdr_sim::run::SceneSteps::new(&scene)?;
+        for _ in 0..args.warmup {
+            steps.step()?;
+        }
+        let rebuilds0 = steps.rebuilds();
+        let cpu0 = process_cpu_seconds();
+        let start = Instant::now();
+        for _ in 0..args.steps {
+            steps.step()?;
+        }
+        let seconds = start.elapsed().as_secs_f64();
+        let cpu_seconds = match (cpu0, process_cpu_seconds()) {
+            (Some(a), Some(b)) => b - a,
+            _ => f64::NAN,
+        };
+        let n = steps.particles();
+        let contacts = steps.contacts();
+        let work = (n as u64 * args.steps) as f64;
+        Ok(SceneFigures {
+            particle_steps_per_s: work / seconds,
+            cpu_particle_steps_per_s: work / cpu_seconds,
+            ms_per_step: 1e3 * seconds / args.steps as f64,
+            contacts_per_particle: 2.0 * contacts.sphere as f64 / n as f64,
+            wall_contacts: contacts.wall,
+            peak_rss_mb: peak_rss_mb(),
+            threads: args.threads,
+            particles: n,
+            steps: args.steps,
+            warmup: args.warmup,
+            cpu_seconds,
+            wall_seconds: seconds,
+            path: match (scene.coupling, scene.force_path) {
+                (mdr_sim::scene::CouplingMode::Restitution, _) => "restitution",
+                (_, mdr_sim::scene::ForcePath::Rapier) => "rapier",
+                (_, mdr_sim::scene::ForcePath::NeighbourList) => "neighbour_list",
+            },
+            rebuilds: steps
+                .rebuilds()
+                .zip(rebuilds0)
+                .map(|(now, before)| now - before),
+            scene: scene.name.clone(),
+        })
+    })?;
+    if args.json {
+        println!("{}", serde_json::to_string(&figures)?);
+    } else {
+        println!(
+            "bench scene {}: {} spheres, {} path, {} threads, {} timed steps after {} warm-up steps",
+            figures.scene,
+            figures.particles,
+            figures.path,
+            figures.threads,
+            figures.steps,
+            figures.warmup
+        );
+        println!(
+            "  {:.3} M particle-steps/s, {:.3} ms/step",
+            figures.particle_steps_per_s / 1e6,
+            figures.ms_per_step
+        );
+        println!(
+            "  {:.3} M particle-steps per CPU second ({:.2} CPU s in {:.2} s)",
+            figures.cpu_particle_steps_per_s / 1e6,
+            figures.cpu_seconds,
+            figures.wall_seconds
+        );
+        println!(
+            "  {:.3} contacts per particle (sphere-sphere), {} wall contacts",
+            figures.contacts_per_particle, figures.wall_contacts
+        );
+        match figures.rebuilds {
+            Some(r) => println!(
+                "  peak RSS {:.1} MB; {r} neighbour-list builds",
+                figures.peak_rss_mb
+            ),
+            None => println!("  peak RSS {:.1} MB", figures.peak_rss_mb),
+        }
+    }
+    Ok(())
 }

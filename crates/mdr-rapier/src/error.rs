@@ -35,6 +35,10 @@ pub enum CouplingError {
     /// A combination of options that the chosen coupling does not support.
     #[error("unsupported: {0}")]
     Unsupported(&'static str),
+    /// A saved fast-path state (neighbour lists, histories) does not fit the stepper it is
+    /// restored into.
+    #[error("the saved neighbour-list state does not fit this stepper: {0}")]
+    StateMismatch(String),
 }
 
 /// Result alias of this crate.

@@ -11,7 +11,7 @@ use rapier3d_f64::math::Pose;
 use rapier3d_f64::parry::shape::Shape;
 
 /// Where and how deep two bodies touch.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SurfaceContact {
     /// Overlap `δ` (m), > 0.
     pub overlap: f64,

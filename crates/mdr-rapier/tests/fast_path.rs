@@ -74,17 +74,41 @@ fn lid_body() -> RigidBodyBuilder {
         .can_sleep(false)
 }
 
-#[test]
-fn fast_path_reproduces_plain_path() {
-    let dt = 1e-4;
-    let steps = 3000;
+/// How far the fast path strayed from the plain path over a run of the box scene.
+struct Comparison {
+    max_dx: f64,
+    max_dv: f64,
+    lid_dz: f64,
+    sphere_contacts_per_step: f64,
+    surface_contacts_per_step: f64,
+    rebuilds: u64,
+    lid_vz: f64,
+    /// Largest `d_max / u_c` (normal law's largest overlap over its yield overlap) of the
+    /// plain path's sphere contacts at any step: > 1 when plasticity was reached.
+    max_plastic_ratio: f64,
+}
 
+/// The box scene run `steps` steps on both paths with `model` and `rolling`.
+fn compare_paths<N, D, R>(
+    model: ContactModel<N, Mindlin, D>,
+    rolling: R,
+    steps: usize,
+) -> Comparison
+where
+    N: NormalModel + Clone,
+    N::Law: Clone,
+    D: DampingModel + Clone,
+    D::Law: Clone,
+    R: RollingModel + Clone,
+    R::Law: Clone,
+{
+    let dt = 1e-4;
     // Plain path: spheres are rapier bodies, candidates from the narrow phase.
     let mut plain_world = PhysicsWorld {
         gravity: Vector::new(0.0, 0.0, -1.0),
         ..PhysicsWorld::default()
     };
-    let mut plain = ForceModeStepper::new(model());
+    let mut plain = ForceModeStepper::new(model.clone()).with_rolling(rolling.clone());
     let m = plain.particles_mut().insert_material(grain());
     plain
         .configure(&mut plain_world.integration_parameters, dt, 0.05)
@@ -107,7 +131,8 @@ fn fast_path_reproduces_plain_path() {
         gravity: Vector::new(0.0, 0.0, -1.0),
         ..PhysicsWorld::default()
     };
-    let mut fast = FastForceStepper::new(model(), Boundary::Open)
+    let mut fast = FastForceStepper::new(model, Boundary::Open)
+        .with_rolling(rolling)
         .skin(0.1)
         .unwrap();
     let fm = fast.insert_material(grain());
@@ -122,10 +147,15 @@ fn fast_path_reproduces_plain_path() {
         fast.insert_sphere(*s).unwrap();
     }
 
-    let (mut max_dx, mut max_dv) = (0.0f64, 0.0f64);
+    let (mut max_dx, mut max_dv, mut max_plastic_ratio) = (0.0f64, 0.0f64, 0.0f64);
     let (mut sphere_contacts, mut surface_contacts) = (0, 0);
     for _ in 0..steps {
         plain.step(&mut plain_world).unwrap();
+        for e in plain.contacts().entries() {
+            let ratio =
+                e.law.normal.max_overlap(&e.history.contact.normal) / e.law.normal.yield_overlap();
+            max_plastic_ratio = max_plastic_ratio.max(ratio);
+        }
         let report = fast.step(&mut fast_world).unwrap();
         sphere_contacts += report.sphere_contacts;
         surface_contacts += report.surface_contacts;
@@ -151,26 +181,91 @@ fn fast_path_reproduces_plain_path() {
     let lid_dz = (plain_world.bodies[plain_lid].translation().z
         - fast_world.bodies[fast_lid].translation().z)
         .abs();
+    let c = Comparison {
+        max_dx,
+        max_dv,
+        lid_dz,
+        sphere_contacts_per_step: sphere_contacts as f64 / steps as f64,
+        surface_contacts_per_step: surface_contacts as f64 / steps as f64,
+        rebuilds: fast.rebuilds(),
+        lid_vz: fast_world.bodies[fast_lid].linvel().z,
+        max_plastic_ratio,
+    };
     println!(
-        "max |Δx| = {max_dx:e}, max |Δv| = {max_dv:e}, lid |Δz| = {lid_dz:e}, rebuilds {}, \
-         sphere contacts/step {:.1}, surface contacts/step {:.1}",
-        fast.rebuilds(),
-        sphere_contacts as f64 / steps as f64,
-        surface_contacts as f64 / steps as f64
+        "max |Δx| = {:e}, max |Δv| = {:e}, lid |Δz| = {:e}, rebuilds {}, sphere contacts/step \
+         {:.1}, surface contacts/step {:.1}, max d_max/u_c {:.2}",
+        c.max_dx,
+        c.max_dv,
+        c.lid_dz,
+        c.rebuilds,
+        c.sphere_contacts_per_step,
+        c.surface_contacts_per_step,
+        c.max_plastic_ratio
     );
-    // The comparison must not be vacuous: contacts of both kinds, several list rebuilds, the
-    // lid came down onto the spheres.
-    assert!(sphere_contacts as f64 / steps as f64 > 3.0);
-    assert!(surface_contacts as f64 / steps as f64 > 1.0);
-    assert!(fast.rebuilds() > 2);
+    c
+}
+
+/// The comparison is not vacuous (contacts of both kinds, several list rebuilds, the lid came
+/// down onto the spheres), and the paths agree to round-off: rapier applies the torque through
+/// its world inverse-inertia matrix and a gyroscopic correction that are exact only up to
+/// rounding for a sphere; nothing else differs. Positions are of order 1.
+fn assert_round_off(c: &Comparison) {
+    assert!(c.sphere_contacts_per_step > 3.0);
+    assert!(c.surface_contacts_per_step > 1.0);
+    assert!(c.rebuilds > 2);
     // Free fall would end at v_z = −1 − g t = −1.3: the spheres pushed the lid back.
-    assert!(fast_world.bodies[fast_lid].linvel().z > -1.2);
-    // Round-off: rapier applies the torque through its world inverse-inertia matrix and a
-    // gyroscopic correction that are exact only up to rounding for a sphere; nothing else
-    // differs. Positions are of order 1.
-    assert!(max_dx < 1e-9, "positions differ by {max_dx:e}");
-    assert!(max_dv < 1e-7, "velocities differ by {max_dv:e}");
-    assert!(lid_dz < 1e-9, "lid differs by {lid_dz:e}");
+    assert!(c.lid_vz > -1.2);
+    assert!(c.max_dx < 1e-9, "positions differ by {:e}", c.max_dx);
+    assert!(c.max_dv < 1e-7, "velocities differ by {:e}", c.max_dv);
+    assert!(c.lid_dz < 1e-9, "lid differs by {:e}", c.lid_dz);
+}
+
+#[test]
+fn fast_path_reproduces_plain_path() {
+    assert_round_off(&compare_paths(model(), NoRolling, 3000));
+}
+
+/// MDR normal law (plastic: the largest overlaps pass the yield overlap), Mindlin, Hertzian
+/// damping with a tangential dashpot, rolling resistance.
+#[test]
+fn fast_path_reproduces_plain_path_with_mdr_damping_and_rolling() {
+    let model = ContactModel::new(MdrElastoPlastic::new(10.0, 0.37).unwrap())
+        .with_tangential(Mindlin::new(0.5).unwrap())
+        .with_damping(
+            HertzianViscous::new(50.0)
+                .unwrap()
+                .with_tangential_ratio(0.5)
+                .unwrap(),
+        );
+    let c = compare_paths(model, EpsdRolling::new(0.1).unwrap(), 3000);
+    assert_round_off(&c);
+    assert!(c.max_plastic_ratio > 1.0, "no plastic contact");
+}
+
+/// Thornton's normal law (plastic) with the stiffness-proportional dashpot and a tangential
+/// dashpot.
+#[test]
+fn fast_path_reproduces_plain_path_with_thornton_and_stiffness_damping() {
+    let model = ContactModel::new(Thornton::new(3000.0).unwrap())
+        .with_tangential(Mindlin::new(0.3).unwrap())
+        .with_damping(
+            StiffnessViscous::new(0.2)
+                .unwrap()
+                .with_tangential_ratio(1.0)
+                .unwrap(),
+        );
+    let c = compare_paths(model, NoRolling, 3000);
+    assert_round_off(&c);
+    assert!(c.max_plastic_ratio > 1.0, "no plastic contact");
+}
+
+/// Hertz without damping, with rolling resistance.
+#[test]
+fn fast_path_reproduces_plain_path_with_hertz_and_rolling() {
+    let model = ContactModel::new(Hertz)
+        .with_tangential(Mindlin::new(0.5).unwrap())
+        .with_damping(NoDamping);
+    assert_round_off(&compare_paths(model, EpsdRolling::new(0.2).unwrap(), 3000));
 }
 
 fn periodic_run(bed: &Bed, steps: usize) -> FastForceStepper<Hertz, Mindlin, HertzianViscous> {

@@ -80,3 +80,65 @@ normal = [0.0, 0.0, 1.0]
         lo = -half,
     )
 }
+
+/// A small rotating drum (a capped cylinder on a kinematic body), with `extra_walls` appended.
+pub fn drum(count: usize, duration: f64, extra_walls: &str) -> String {
+    format!(
+        r#"
+[run]
+name = "drum"
+seed = 11
+duration_s = {duration}
+dt_s = "auto"
+max_speed_m_per_s = 1.0
+steps_per_contact = 25
+output_interval_s = 0.01
+energy_interval_s = 0.002
+headline = "drum"
+
+[gravity]
+acceleration_m_per_s2 = [0.0, 0.0, -9.81]
+
+[[material]]
+name = "grain"
+youngs_pa = 1.0e6
+poisson_ratio = 0.25
+density_kg_per_m3 = 2500.0
+
+[contact]
+normal = "mdr"
+critical_line_load_n_per_m = 50.0
+hardening_ratio = 0.37
+tangential = "mindlin"
+friction = 0.5
+rolling_friction = 0.1
+damping = "stiffness_viscous"
+damping_eta = 0.3
+damping_tangential_ratio = 0.5
+
+[[particles]]
+material = "grain"
+count = {count}
+radius_m = 0.0015
+placement = "lattice"
+region_min_m = [-0.014, -0.004, -0.019]
+region_max_m = [0.014, 0.004, 0.0]
+gap_fraction = 0.05
+jitter_fraction = 0.5
+
+[[walls]]
+kind = "cylinder"
+material = "grain"
+center_m = [0.0, 0.0, 0.0]
+axis = [0.0, 1.0, 0.0]
+radius_m = 0.02
+length_m = 0.01
+capped = true
+segments = 32
+thickness_m = 0.004
+angular_velocity_rad_per_s = [0.0, 3.0, 0.0]
+rotation_center_m = [0.0, 0.0, 0.0]
+{extra_walls}
+"#
+    )
+}

@@ -24,14 +24,39 @@ fn bits(r: &mdr_sim::run::BodyRecord) -> Vec<u64> {
 
 #[test]
 fn resumed_run_is_bit_identical_to_the_uninterrupted_run() {
-    let dir = common::temp_dir("resume");
-    let text = scene_text();
+    resume_matches(&scene_text(), "resume", true);
+}
+
+/// The same on rapier's force path.
+#[test]
+fn resumed_run_on_the_rapier_path_is_bit_identical_to_the_uninterrupted_run() {
+    let text = scene_text().replacen("[run]\n", "[run]\nforce_path = \"rapier\"\n", 1);
+    resume_matches(&text, "resume-rapier", true);
+}
+
+/// A rotating drum (kinematic mesh container, moving-wall books) on the neighbour-list path,
+/// with frames and the contact network written (steps that store every pair's wrench) and
+/// periodic checkpoints: stopped between two neighbour-list builds and resumed, bit for bit.
+#[test]
+fn resumed_drum_on_the_neighbour_list_path_is_bit_identical() {
+    let text = common::drum(60, 0.06, "").replace(
+        "headline = \"drum\"",
+        "headline = \"drum\"\ncontact_network = true\ncheckpoint_interval_s = 0.013",
+    );
+    resume_matches(&text, "resume-drum", false);
+}
+
+fn resume_matches(text: &str, tag: &str, no_frames: bool) {
+    let dir = common::temp_dir(tag);
+    let text = text.to_owned();
     let path = common::write(&dir, "column.toml", &text);
     let scene = parse_scene(&path, &text).expect("valid scene");
     let total = scene.total_steps();
     let whole = run_scene(
         &scene,
-        &RunOptions::new(dir.join("a")).quiet(true).no_frames(true),
+        &RunOptions::new(dir.join("a"))
+            .quiet(true)
+            .no_frames(no_frames),
     )
     .expect("uninterrupted run");
     assert_eq!(whole.step, total);
@@ -41,7 +66,7 @@ fn resumed_run_is_bit_identical_to_the_uninterrupted_run() {
         &scene,
         &RunOptions::new(dir.join("b"))
             .quiet(true)
-            .no_frames(true)
+            .no_frames(no_frames)
             .stop_at_step(Some(stop)),
     )
     .expect("first half");
@@ -52,7 +77,7 @@ fn resumed_run_is_bit_identical_to_the_uninterrupted_run() {
         &scene,
         &RunOptions::new(dir.join("b"))
             .quiet(true)
-            .no_frames(true)
+            .no_frames(no_frames)
             .resume(Some(checkpoint)),
     )
     .expect("second half");
@@ -66,6 +91,8 @@ fn resumed_run_is_bit_identical_to_the_uninterrupted_run() {
     for (a, b) in whole.energy.iter().zip(&resumed.energy) {
         assert_eq!(a.balance_j.to_bits(), b.balance_j.to_bits());
         assert_eq!(a.plastic_j.to_bits(), b.plastic_j.to_bits());
+        assert_eq!(a.wall_work_j.to_bits(), b.wall_work_j.to_bits());
+        assert_eq!(a.contacts, b.contacts);
     }
     // Contacts happened, so histories mattered.
     assert!(whole.energy.iter().any(|r| r.contacts > 0));

@@ -249,3 +249,23 @@ fn mutated_scenes_never_panic() {
     assert!(variants > 200);
     let _ = Severity::Error;
 }
+
+#[test]
+fn force_path_is_checked_with_line_and_key() {
+    let text = good().replacen("[run]\n", "[run]\nforce_path = \"octree\"\n", 1);
+    let e = error_on(&text, "force_path");
+    assert_eq!(e.line, line_of(&text, "force_path = \"octree\""));
+    assert!(e.message.contains("neighbour_list"), "{e}");
+
+    let text = good().replacen("[run]\n", "[run]\nforce_path = \"rapier\"\n", 1);
+    assert!(!problems(&text).has_errors());
+
+    let text = good().replacen(
+        "[run]\n",
+        "[run]\ncoupling = \"restitution\"\nforce_path = \"neighbour_list\"\n",
+        1,
+    );
+    let e = error_on(&text, "force_path");
+    assert_eq!(e.key, "run.force_path");
+    assert_eq!(e.line, line_of(&text, "force_path = "));
+}

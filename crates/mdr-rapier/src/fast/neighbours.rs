@@ -74,6 +74,34 @@ impl<H> PairList<H> {
         }
     }
 
+    /// Recompute the per-particle indexes (`first`, `second_start`, `second`) of a list whose
+    /// `(i, j, image)` arrays are sorted, for `n` particles.
+    pub(crate) fn reindex(&mut self, n: usize) {
+        let m = self.i.len();
+        self.first.clear();
+        self.first.resize(n + 1, 0);
+        for &i in &self.i {
+            self.first[i as usize + 1] += 1;
+        }
+        self.second_start.clear();
+        self.second_start.resize(n + 1, 0);
+        for &j in &self.j {
+            self.second_start[j as usize + 1] += 1;
+        }
+        for k in 0..n {
+            self.first[k + 1] += self.first[k];
+            self.second_start[k + 1] += self.second_start[k];
+        }
+        let mut fill: Vec<u32> = self.second_start[..n].to_vec();
+        self.second.clear();
+        self.second.resize(m, 0);
+        for p in 0..m {
+            let j = self.j[p] as usize;
+            self.second[fill[j] as usize] = p as u32;
+            fill[j] += 1;
+        }
+    }
+
     /// Bytes held by the list's buffers (capacity).
     pub fn bytes(&self) -> usize {
         self.i.capacity() * 4

@@ -29,6 +29,7 @@ use super::particles::{FastParticles, Species};
 use super::surfaces::{surface_displacement, FastSurface, SurfacePairs};
 use crate::convert::{to_glam, to_na};
 use crate::error::{positive, CouplingError, Result};
+use crate::geometry::SurfaceContact;
 use crate::geometry::{sphere_shape, sphere_sphere};
 use crate::kernel::{evaluate_pair, Arms, ContactKinematics, PairHistory, PairWrench, SphereArms};
 use crate::particles::{MaterialHandle, SphereBuilder};
@@ -116,6 +117,46 @@ pub struct FastForceStepper<
     max_displacement: f64,
     report: FastStepReport,
     rebuilds: u64,
+    /// Set by [`FastForceStepper::compute_forces`], taken by [`FastForceStepper::advance`].
+    pending: Option<Pending>,
+}
+
+/// What [`FastForceStepper::compute_forces`] leaves for [`FastForceStepper::advance`].
+#[derive(Debug, Clone, Copy)]
+struct Pending {
+    rebuilt: bool,
+    /// The sums were accumulated in `sums` (one-thread path) rather than stored per pair.
+    serial: bool,
+    sphere_contacts: usize,
+    surface_contacts: usize,
+}
+
+/// The neighbour-list state of a [`FastForceStepper`] between two steps: what, with the
+/// particles' positions and velocities, makes a restored stepper continue bit for bit (the
+/// lists are not rebuilt at the restore, so the next build happens at the same step as in the
+/// uninterrupted run, and the histories sit in the same pair order).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FastListState<H> {
+    /// Particle positions at the last build.
+    pub built_at: Vec<Vector3<f64>>,
+    /// Largest displacement since the last build.
+    pub max_displacement: f64,
+    /// Pose of every surface (in collider-index order) at the last build.
+    pub surface_poses: Vec<Pose>,
+    /// Neighbour builds so far.
+    pub rebuilds: u64,
+    /// Sphere pairs of the list, sorted: `(i, j, image code)`.
+    pub pairs: Vec<(u32, u32, u8)>,
+    /// Per pair: whether it touched at the last force evaluation.
+    pub pair_active: Vec<bool>,
+    /// Per pair: its history (default where not active).
+    pub pair_history: Vec<H>,
+    /// Particle–surface candidates, sorted: `(particle, surface index)`.
+    pub surface_pairs: Vec<(u32, u32)>,
+    /// Per candidate: whether it touched at the last force evaluation.
+    pub surface_active: Vec<bool>,
+    /// Per candidate: its history.
+    pub surface_history: Vec<H>,
 }
 
 impl<N: NormalModel, T: TangentialModel, D: DampingModel> FastForceStepper<N, T, D, NoRolling> {
@@ -148,6 +189,7 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> FastForceStepper<N, T,
             max_displacement: 0.0,
             report: FastStepReport::default(),
             rebuilds: 0,
+            pending: None,
         }
     }
 }
@@ -245,6 +287,7 @@ where
             max_displacement: self.max_displacement,
             report: self.report,
             rebuilds: self.rebuilds,
+            pending: None,
         }
     }
 
@@ -452,6 +495,134 @@ where
         self.rebuilds
     }
 
+    /// The registered surfaces, in collider-index order (the `surface` index of
+    /// [`SurfacePairs`]).
+    pub fn surfaces(&self) -> &[FastSurface] {
+        &self.surfaces
+    }
+
+    /// The composed and rolling laws bound to the species of particles `i` and `j` (bound at
+    /// the first build, i.e. after the first [`FastForceStepper::compute_forces`]).
+    pub fn sphere_pair_laws(&self, i: usize, j: usize) -> &(Law<N, T, D>, R::Law) {
+        let ns = self.laws_species;
+        let (si, sj) = (
+            self.particles.species[i] as usize,
+            self.particles.species[j] as usize,
+        );
+        &self.sphere_laws[si * ns + sj]
+    }
+
+    /// The composed and rolling laws of particle `i` against surface `s` (an index into
+    /// [`FastForceStepper::surfaces`]), bound at each build.
+    pub fn surface_pair_laws(&self, i: usize, s: usize) -> &(Law<N, T, D>, R::Law) {
+        &self.surface_laws[self.particles.species[i] as usize * self.surfaces.len() + s]
+    }
+
+    /// Copy of the neighbour-list state (see [`FastListState`]); take it between two steps.
+    pub fn export_lists(&self) -> FastListState<FastHistory<N, T, R, B>> {
+        let p = &self.pairs;
+        let sp = &self.surface_pairs;
+        FastListState {
+            built_at: self.built_at.clone(),
+            max_displacement: self.max_displacement,
+            surface_poses: self.surfaces.iter().map(|s| s.pose_at_build).collect(),
+            rebuilds: self.rebuilds,
+            pairs: (0..p.len()).map(|k| (p.i[k], p.j[k], p.image[k])).collect(),
+            pair_active: p.active.clone(),
+            pair_history: p.history.clone(),
+            surface_pairs: (0..sp.len())
+                .map(|k| (sp.particle[k], sp.surface[k]))
+                .collect(),
+            surface_active: sp.active.clone(),
+            surface_history: sp.history.clone(),
+        }
+    }
+
+    /// Restore a state from [`FastForceStepper::export_lists`] of a stepper built the same way
+    /// (same particles, surfaces and laws), with the particles' positions and velocities of the
+    /// same step already set. Binds the laws; the lists are used as they are, without a build.
+    pub fn import_lists(
+        &mut self,
+        world: &PhysicsWorld,
+        state: FastListState<FastHistory<N, T, R, B>>,
+    ) -> Result<()> {
+        let n = self.particles.len();
+        let nsurf = self.surfaces.len();
+        let mismatch = |what: String| Err(CouplingError::StateMismatch(what));
+        if state.built_at.len() != n {
+            return mismatch(format!(
+                "it holds {} particles, the stepper {n}",
+                state.built_at.len()
+            ));
+        }
+        if state.surface_poses.len() != nsurf {
+            return mismatch(format!(
+                "it holds {} surfaces, the stepper {nsurf}",
+                state.surface_poses.len()
+            ));
+        }
+        let m = state.pairs.len();
+        if state.pair_active.len() != m || state.pair_history.len() != m {
+            return mismatch("its sphere-pair arrays differ in length".to_owned());
+        }
+        let ms = state.surface_pairs.len();
+        if state.surface_active.len() != ms || state.surface_history.len() != ms {
+            return mismatch("its surface-pair arrays differ in length".to_owned());
+        }
+        let codes = self.boundary.offsets().len();
+        let pairs_ok = state
+            .pairs
+            .iter()
+            .all(|&(i, j, c)| i < j && (j as usize) < n && (c as usize) < codes)
+            && state.pairs.windows(2).all(|w| w[0] < w[1]);
+        if !pairs_ok {
+            return mismatch("its sphere pairs are out of range or not sorted".to_owned());
+        }
+        let surface_ok = state
+            .surface_pairs
+            .iter()
+            .all(|&(i, s)| (i as usize) < n && (s as usize) < nsurf)
+            && state.surface_pairs.windows(2).all(|w| w[0] < w[1]);
+        if !surface_ok {
+            return mismatch("its surface pairs are out of range or not sorted".to_owned());
+        }
+        self.bind_laws(&world.bodies)?;
+        self.built_at = state.built_at;
+        self.max_displacement = state.max_displacement;
+        self.rebuilds = state.rebuilds;
+        for (s, pose) in self.surfaces.iter_mut().zip(&state.surface_poses) {
+            s.pose_at_build = *pose;
+        }
+        let mut pairs = PairList::default();
+        pairs.i = state.pairs.iter().map(|p| p.0).collect();
+        pairs.j = state.pairs.iter().map(|p| p.1).collect();
+        pairs.image = state.pairs.iter().map(|p| p.2).collect();
+        pairs.active = state.pair_active;
+        pairs.history = state.pair_history;
+        pairs.reindex(n);
+        self.pairs = pairs;
+        self.old_pairs = PairList::default();
+        let mut sp = SurfacePairs::default();
+        sp.particle = state.surface_pairs.iter().map(|p| p.0).collect();
+        sp.surface = state.surface_pairs.iter().map(|p| p.1).collect();
+        sp.active = state.surface_active;
+        sp.history = state.surface_history;
+        sp.wrench = vec![PairWrench::default(); ms];
+        sp.contact = vec![SurfaceContact::default(); ms];
+        sp.start = vec![0; n + 1];
+        for &i in &sp.particle {
+            sp.start[i as usize + 1] += 1;
+        }
+        for i in 0..n {
+            sp.start[i + 1] += sp.start[i];
+        }
+        self.surface_pairs = sp;
+        self.old_surface_pairs = SurfacePairs::default();
+        self.needs_build = false;
+        self.pending = None;
+        Ok(())
+    }
+
     /// Bytes held by the stepper's buffers (capacities), particles and lists included.
     pub fn memory_bytes(&self) -> usize {
         self.particles.bytes()
@@ -556,14 +727,19 @@ where
             }
         }
         let skin = self.skin;
+        // Each surface's world AABB once per build (not once per particle).
+        let aabbs: Vec<_> = self
+            .surfaces
+            .iter()
+            .map(|s| colliders.get(s.collider).map(|co| (co, co.compute_aabb())))
+            .collect();
         for i in 0..n {
             let x = to_glam(&p.position[i]);
             let reach = p.radius[i] + skin;
-            for (k, s) in self.surfaces.iter().enumerate() {
-                let Some(co) = colliders.get(s.collider) else {
+            for (k, entry) in aabbs.iter().enumerate() {
+                let Some((co, aabb)) = entry else {
                     continue;
                 };
-                let aabb = co.compute_aabb();
                 let inside =
                     (0..3).all(|d| x[d] >= aabb.mins[d] - reach && x[d] <= aabb.maxs[d] + reach);
                 if inside && co.shape().distance_to_point(co.position(), x, true) < reach {
@@ -581,10 +757,28 @@ where
     }
 
     /// One coupled step: particle forces and integration, reactions on rapier bodies, then
-    /// `world.step()`.
+    /// `world.step()`. The same as [`FastForceStepper::compute_forces`] followed by
+    /// [`FastForceStepper::advance`].
     pub fn step(&mut self, world: &mut PhysicsWorld) -> Result<FastStepReport> {
+        self.compute_forces(world, false)?;
+        self.advance(world)
+    }
+
+    /// First half of a step at the current state `x_k, v_k`: rebuild the lists if due, then every
+    /// touching pair's law (which updates its history and work books) and its wrench. Between
+    /// this call and [`FastForceStepper::advance`], positions, velocities, histories and the
+    /// surface contacts all describe step `k`: the place to read energies and contacts.
+    /// `keep_wrenches` stores every sphere pair's wrench in [`PairList::wrench`] even with one
+    /// thread (a contact-network frame needs them); the particles' force sums, hence the
+    /// trajectory, are the same bits either way.
+    pub fn compute_forces(&mut self, world: &PhysicsWorld, keep_wrenches: bool) -> Result<()> {
         let dt = world.integration_parameters.dt;
         positive("dt", dt)?;
+        if self.pending.is_some() {
+            // Forces of this state are already computed (a second call would update the
+            // histories twice).
+            return Ok(());
+        }
         let half_skin = 0.5 * self.skin;
         let rebuilt = self.needs_build
             || self.max_displacement > half_skin
@@ -596,21 +790,43 @@ where
         // goes (LAMMPS's scatter), in pair order after the surface wrenches, which is exactly
         // the order in which the parallel path gathers them per particle; both give the same
         // sums for any number of threads.
-        let serial = rayon::current_num_threads() == 1;
+        let serial = rayon::current_num_threads() == 1 && !keep_wrenches;
         let surface_contacts = self.surface_wrenches(&world.bodies, &world.colliders, dt);
         if serial {
             self.surface_sums();
         }
         let sphere_contacts = self.sphere_wrenches(dt, serial);
+        self.pending = Some(Pending {
+            rebuilt,
+            serial,
+            sphere_contacts,
+            surface_contacts,
+        });
+        Ok(())
+    }
+
+    /// Second half of a step: integrate the particles with the forces of
+    /// [`FastForceStepper::compute_forces`] (called first if it was not), put the reactions on
+    /// dynamic rapier bodies, then `world.step()`.
+    pub fn advance(&mut self, world: &mut PhysicsWorld) -> Result<FastStepReport> {
+        if self.pending.is_none() {
+            self.compute_forces(world, false)?;
+        }
+        let Some(pending) = self.pending.take() else {
+            return Err(CouplingError::StateMismatch(
+                "no forces were computed for this step".to_owned(),
+            ));
+        };
+        let dt = world.integration_parameters.dt;
         let gravity = to_na(world.gravity);
-        self.max_displacement = self.integrate(&gravity, dt, serial).sqrt();
+        self.max_displacement = self.integrate(&gravity, dt, pending.serial).sqrt();
         self.apply_reactions(&mut world.bodies);
         world.step();
         self.report = FastStepReport {
-            sphere_contacts,
-            surface_contacts,
+            sphere_contacts: pending.sphere_contacts,
+            surface_contacts: pending.surface_contacts,
             neighbour_pairs: self.pairs.len(),
-            rebuilt,
+            rebuilt: pending.rebuilt,
             max_displacement: self.max_displacement,
         };
         Ok(self.report)
@@ -779,6 +995,7 @@ where
             active,
             history,
             wrench,
+            contact: contacts,
             ..
         } = &mut self.surface_pairs;
         let (particle, surface) = (&*particle, &*surface);
@@ -786,8 +1003,9 @@ where
             .par_chunks_mut(CHUNK)
             .zip(wrench.par_chunks_mut(CHUNK))
             .zip(active.par_chunks_mut(CHUNK))
+            .zip(contacts.par_chunks_mut(CHUNK))
             .enumerate()
-            .map(|(c, ((history, wrench), active))| {
+            .map(|(c, (((history, wrench), active), contacts))| {
                 let base = c * CHUNK;
                 let mut touching = 0;
                 for k in 0..history.len() {
@@ -829,6 +1047,7 @@ where
                     };
                     let (law, rolling) = &laws[p.species[i] as usize * nsurf + s];
                     wrench[k] = evaluate_pair(law, rolling, &mut history[k], &kinematics, dt);
+                    contacts[k] = contact;
                 }
                 touching
             })

@@ -2,6 +2,7 @@
 //! found at neighbour-list rebuilds with parry distance queries, exact contacts every step with
 //! [`crate::geometry::sphere_shape`], histories carried over rebuilds by `(particle, surface)`.
 
+use crate::geometry::SurfaceContact;
 use crate::kernel::PairWrench;
 use crate::particles::MaterialHandle;
 use rapier3d_f64::math::Pose;
@@ -37,6 +38,9 @@ pub struct SurfacePairs<H> {
     /// Wrench at the last force evaluation (force on the particle; `torque2` on the surface's
     /// body); zero where not `active`.
     pub wrench: Vec<PairWrench>,
+    /// Contact geometry at the last force evaluation (overlap, normal from the surface towards
+    /// the particle, point); meaningful only where `active`.
+    pub contact: Vec<SurfaceContact>,
     /// `start[i]..start[i + 1]`: the pairs of particle `i`.
     pub start: Vec<u32>,
 }
@@ -60,6 +64,7 @@ impl<H: Default> SurfacePairs<H> {
             active: self.active,
             history: self.history.into_iter().map(f).collect(),
             wrench: self.wrench,
+            contact: self.contact,
             start: self.start,
         }
     }
@@ -71,6 +76,7 @@ impl<H: Default> SurfacePairs<H> {
             + self.active.capacity()
             + self.history.capacity() * std::mem::size_of::<H>()
             + self.wrench.capacity() * std::mem::size_of::<PairWrench>()
+            + self.contact.capacity() * std::mem::size_of::<SurfaceContact>()
             + self.start.capacity() * 4
     }
 
@@ -87,6 +93,7 @@ impl<H: Default> SurfacePairs<H> {
         self.active.clear();
         self.history.clear();
         self.wrench.clear();
+        self.contact.clear();
         self.start.clear();
         self.start.resize(n_particles + 1, 0);
         let mut q = 0;
@@ -98,11 +105,13 @@ impl<H: Default> SurfacePairs<H> {
                 self.history.push(std::mem::take(&mut old.history[q]));
                 self.active.push(old.active[q]);
                 self.wrench.push(old.wrench[q]);
+                self.contact.push(old.contact[q]);
                 q += 1;
             } else {
                 self.history.push(H::default());
                 self.active.push(false);
                 self.wrench.push(PairWrench::default());
+                self.contact.push(SurfaceContact::default());
             }
             self.particle.push(i);
             self.surface.push(s);

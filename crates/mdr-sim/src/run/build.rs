@@ -1,14 +1,20 @@
 //! Building the rapier world of a scene: materials, wall bodies (fixed or kinematic) with their
 //! solid pieces, then the spheres, in the scene's order, so the same scene always gets the same
 //! handles (which the checkpoints rely on).
+//!
+//! Force mode runs on the neighbour-list path ([`FastForceStepper`]) unless the scene selects
+//! `force_path = "rapier"`: the walls are rapier colliders registered as its surfaces, the
+//! spheres live in the stepper's own arrays (particle `i` of the scene is its particle `i`),
+//! and rapier keeps and moves the wall bodies.
 
 use crate::error::SimError;
 use crate::laws::{scene_model, AnyDamping, AnyNormal, AnyRolling};
-use crate::scene::{CouplingMode, NormalSpec, Scene};
+use crate::scene::{CouplingMode, ForcePath, NormalSpec, Scene};
 use crate::walls::WallPiece;
 use mdr_contact::normal::MdrElastoPlastic;
 use mdr_contact::tangential::Mindlin;
 use mdr_rapier::convert::to_glam;
+use mdr_rapier::fast::{Boundary, FastForceStepper};
 use mdr_rapier::particles::{MaterialHandle, SphereBuilder};
 use mdr_rapier::{ForceModeStepper, RestitutionHooks};
 use rapier3d_f64::parry::shape::TriMeshFlags;
@@ -17,10 +23,15 @@ use rapier3d_f64::prelude::*;
 /// The force-mode stepper type every scene uses.
 pub type SceneStepper = ForceModeStepper<AnyNormal, Mindlin, AnyDamping, AnyRolling>;
 
+/// The neighbour-list force-mode stepper type every scene uses by default.
+pub type FastSceneStepper = FastForceStepper<AnyNormal, Mindlin, AnyDamping, AnyRolling>;
+
 /// The coupling of a built scene.
 pub enum Coupling {
-    /// Force mode.
+    /// Force mode on rapier's broad and narrow phase (`force_path = "rapier"`).
     Force(Box<SceneStepper>),
+    /// Force mode on the neighbour-list path (the default).
+    Fast(Box<FastSceneStepper>),
     /// Restitution mode.
     Restitution(Box<RestitutionHooks>),
 }
@@ -31,9 +42,10 @@ pub struct Built {
     pub world: PhysicsWorld,
     /// The coupling.
     pub coupling: Coupling,
-    /// Body of particle `i`.
+    /// Body of particle `i` (empty on the neighbour-list path, whose particles are not rapier
+    /// bodies).
     pub particle_bodies: Vec<RigidBodyHandle>,
-    /// Collider of particle `i`.
+    /// Collider of particle `i` (empty on the neighbour-list path).
     pub particle_colliders: Vec<ColliderHandle>,
     /// Body of wall `j`.
     pub wall_bodies: Vec<RigidBodyHandle>,
@@ -85,6 +97,12 @@ fn prediction_distance(scene: &Scene) -> f64 {
     (4.0 * scene.max_speed * scene.dt).max(0.1 * r_min)
 }
 
+/// Neighbour skin (m) of the neighbour-list path: a tenth of the mean diameter, the low end of
+/// LAMMPS's usual 0.1 d–0.3 d (the lists are rebuilt once something moved half of it).
+pub fn skin(scene: &Scene) -> f64 {
+    0.2 * scene.particles.iter().map(|p| p.radius).sum::<f64>() / scene.particles.len() as f64
+}
+
 /// Build the world of `scene`.
 pub fn build(scene: &Scene) -> Result<Built, SimError> {
     let mut world = PhysicsWorld {
@@ -97,12 +115,19 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
 
     enum Inserter {
         Force(Box<SceneStepper>),
+        Fast(Box<FastSceneStepper>),
         Restitution(Box<RestitutionHooks>),
     }
     let mut inserter = match scene.coupling {
-        CouplingMode::Force => {
+        CouplingMode::Force if scene.force_path == ForcePath::Rapier => {
             let (model, rolling) = scene_model(&scene.contact)?;
             Inserter::Force(Box::new(ForceModeStepper::new(model).with_rolling(rolling)))
+        }
+        CouplingMode::Force => {
+            let (model, rolling) = scene_model(&scene.contact)?;
+            Inserter::Fast(Box::new(
+                FastForceStepper::new(model, Boundary::Open).with_rolling(rolling),
+            ))
         }
         CouplingMode::Restitution => {
             let NormalSpec::Mdr {
@@ -126,6 +151,7 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
         .iter()
         .map(|(_, m)| match &mut inserter {
             Inserter::Force(s) => s.particles_mut().insert_material(*m),
+            Inserter::Fast(s) => s.insert_material(*m),
             Inserter::Restitution(h) => h.particles_mut().insert_material(*m),
         })
         .collect();
@@ -149,6 +175,9 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
                 Inserter::Force(s) => {
                     s.insert_surface(&mut world, collider, Some(handle), material)?
                 }
+                Inserter::Fast(s) => {
+                    s.insert_surface(&mut world, collider, Some(handle), material)?
+                }
                 Inserter::Restitution(h) => {
                     h.insert_surface(&mut world, collider, Some(handle), material)?
                 }
@@ -170,6 +199,10 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
             .linvel(to_glam(&p.velocity));
         let (b, c) = match &mut inserter {
             Inserter::Force(s) => s.insert_sphere(&mut world, sphere)?,
+            Inserter::Fast(s) => {
+                s.insert_sphere(sphere)?;
+                continue;
+            }
             Inserter::Restitution(h) => h.insert_sphere(&mut world, sphere)?,
         };
         particle_bodies.push(b);
@@ -192,6 +225,14 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
                 prediction_distance(scene),
             )?;
             Coupling::Force(s)
+        }
+        Inserter::Fast(s) => {
+            s.configure(&mut world.integration_parameters, scene.dt)?;
+            // The walls' broad phase (rapier still detects wall–wall pairs) uses the same
+            // prediction distance as the plain path.
+            world.integration_parameters.normalized_prediction_distance =
+                prediction_distance(scene) / world.integration_parameters.length_unit;
+            Coupling::Fast(Box::new((*s).skin(skin(scene))?))
         }
         Inserter::Restitution(mut h) => {
             world.integration_parameters.dt = scene.dt;

@@ -1,12 +1,15 @@
 //! The run loop: build the world, step it with the coupling, keep the energy books, write
 //! frames, energy CSV, plots and checkpoints, and resume from a checkpoint bit-identically.
 //!
-//! One step `k` (force mode):
+//! One step `k` (force mode, on either path):
 //! 1. a checkpoint, if one is due (the state holds `x_k, v_k` and the histories up to `x_{k−1}`);
-//! 2. the plugin's `compute_forces` at `x_k, v_k` (the law updates every touching pair's history);
+//! 2. the coupling's `compute_forces` at `x_k, v_k` (the law updates every touching pair's
+//!    history; the neighbour-list path first rebuilds its lists if due);
 //! 3. the books take the work increments of every contact, and the samples (energy row, frame,
 //!    headline) are taken here, where positions, velocities and contact states all describe `x_k`;
-//! 4. `apply_forces` and `PhysicsWorld::step`: `v_{k+1}`, `x_{k+1}` (symplectic Euler).
+//! 4. the integration to `v_{k+1}`, `x_{k+1}` (symplectic Euler) and `PhysicsWorld::step`:
+//!    `apply_forces` + `step` on rapier's path, `advance` on the neighbour-list path (which
+//!    integrates its particles itself and then steps rapier's wall bodies).
 
 pub mod build;
 mod state;
@@ -16,6 +19,7 @@ pub use state::{BodyRecord, CheckpointData};
 use crate::checkpoint::{self, CheckpointError};
 use crate::error::{output, SimError};
 use crate::headline::{HeadlineReport, HeadlineSample, ParticleView, Tracker};
+use crate::laws::AnyRollingLaw;
 use crate::output::energy::{self, EnergyRow};
 use crate::output::plot;
 use crate::output::vtk::{self, CollectionEntry, ContactFrame, ParticleFrame};
@@ -25,10 +29,12 @@ use indicatif::{ProgressBar, ProgressStyle};
 use mdr_contact::normal::NormalLaw;
 use mdr_contact::rolling::RollingLaw;
 use mdr_rapier::convert::to_na;
+use mdr_rapier::geometry::sphere_sphere;
 use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use state::Books;
+use state::{FastPairHistory, SceneLaw};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -164,6 +170,104 @@ fn every(interval: f64, dt: f64) -> u64 {
     ((interval / dt).round() as u64).max(1)
 }
 
+/// A scene's steps without any output, for timing (`mdr-dem bench scene`): each
+/// [`SceneSteps::step`] is a step of [`run_scene`] (forces, energy books, the headline tracker
+/// where it samples every step, integration) without its energy rows, frames and checkpoints.
+pub struct SceneSteps<'a> {
+    sim: Sim<'a>,
+}
+
+/// Contacts of a [`SceneSteps`] at its last force evaluation.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ContactCounts {
+    /// Touching sphere–sphere pairs.
+    pub sphere: usize,
+    /// Touching sphere–wall pairs.
+    pub wall: usize,
+}
+
+impl<'a> SceneSteps<'a> {
+    /// Build `scene`.
+    pub fn new(scene: &'a Scene) -> Result<Self, SimError> {
+        Ok(Self {
+            sim: Sim::new(scene)?,
+        })
+    }
+
+    /// One step.
+    pub fn step(&mut self) -> Result<(), SimError> {
+        let sim = &mut self.sim;
+        sim.compute_forces(false)?;
+        if sim.tracker.needs_every_step() {
+            sim.gather_view();
+            let view = ParticleView {
+                position: &sim.view.position,
+                velocity: &sim.view.velocity,
+                radius: &sim.view.radius,
+                mass: &sim.view.mass,
+                contacts: &sim.view.contacts,
+            };
+            sim.tracker.on_step(sim.scene, &view);
+        }
+        sim.advance()
+    }
+
+    /// Steps done.
+    pub fn steps_done(&self) -> u64 {
+        self.sim.step
+    }
+
+    /// Number of particles.
+    pub fn particles(&self) -> usize {
+        self.sim.scene.particles.len()
+    }
+
+    /// Whether the scene runs on the neighbour-list path.
+    pub fn neighbour_list(&self) -> bool {
+        matches!(self.sim.built.coupling, Coupling::Fast(_))
+    }
+
+    /// Neighbour-list builds so far (neighbour-list path only).
+    pub fn rebuilds(&self) -> Option<u64> {
+        match &self.sim.built.coupling {
+            Coupling::Fast(stepper) => Some(stepper.rebuilds()),
+            _ => None,
+        }
+    }
+
+    /// Touching pairs at the last force evaluation.
+    pub fn contacts(&self) -> ContactCounts {
+        match &self.sim.built.coupling {
+            Coupling::Fast(stepper) => {
+                let report = stepper.last_report();
+                ContactCounts {
+                    sphere: report.sphere_contacts,
+                    wall: report.surface_contacts,
+                }
+            }
+            Coupling::Force(stepper) => {
+                let mut counts = ContactCounts::default();
+                let particle = |c: rapier3d_f64::prelude::ColliderHandle| {
+                    self.sim
+                        .built
+                        .particle_of_collider
+                        .get(c.into_raw_parts().0 as usize)
+                        .is_some_and(|&i| i != usize::MAX)
+                };
+                for e in stepper.contacts().entries() {
+                    if particle(e.collider1) && particle(e.collider2) {
+                        counts.sphere += 1;
+                    } else {
+                        counts.wall += 1;
+                    }
+                }
+                counts
+            }
+            Coupling::Restitution(_) => ContactCounts::default(),
+        }
+    }
+}
+
 /// Run `scene` (from the start, or from `options.resume`).
 pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunSummary, SimError> {
     let mut sim = match &options.resume {
@@ -226,7 +330,11 @@ impl<'a> Sim<'a> {
             .into());
         }
         let mut sim = Self::new(scene)?;
-        let n_bodies = sim.built.particle_bodies.len() + sim.built.wall_bodies.len();
+        let n_particles = match &sim.built.coupling {
+            Coupling::Fast(stepper) => stepper.particles().len(),
+            _ => sim.built.particle_bodies.len(),
+        };
+        let n_bodies = n_particles + sim.built.wall_bodies.len();
         if data.bodies.len() != n_bodies
             || data.books.particle_plastic.len() != scene.particles.len()
         {
@@ -238,7 +346,7 @@ impl<'a> Sim<'a> {
         }
         // Restitution mode: rapier's whole world (decoded and checked before anything is used).
         let world = match sim.built.coupling {
-            Coupling::Force(_) => None,
+            Coupling::Force(_) | Coupling::Fast(_) => None,
             Coupling::Restitution(_) => {
                 let world: rapier3d_f64::prelude::PhysicsWorld = postcard::from_bytes(&data.world)
                     .map_err(|e| CheckpointError::Decode {
@@ -268,13 +376,21 @@ impl<'a> Sim<'a> {
             // Restitution: the world continues exactly where it stopped (the bodies are in it).
             Some(world) => sim.built.world = world,
             None => {
-                for (h, record) in handles.iter().zip(&data.bodies) {
+                let mut records = data.bodies.iter();
+                if let Coupling::Fast(stepper) = &mut sim.built.coupling {
+                    let p = stepper.particles_mut();
+                    for (i, record) in records.by_ref().take(n_particles).enumerate() {
+                        record.apply_to_particle(p, i);
+                    }
+                }
+                for (h, record) in handles.iter().zip(records) {
                     record.apply(&mut sim.built.world.bodies[*h]);
                 }
+                // Also puts the wall colliders where their bodies now are.
                 sim.built.world.detect_collisions(&(), &());
             }
         }
-        sim.restore_contacts(&data)?;
+        sim.restore_contacts(&data, path)?;
         sim.step = data.step;
         sim.books = data.books;
         sim.rng = data.rng.restore();
@@ -288,7 +404,7 @@ impl<'a> Sim<'a> {
     /// Put the checkpoint's per-contact histories back. Force mode: the plugin binds the laws of
     /// the pairs touching now (one force pass, whose forces are discarded), then every entry gets
     /// the checkpoint's history, or a fresh one for a pair that was not touching at the checkpoint.
-    fn restore_contacts(&mut self, data: &CheckpointData) -> Result<(), SimError> {
+    fn restore_contacts(&mut self, data: &CheckpointData, path: &Path) -> Result<(), SimError> {
         let dt = self.scene.dt;
         let world = &mut self.built.world;
         match &mut self.built.coupling {
@@ -306,6 +422,17 @@ impl<'a> Sim<'a> {
                         Err(_) => entry.history = Default::default(),
                     }
                 }
+            }
+            Coupling::Fast(stepper) => {
+                let state = data
+                    .fast
+                    .as_ref()
+                    .and_then(|f| f.to_state())
+                    .ok_or_else(|| CheckpointError::Incompatible {
+                        path: path.to_path_buf(),
+                        reason: "it holds no valid neighbour-list state".to_owned(),
+                    })?;
+                stepper.import_lists(world, state)?;
             }
             Coupling::Restitution(hooks) => {
                 let history = hooks.history();
@@ -353,8 +480,9 @@ impl<'a> Sim<'a> {
                 break;
             }
             self.scene_events();
-            self.compute_forces()?;
             let last = k >= total;
+            let frame_due = k % frame_every == 0 || last;
+            self.compute_forces(frame_due && scene.contact_network && !options.no_frames)?;
             let sampling = k % energy_every == 0 || k % frame_every == 0 || last;
             if sampling || self.tracker.needs_every_step() {
                 self.gather_view();
@@ -417,12 +545,20 @@ impl<'a> Sim<'a> {
             checkpoint: self.checkpoints.last().cloned(),
             energy: self.energy.clone(),
             headline,
-            particles: self
-                .built
-                .particle_bodies
-                .iter()
-                .map(|h| BodyRecord::of(&self.built.world.bodies[*h]))
-                .collect(),
+            particles: match &self.built.coupling {
+                Coupling::Fast(stepper) => {
+                    let p = stepper.particles();
+                    (0..p.len())
+                        .map(|i| BodyRecord::of_particle(p, i))
+                        .collect()
+                }
+                _ => self
+                    .built
+                    .particle_bodies
+                    .iter()
+                    .map(|h| BodyRecord::of(&self.built.world.bodies[*h]))
+                    .collect(),
+            },
             wall_seconds: started.elapsed().as_secs_f64(),
             files,
         })
@@ -437,30 +573,53 @@ impl<'a> Sim<'a> {
             .gravity
             .try_normalize(0.0)
             .unwrap_or(-Vector3::z());
-        crate::walls::remove_due_walls(
+        let removed = crate::walls::remove_due_walls(
             &self.scene.walls,
             self.step as f64 * self.scene.dt,
             &up,
             world,
             &self.built.wall_bodies,
         );
-        if let Some(sink) = &self.sink {
-            sink.apply_to_bodies(&mut world.bodies, &self.built.particle_bodies);
+        match &mut self.built.coupling {
+            Coupling::Fast(stepper) => {
+                let mut jumped = false;
+                if let Some(sink) = &self.sink {
+                    let p = stepper.particles_mut();
+                    jumped = sink.apply(&mut p.position, &mut p.linvel, &mut p.angvel);
+                }
+                if removed || jumped {
+                    stepper.request_rebuild();
+                }
+            }
+            _ => {
+                if let Some(sink) = &self.sink {
+                    sink.apply_to_bodies(&mut world.bodies, &self.built.particle_bodies);
+                }
+            }
         }
     }
 
-    fn compute_forces(&mut self) -> Result<(), SimError> {
+    /// Forces at `x_k` and the books of this step; `keep_wrenches`: the neighbour-list path
+    /// stores every pair's wrench (a contact-network frame follows).
+    fn compute_forces(&mut self, keep_wrenches: bool) -> Result<(), SimError> {
         let dt = self.scene.dt;
         let world = &self.built.world;
-        if let Coupling::Force(stepper) = &mut self.built.coupling {
-            stepper.compute_forces(&world.bodies, &world.colliders, &world.narrow_phase, dt)?;
-            self.books.take(
-                stepper,
-                &world.bodies,
-                &self.built.particle_of_collider,
-                &self.built.wall_of_collider,
-                dt,
-            );
+        match &mut self.built.coupling {
+            Coupling::Force(stepper) => {
+                stepper.compute_forces(&world.bodies, &world.colliders, &world.narrow_phase, dt)?;
+                self.books.take(
+                    stepper,
+                    &world.bodies,
+                    &self.built.particle_of_collider,
+                    &self.built.wall_of_collider,
+                    dt,
+                );
+            }
+            Coupling::Fast(stepper) => {
+                stepper.compute_forces(world, keep_wrenches)?;
+                self.books.take_fast(stepper, &world.bodies, dt);
+            }
+            Coupling::Restitution(_) => {}
         }
         Ok(())
     }
@@ -472,6 +631,9 @@ impl<'a> Sim<'a> {
                 stepper.apply_forces(&mut world.bodies);
                 world.step();
             }
+            Coupling::Fast(stepper) => {
+                stepper.advance(world)?;
+            }
             Coupling::Restitution(hooks) => hooks.step(world)?,
         }
         self.step += 1;
@@ -481,11 +643,35 @@ impl<'a> Sim<'a> {
     fn gather_view(&mut self) {
         let v = &mut self.view;
         let bodies = &self.built.world.bodies;
-        let n = self.built.particle_bodies.len();
+        let n = self.scene.particles.len();
         v.position.clear();
         v.velocity.clear();
         v.mass.clear();
         v.radius.clear();
+        if let Coupling::Fast(stepper) = &self.built.coupling {
+            let p = stepper.particles();
+            v.position.extend_from_slice(&p.position);
+            v.velocity.extend_from_slice(&p.linvel);
+            v.radius.extend_from_slice(&p.radius);
+            v.mass
+                .extend(p.species.iter().map(|&s| p.species_table[s as usize].mass));
+            v.contacts.clear();
+            v.contacts.resize(n, 0);
+            let pairs = stepper.pairs();
+            for q in 0..pairs.len() {
+                if pairs.active[q] {
+                    v.contacts[pairs.i[q] as usize] += 1;
+                    v.contacts[pairs.j[q] as usize] += 1;
+                }
+            }
+            let sp = stepper.surface_pairs();
+            for q in 0..sp.len() {
+                if sp.active[q] {
+                    v.contacts[sp.particle[q] as usize] += 1;
+                }
+            }
+            return;
+        }
         for (h, p) in self.built.particle_bodies.iter().zip(&self.scene.particles) {
             let b = &bodies[*h];
             v.position.push(to_na(b.translation()));
@@ -548,15 +734,23 @@ impl<'a> Sim<'a> {
             ..EnergyRow::default()
         };
         let bodies = &self.built.world.bodies;
-        for (h, p) in self.built.particle_bodies.iter().zip(&self.scene.particles) {
-            let b = &bodies[*h];
-            let m = b.mass();
-            let v = to_na(b.linvel());
-            let w = to_na(b.angvel());
+        let mut kinetic = |m: f64, r: f64, x: &Vector3<f64>, v: &Vector3<f64>, w: &Vector3<f64>| {
             row.kinetic_translational_j += 0.5 * m * v.norm_squared();
             // Solid sphere: I = (2/5) m r².
-            row.kinetic_rotational_j += 0.5 * 0.4 * m * p.radius * p.radius * w.norm_squared();
-            row.gravitational_j -= m * g.dot(&to_na(b.translation()));
+            row.kinetic_rotational_j += 0.5 * 0.4 * m * r * r * w.norm_squared();
+            row.gravitational_j -= m * g.dot(x);
+        };
+        if let Coupling::Fast(stepper) = &self.built.coupling {
+            let p = stepper.particles();
+            for i in 0..p.len() {
+                let m = p.species_table[p.species[i] as usize].mass;
+                kinetic(m, p.radius[i], &p.position[i], &p.linvel[i], &p.angvel[i]);
+            }
+        }
+        for (h, p) in self.built.particle_bodies.iter().zip(&self.scene.particles) {
+            let b = &bodies[*h];
+            let (x, v, w) = (to_na(b.translation()), to_na(b.linvel()), to_na(b.angvel()));
+            kinetic(b.mass(), p.radius, &x, &v, &w);
         }
         if let Coupling::Force(stepper) = &self.built.coupling {
             for e in stepper.contacts().entries() {
@@ -569,6 +763,36 @@ impl<'a> Sim<'a> {
                 row.elastic_rolling_j += e.rolling.elastic_energy(&e.history.rolling);
             }
             row.contacts = stepper.contacts().len() as u64;
+        }
+        if let Coupling::Fast(stepper) = &self.built.coupling {
+            let mut add =
+                |(law, rolling): &(SceneLaw, AnyRollingLaw), h: &FastPairHistory, overlap: f64| {
+                    row.elastic_normal_j += law.normal.elastic_energy(&h.contact.normal, overlap);
+                    let t = &h.contact.tangential;
+                    row.elastic_tangential_j += 0.5
+                        * law.tangential.stiffness(t.contact_radius)
+                        * t.displacement.norm_squared();
+                    row.elastic_rolling_j += rolling.elastic_energy(&h.rolling);
+                    row.contacts += 1;
+                };
+            let p = stepper.particles();
+            let sp = stepper.surface_pairs();
+            for q in (0..sp.len()).filter(|&q| sp.active[q]) {
+                let (i, s) = (sp.particle[q] as usize, sp.surface[q] as usize);
+                add(
+                    stepper.surface_pair_laws(i, s),
+                    &sp.history[q],
+                    sp.contact[q].overlap,
+                );
+            }
+            let pairs = stepper.pairs();
+            for q in (0..pairs.len()).filter(|&q| pairs.active[q]) {
+                let (i, j) = (pairs.i[q] as usize, pairs.j[q] as usize);
+                let overlap =
+                    sphere_sphere(&p.position[i], p.radius[i], &p.position[j], p.radius[j])
+                        .map_or(0.0, |c| c.overlap);
+                add(stepper.sphere_pair_laws(i, j), &pairs.history[q], overlap);
+            }
         }
         row.plastic_j = self.books.plastic;
         row.friction_j = self.books.friction;
@@ -586,6 +810,18 @@ impl<'a> Sim<'a> {
         let name = PathBuf::from("frames").join(format!("{}_{index:06}.vtp", scene.name));
         let bodies = &self.built.world.bodies;
         let mut frame = ParticleFrame::default();
+        if let Coupling::Fast(stepper) = &self.built.coupling {
+            let p = stepper.particles();
+            for i in 0..p.len() {
+                frame.position.push(p.position[i].into());
+                frame.radius.push(p.radius[i]);
+                frame.velocity.push(p.linvel[i].into());
+                frame.angular_velocity.push(p.angvel[i].into());
+                frame.contacts.push(self.view.contacts[i]);
+                frame.plastic_work.push(self.books.particle_plastic[i]);
+                frame.id.push(i as u32);
+            }
+        }
         for (i, h) in self.built.particle_bodies.iter().enumerate() {
             let b = &bodies[*h];
             frame.position.push(to_na(b.translation()).into());
@@ -604,8 +840,45 @@ impl<'a> Sim<'a> {
             part: 0,
         });
         if scene.contact_network {
+            let mut net = ContactFrame::default();
+            if let Coupling::Fast(stepper) = &self.built.coupling {
+                let p = stepper.particles();
+                let sp = stepper.surface_pairs();
+                for q in (0..sp.len()).filter(|&q| sp.active[q]) {
+                    let (i, s) = (sp.particle[q] as usize, sp.surface[q] as usize);
+                    let (law, _) = stepper.surface_pair_laws(i, s);
+                    let (c, w) = (&sp.contact[q], &sp.wrench[q]);
+                    net.from.push(p.position[i].into());
+                    net.to.push(c.point.into());
+                    net.force.push(w.force.into());
+                    net.normal_force.push(w.force.dot(&c.normal));
+                    net.overlap.push(c.overlap);
+                    net.plastic_indentation
+                        .push(law.normal.residual_overlap(&sp.history[q].contact.normal));
+                }
+                let pairs = stepper.pairs();
+                for q in (0..pairs.len()).filter(|&q| pairs.active[q]) {
+                    let (i, j) = (pairs.i[q] as usize, pairs.j[q] as usize);
+                    let (law, _) = stepper.sphere_pair_laws(i, j);
+                    let Some(c) =
+                        sphere_sphere(&p.position[i], p.radius[i], &p.position[j], p.radius[j])
+                    else {
+                        continue;
+                    };
+                    // Stored for every pair when a network frame is due (`compute_forces`).
+                    let force = pairs.wrench.get(q).map_or(Vector3::zeros(), |w| w.force);
+                    net.from.push(p.position[i].into());
+                    net.to.push(p.position[j].into());
+                    net.force.push(force.into());
+                    net.normal_force.push(force.dot(&c.normal));
+                    net.overlap.push(c.overlap);
+                    net.plastic_indentation.push(
+                        law.normal
+                            .residual_overlap(&pairs.history[q].contact.normal),
+                    );
+                }
+            }
             if let Coupling::Force(stepper) = &self.built.coupling {
-                let mut net = ContactFrame::default();
                 for e in stepper.contacts().entries() {
                     let c1 = to_na(bodies[e.body1].translation());
                     let to = match self
@@ -626,6 +899,8 @@ impl<'a> Sim<'a> {
                     net.plastic_indentation
                         .push(e.law.normal.residual_overlap(&e.history.contact.normal));
                 }
+            }
+            if !matches!(self.built.coupling, Coupling::Restitution(_)) {
                 let cname =
                     PathBuf::from("frames").join(format!("{}_contacts_{index:06}.vtp", scene.name));
                 let cpath = out.join(&cname);

@@ -1,17 +1,21 @@
 //! What a run carries from step to step besides rapier's bodies: the energy books, and the
 //! checkpoint payload that holds everything needed to continue bit-identically.
 
-use super::build::{Coupling, SceneStepper};
+use super::build::{Coupling, FastSceneStepper, SceneStepper};
 use super::Sim;
 use crate::headline::{HeadlineSample, Tracker};
-use crate::laws::AnyNormalState;
+use crate::laws::{AnyDamping, AnyNormal, AnyNormalState, AnyRollingLaw};
 use crate::output::energy::EnergyRow;
 use crate::output::vtk::CollectionEntry;
 use crate::scene::Scene;
-use mdr_contact::model::ContactState;
+use mdr_contact::damping::DampingModel;
+use mdr_contact::model::{ContactLaw, ContactState, WorkBooks};
+use mdr_contact::normal::{NormalLaw, NormalModel};
 use mdr_contact::rolling::{EpsdRollingState, RollingLaw};
-use mdr_contact::tangential::MindlinState;
+use mdr_contact::tangential::{Mindlin, MindlinState, TangentialModel};
 use mdr_rapier::convert::{to_glam, to_na};
+use mdr_rapier::fast::particles::FastParticles;
+use mdr_rapier::fast::FastListState;
 use nalgebra::Vector3;
 use rand_chacha::ChaCha8Rng;
 use rapier3d_f64::prelude::*;
@@ -77,7 +81,7 @@ impl Books {
         }
     }
 
-    /// Take the increments of the step whose forces were just computed.
+    /// Take the increments of the step whose forces were just computed (rapier path).
     pub(crate) fn take(
         &mut self,
         stepper: &SceneStepper,
@@ -96,45 +100,17 @@ impl Books {
                 .filter(|&i| i != usize::MAX)
         };
         for e in entries {
-            let key = e.key.0;
-            while j < self.last.len() && self.last[j].key < key {
-                j += 1;
-            }
-            let prev = match self.last.get(j) {
-                Some(l) if l.key == key => *l,
-                _ => PairBooks::default(),
-            };
-            let report = e.law.report(&e.history.contact, e.contact.overlap);
-            let rolling_work = e.rolling.dissipated_work(&e.history.rolling);
-            let dp = report.plastic_work - prev.plastic;
-            self.plastic += dp;
-            self.friction += report.friction_work - prev.friction;
-            self.damping += report.damping_work - prev.damping;
-            self.rolling += rolling_work - prev.rolling;
-            // The springs' energy change without work in this update, from the state the update
-            // started from (docs/theory.md, "Energy books of the incremental springs").
-            let tangential = &e.history.contact.tangential;
-            let rolling = &e.history.rolling;
-            self.stiffness_tangential -= e.law.tangential.stiffness_energy_change(
-                prev.displacement_len2,
-                prev.contact_radius,
-                tangential.contact_radius,
+            let owners = (particle(e.collider1), particle(e.collider2));
+            self.book_pair(
+                e.key.0,
+                &e.law,
+                &e.rolling,
+                &e.history.contact,
+                &e.history.rolling,
+                owners,
+                &mut j,
+                &mut next,
             );
-            self.stiffness_rolling -= EpsdRollingState::stiffness_energy_change(
-                prev.torque_len2,
-                prev.rolling_stiffness,
-                rolling.stiffness,
-            );
-            if dp != 0.0 {
-                match (particle(e.collider1), particle(e.collider2)) {
-                    (Some(a), Some(b)) => {
-                        self.particle_plastic[a] += 0.5 * dp;
-                        self.particle_plastic[b] += 0.5 * dp;
-                    }
-                    (Some(a), None) | (None, Some(a)) => self.particle_plastic[a] += dp,
-                    (None, None) => {}
-                }
-            }
             // Work of a moving wall on the sphere: F · v_wall(contact point) dt.
             let on_wall = wall_of_collider
                 .get(e.collider2.into_raw_parts().0 as usize)
@@ -142,27 +118,156 @@ impl Books {
             if on_wall {
                 if let Some(b2) = e.body2.and_then(|h| bodies.get(h)) {
                     if b2.is_kinematic() {
-                        let arm = e.contact.point - to_na(b2.center_of_mass());
-                        let v = to_na(b2.linvel()) + to_na(b2.angvel()).cross(&arm);
-                        self.wall_work += e.wrench.force.dot(&v) * dt;
+                        self.wall_work += wall_power(b2, &e.contact.point, &e.wrench.force) * dt;
                     }
                 }
             }
-            next.push(PairBooks {
-                key,
-                plastic: report.plastic_work,
-                friction: report.friction_work,
-                damping: report.damping_work,
-                rolling: rolling_work,
-                displacement_len2: tangential.displacement.norm_squared(),
-                contact_radius: tangential.contact_radius,
-                torque_len2: rolling.torque.norm_squared(),
-                rolling_stiffness: rolling.stiffness,
-            });
         }
         self.last = next;
     }
+
+    /// [`Books::take`] on the neighbour-list path. Pairs are visited per particle `i` in the
+    /// stepper's order, its surfaces first (key `i · 2³² + s`), then its partners `j > i` (key
+    /// `i · 2³² + 2³¹ + j`), so the keys increase as the books' merge needs (scenes are not
+    /// periodic: one image per pair).
+    pub(crate) fn take_fast(&mut self, stepper: &FastSceneStepper, bodies: &RigidBodySet, dt: f64) {
+        let p = stepper.particles();
+        let pairs = stepper.pairs();
+        let sp = stepper.surface_pairs();
+        let surfaces = stepper.surfaces();
+        let mut next = Vec::with_capacity(self.last.len() + 64);
+        let mut j = 0;
+        for i in 0..p.len() {
+            for q in sp.start[i] as usize..sp.start[i + 1] as usize {
+                if !sp.active[q] {
+                    continue;
+                }
+                let s = sp.surface[q] as usize;
+                let (law, rolling) = stepper.surface_pair_laws(i, s);
+                let h = &sp.history[q];
+                let key = ((i as u64) << 32) | s as u64;
+                self.book_pair(
+                    key,
+                    law,
+                    rolling,
+                    &h.contact,
+                    &h.rolling,
+                    (Some(i), None),
+                    &mut j,
+                    &mut next,
+                );
+                if let Some(b2) = surfaces[s].body.and_then(|h| bodies.get(h)) {
+                    if b2.is_kinematic() {
+                        self.wall_work +=
+                            wall_power(b2, &sp.contact[q].point, &sp.wrench[q].force) * dt;
+                    }
+                }
+            }
+            for q in pairs.first[i] as usize..pairs.first[i + 1] as usize {
+                if !pairs.active[q] {
+                    continue;
+                }
+                let pj = pairs.j[q] as usize;
+                let (law, rolling) = stepper.sphere_pair_laws(i, pj);
+                let h = &pairs.history[q];
+                let key = ((i as u64) << 32) | (1 << 31) | pj as u64;
+                self.book_pair(
+                    key,
+                    law,
+                    rolling,
+                    &h.contact,
+                    &h.rolling,
+                    (Some(i), Some(pj)),
+                    &mut j,
+                    &mut next,
+                );
+            }
+        }
+        self.last = next;
+    }
+
+    /// Book one touching pair: its work increments since the last update (found by key in
+    /// `self.last` from position `*j` on) and the energy its springs lost without work.
+    #[allow(clippy::too_many_arguments)]
+    fn book_pair(
+        &mut self,
+        key: u64,
+        law: &SceneLaw,
+        rolling_law: &AnyRollingLaw,
+        contact: &ContactState<AnyNormalState, MindlinState>,
+        rolling: &EpsdRollingState,
+        owners: (Option<usize>, Option<usize>),
+        j: &mut usize,
+        next: &mut Vec<PairBooks>,
+    ) {
+        while *j < self.last.len() && self.last[*j].key < key {
+            *j += 1;
+        }
+        let prev = match self.last.get(*j) {
+            Some(l) if l.key == key => *l,
+            _ => PairBooks::default(),
+        };
+        // The law's report without its elastic energy (not needed here).
+        let plastic_work = law.normal.dissipated_work(&contact.normal);
+        let friction_work = contact.books.friction_work();
+        let damping_work = contact.books.damping_work();
+        let rolling_work = rolling_law.dissipated_work(rolling);
+        let dp = plastic_work - prev.plastic;
+        self.plastic += dp;
+        self.friction += friction_work - prev.friction;
+        self.damping += damping_work - prev.damping;
+        self.rolling += rolling_work - prev.rolling;
+        // The springs' energy change without work in this update, from the state the update
+        // started from (docs/theory.md, "Energy books of the incremental springs").
+        let tangential = &contact.tangential;
+        self.stiffness_tangential -= law.tangential.stiffness_energy_change(
+            prev.displacement_len2,
+            prev.contact_radius,
+            tangential.contact_radius,
+        );
+        self.stiffness_rolling -= EpsdRollingState::stiffness_energy_change(
+            prev.torque_len2,
+            prev.rolling_stiffness,
+            rolling.stiffness,
+        );
+        if dp != 0.0 {
+            match owners {
+                (Some(a), Some(b)) => {
+                    self.particle_plastic[a] += 0.5 * dp;
+                    self.particle_plastic[b] += 0.5 * dp;
+                }
+                (Some(a), None) | (None, Some(a)) => self.particle_plastic[a] += dp,
+                (None, None) => {}
+            }
+        }
+        next.push(PairBooks {
+            key,
+            plastic: plastic_work,
+            friction: friction_work,
+            damping: damping_work,
+            rolling: rolling_work,
+            displacement_len2: tangential.displacement.norm_squared(),
+            contact_radius: tangential.contact_radius,
+            torque_len2: rolling.torque.norm_squared(),
+            rolling_stiffness: rolling.stiffness,
+        });
+    }
 }
+
+/// Power of a kinematic wall on a sphere: the force on the sphere times the wall's velocity at
+/// the contact point.
+fn wall_power(wall: &RigidBody, point: &Vector3<f64>, force: &Vector3<f64>) -> f64 {
+    let arm = point - to_na(wall.center_of_mass());
+    let v = to_na(wall.linvel()) + to_na(wall.angvel()).cross(&arm);
+    force.dot(&v)
+}
+
+/// The composed law of a scene's pairs.
+pub(crate) type SceneLaw = ContactLaw<
+    <AnyNormal as NormalModel>::Law,
+    <Mindlin as TangentialModel>::Law,
+    <AnyDamping as DampingModel>::Law,
+>;
 
 /// Pose and velocities of one rigid body, exactly.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -190,6 +295,26 @@ impl BodyRecord {
         }
     }
 
+    /// The record of particle `i` of the neighbour-list path.
+    pub fn of_particle(p: &FastParticles, i: usize) -> Self {
+        let q = p.rotation[i];
+        Self {
+            translation: p.position[i].into(),
+            rotation: [q.x, q.y, q.z, q.w],
+            linvel: p.linvel[i].into(),
+            angvel: p.angvel[i].into(),
+        }
+    }
+
+    /// Put the record into particle `i` of the neighbour-list path.
+    pub fn apply_to_particle(&self, p: &mut FastParticles, i: usize) {
+        let [x, y, z, w] = self.rotation;
+        p.position[i] = Vector3::from(self.translation);
+        p.rotation[i] = rapier3d_f64::math::Rotation::from_xyzw(x, y, z, w);
+        p.linvel[i] = Vector3::from(self.linvel);
+        p.angvel[i] = Vector3::from(self.angvel);
+    }
+
     /// Put the record into a body.
     pub fn apply(&self, body: &mut RigidBody) {
         let [x, y, z, w] = self.rotation;
@@ -212,6 +337,108 @@ pub struct ContactRecord {
     pub contact: ContactState<AnyNormalState, MindlinState>,
     /// Rolling history.
     pub rolling: EpsdRollingState,
+}
+
+/// The neighbour-list stepper's state between two steps ([`mdr_rapier::fast::FastListState`]),
+/// with the histories of touching pairs only (the others are default).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FastRecord {
+    /// Positions at the last build.
+    pub built_at: Vec<[f64; 3]>,
+    /// Largest displacement since the last build (m).
+    pub max_displacement: f64,
+    /// Surface poses at the last build: translation, then rotation `(x, y, z, w)`.
+    pub surface_poses: Vec<[f64; 7]>,
+    /// Builds so far.
+    pub rebuilds: u64,
+    /// Sphere pairs of the list `(i, j, image)`.
+    pub pairs: Vec<(u32, u32, u8)>,
+    /// Touching sphere pairs: `key` = index into `pairs`.
+    pub pair_histories: Vec<ContactRecord>,
+    /// Particle–surface candidates `(particle, surface)`.
+    pub surface_pairs: Vec<(u32, u32)>,
+    /// Touching candidates: `key` = index into `surface_pairs`.
+    pub surface_histories: Vec<ContactRecord>,
+}
+
+pub(crate) type FastPairHistory =
+    mdr_rapier::kernel::PairHistory<ContactState<AnyNormalState, MindlinState>, EpsdRollingState>;
+
+impl FastRecord {
+    pub(crate) fn of(stepper: &FastSceneStepper) -> Self {
+        let state = stepper.export_lists();
+        let touching = |active: &[bool], history: &[FastPairHistory]| -> Vec<ContactRecord> {
+            active
+                .iter()
+                .zip(history)
+                .enumerate()
+                .filter(|(_, (&a, _))| a)
+                .map(|(k, (_, h))| ContactRecord {
+                    key: k as u64,
+                    contact: h.contact.clone(),
+                    rolling: h.rolling,
+                })
+                .collect()
+        };
+        Self {
+            built_at: state.built_at.iter().map(|x| (*x).into()).collect(),
+            max_displacement: state.max_displacement,
+            surface_poses: state
+                .surface_poses
+                .iter()
+                .map(|p| {
+                    let (t, q) = (p.translation, p.rotation);
+                    [t.x, t.y, t.z, q.x, q.y, q.z, q.w]
+                })
+                .collect(),
+            rebuilds: state.rebuilds,
+            pair_histories: touching(&state.pair_active, &state.pair_history),
+            pairs: state.pairs,
+            surface_histories: touching(&state.surface_active, &state.surface_history),
+            surface_pairs: state.surface_pairs,
+        }
+    }
+
+    /// The stepper's state; `None` if a history's index is out of range.
+    pub(crate) fn to_state(&self) -> Option<FastListState<FastPairHistory>> {
+        let expand = |n: usize, records: &[ContactRecord]| {
+            let mut active = vec![false; n];
+            let mut history = vec![FastPairHistory::default(); n];
+            for r in records {
+                let k = usize::try_from(r.key).ok().filter(|&k| k < n)?;
+                active[k] = true;
+                history[k] = FastPairHistory {
+                    contact: r.contact.clone(),
+                    rolling: r.rolling,
+                };
+            }
+            Some((active, history))
+        };
+        let (pair_active, pair_history) = expand(self.pairs.len(), &self.pair_histories)?;
+        let (surface_active, surface_history) =
+            expand(self.surface_pairs.len(), &self.surface_histories)?;
+        Some(FastListState {
+            built_at: self.built_at.iter().map(|&x| Vector3::from(x)).collect(),
+            max_displacement: self.max_displacement,
+            surface_poses: self
+                .surface_poses
+                .iter()
+                .map(|p| {
+                    Pose::from_parts(
+                        rapier3d_f64::math::Vector::new(p[0], p[1], p[2]),
+                        rapier3d_f64::math::Rotation::from_xyzw(p[3], p[4], p[5], p[6]),
+                    )
+                })
+                .collect(),
+            rebuilds: self.rebuilds,
+            pairs: self.pairs.clone(),
+            pair_active,
+            pair_history,
+            surface_pairs: self.surface_pairs.clone(),
+            surface_active,
+            surface_history,
+        })
+    }
 }
 
 /// State of the run's random generator.
@@ -251,10 +478,14 @@ pub struct CheckpointData {
     pub dt_bits: u64,
     /// Step counter.
     pub step: u64,
-    /// Particle bodies, then wall bodies, in creation order.
+    /// Particles (bodies on rapier's path, the stepper's arrays on the neighbour-list path),
+    /// then wall bodies, in creation order.
     pub bodies: Vec<BodyRecord>,
-    /// Force mode: per-pair histories, sorted by key.
+    /// Force mode on rapier's pipeline: per-pair histories, sorted by key.
     pub contacts: Vec<ContactRecord>,
+    /// Force mode on the neighbour-list path: its lists and histories (the particles are in
+    /// `bodies`).
+    pub fast: Option<FastRecord>,
     /// Restitution mode: `(pair key, largest overlap)` of the impact history.
     pub impacts: Vec<(u64, f64)>,
     /// Restitution mode: rapier's world as `postcard` bytes of `PhysicsWorld` (bodies,
@@ -283,13 +514,26 @@ impl CheckpointData {
     /// written).
     pub(crate) fn capture(sim: &Sim<'_>) -> Result<Self, String> {
         let bodies = &sim.built.world.bodies;
-        let records = sim
-            .built
-            .particle_bodies
-            .iter()
-            .chain(&sim.built.wall_bodies)
-            .map(|h| BodyRecord::of(&bodies[*h]))
-            .collect();
+        let mut records: Vec<BodyRecord> = match &sim.built.coupling {
+            Coupling::Fast(stepper) => {
+                let p = stepper.particles();
+                (0..p.len())
+                    .map(|i| BodyRecord::of_particle(p, i))
+                    .collect()
+            }
+            _ => Vec::new(),
+        };
+        records.extend(
+            sim.built
+                .particle_bodies
+                .iter()
+                .chain(&sim.built.wall_bodies)
+                .map(|h| BodyRecord::of(&bodies[*h])),
+        );
+        let fast = match &sim.built.coupling {
+            Coupling::Fast(stepper) => Some(FastRecord::of(stepper)),
+            _ => None,
+        };
         let (contacts, impacts) = match &sim.built.coupling {
             Coupling::Force(stepper) => (
                 stepper
@@ -304,6 +548,7 @@ impl CheckpointData {
                     .collect(),
                 Vec::new(),
             ),
+            Coupling::Fast(_) => (Vec::new(), Vec::new()),
             Coupling::Restitution(hooks) => {
                 let h = hooks.history();
                 let impacts = (0..h.allocated())
@@ -314,7 +559,7 @@ impl CheckpointData {
             }
         };
         let world = match &sim.built.coupling {
-            Coupling::Force(_) => Vec::new(),
+            Coupling::Force(_) | Coupling::Fast(_) => Vec::new(),
             Coupling::Restitution(_) => postcard::to_stdvec(&sim.built.world)
                 .map_err(|e| format!("rapier's world does not encode: {e}"))?,
         };
@@ -325,6 +570,7 @@ impl CheckpointData {
             step: sim.step,
             bodies: records,
             contacts,
+            fast,
             impacts,
             world,
             books: sim.books.clone(),

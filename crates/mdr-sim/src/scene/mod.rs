@@ -12,7 +12,7 @@ use nalgebra::Vector3;
 use std::path::PathBuf;
 
 pub use problems::{Problem, Problems, Severity};
-pub use schema::{CouplingMode, Headline, SceneFile};
+pub use schema::{CouplingMode, ForcePath, Headline, SceneFile};
 pub use validate::load_scene;
 
 /// The normal law of a scene with its parameters (checked by the law crate).
@@ -89,6 +89,9 @@ pub struct Scene {
     pub energy_interval: f64,
     /// Coupling mode.
     pub coupling: CouplingMode,
+    /// Force mode's implementation (ignored in restitution mode, which the validation refuses
+    /// together with an explicit `force_path`).
+    pub force_path: ForcePath,
     /// Headline quantity.
     pub headline: Headline,
     /// Write the contact network.

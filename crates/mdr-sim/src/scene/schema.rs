@@ -55,6 +55,18 @@ pub enum CouplingMode {
     Restitution,
 }
 
+/// Which force-mode implementation runs a scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ForcePath {
+    /// `mdr_rapier::fast::FastForceStepper`: binned neighbour lists with a skin, the walls as
+    /// rapier colliders registered as surfaces (the default).
+    #[default]
+    NeighbourList,
+    /// `mdr_rapier::ForceModeStepper`: rapier's broad and narrow phase every step.
+    Rapier,
+}
+
 /// Which headline quantity the run reports at the end.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -104,6 +116,10 @@ pub struct RunSection {
     /// Coupling mode.
     #[serde(default)]
     pub coupling: CouplingMode,
+    /// Force mode: `"neighbour_list"` (default) or `"rapier"`. Left out of the file's
+    /// serialisation when absent, so checkpoints of scenes without it keep their fingerprint.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub force_path: Option<ForcePath>,
     /// Headline quantity.
     #[serde(default)]
     pub headline: Headline,

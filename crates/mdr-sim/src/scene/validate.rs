@@ -319,6 +319,12 @@ impl Checker<'_, '_> {
                 );
             }
         }
+        if r.coupling == CouplingMode::Restitution && r.force_path.is_some() {
+            self.error(
+                &run.key("force_path"),
+                "applies to coupling = \"force\" only (restitution mode runs on rapier's pipeline)",
+            );
+        }
         if r.discharge_height_m.is_some()
             && !matches!(r.headline, Headline::Hopper | Headline::Funnel)
         {
@@ -574,6 +580,7 @@ impl Checker<'_, '_> {
             checkpoint_interval: checkpoint,
             energy_interval: energy,
             coupling: r.coupling,
+            force_path: r.force_path.unwrap_or_default(),
             headline: r.headline,
             contact_network: r.contact_network,
             discharge_height: discharge,

@@ -1,0 +1,433 @@
+//! Scenes on the neighbour-list path (the default force path): the headlines agree with rapier's
+//! path, every wall kind and placement runs, the energy books close with damping and a moving
+//! wall, a drum with a mesh paddle keeps its spheres, and results do not depend on the number of
+//! threads.
+
+mod common;
+
+use mdr_rapier::fast::rayon::ThreadPoolBuilder;
+use mdr_sim::output::energy::EnergyRow;
+use mdr_sim::run::RunSummary;
+use mdr_sim::{run_scene, scene::validate::parse_scene, RunOptions};
+use std::path::Path;
+
+/// Run `text` (written as `dir/name.toml`) without frames.
+fn run(dir: &Path, name: &str, text: &str) -> RunSummary {
+    let path = common::write(dir, &format!("{name}.toml"), text);
+    let scene = parse_scene(&path, text).unwrap_or_else(|p| panic!("{name}: {p}"));
+    run_scene(
+        &scene,
+        &RunOptions::new(dir.join(name)).quiet(true).no_frames(true),
+    )
+    .unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// `text` with `force_path = "rapier"` added to `[run]`.
+fn on_rapier(text: &str) -> String {
+    text.replacen("[run]\n", "[run]\nforce_path = \"rapier\"\n", 1)
+}
+
+/// A small hopper: a cylinder (32 mesh slabs) on an orifice plate (prisms), D/d = 4.
+fn hopper(count: usize, duration: f64) -> String {
+    format!(
+        r#"
+[run]
+name = "hopper"
+seed = 3
+duration_s = {duration}
+dt_s = "auto"
+max_speed_m_per_s = 1.0
+steps_per_contact = 25
+output_interval_s = 0.01
+headline = "hopper"
+discharge_height_m = -0.01
+
+[gravity]
+acceleration_m_per_s2 = [0.0, 0.0, -9.81]
+
+[[material]]
+name = "grain"
+youngs_pa = 1.0e6
+poisson_ratio = 0.25
+density_kg_per_m3 = 2500.0
+
+[contact]
+normal = "mdr"
+critical_line_load_n_per_m = 50.0
+hardening_ratio = 0.37
+tangential = "mindlin"
+friction = 0.4
+damping = "stiffness_viscous"
+damping_eta = 0.3
+
+[[particles]]
+material = "grain"
+count = {count}
+radius_m = 0.001
+placement = "lattice"
+region_min_m = [-0.0075, -0.0075, 0.0002]
+region_max_m = [0.0075, 0.0075, 0.1]
+gap_fraction = 0.02
+jitter_fraction = 0.5
+
+[[walls]]
+kind = "cylinder"
+material = "grain"
+center_m = [0.0, 0.0, 0.04]
+axis = [0.0, 0.0, 1.0]
+radius_m = 0.009
+length_m = 0.08
+segments = 32
+thickness_m = 0.003
+
+[[walls]]
+kind = "orifice_plate"
+material = "grain"
+center_m = [0.0, 0.0, 0.0]
+outer_radius_m = 0.012
+orifice_diameter_m = 0.008
+thickness_m = 0.002
+segments = 32
+"#
+    )
+}
+
+/// Both paths run the same scene; returns (neighbour list, rapier) headline values of `name`.
+fn both(dir: &Path, tag: &str, text: &str, name: &str) -> (f64, f64) {
+    let fast = run(dir, &format!("{tag}_fast"), text);
+    let plain = run(dir, &format!("{tag}_rapier"), &on_rapier(text));
+    let (a, b) = (
+        fast.headline.get(name).unwrap(),
+        plain.headline.get(name).unwrap(),
+    );
+    eprintln!("{tag}: {name} neighbour list {a:.6}, rapier {b:.6}");
+    assert!(a.is_finite() && b.is_finite());
+    (a, b)
+}
+
+/// The drop scene's e_n matches the law's closed form on the neighbour-list path, and equals
+/// rapier's path to round-off (one sphere and a plane: no chaos to amplify round-off).
+#[test]
+fn drop_headline_is_the_same_on_both_paths() {
+    let dir = common::temp_dir("fast-drop");
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/drop.toml"),
+    )
+    .unwrap()
+    .replace("duration_s = 0.2 ", "duration_s = 0.11 ")
+    .replace("steps_per_contact = 200", "steps_per_contact = 50");
+    let fast = run(&dir, "drop_fast", &text);
+    let plain = run(&dir, "drop_rapier", &on_rapier(&text));
+    let e = fast.headline.get("restitution").unwrap();
+    let reference = fast.headline.get("law_energy_route_restitution").unwrap();
+    let e_plain = plain.headline.get("restitution").unwrap();
+    eprintln!("drop: e_n {e:.8} (rapier path {e_plain:.8}), closed form {reference:.8}");
+    assert!(reference < 0.9, "the impact is plastic: {reference}");
+    assert!(
+        (e / reference - 1.0).abs() < 0.01,
+        "e_n = {e} vs {reference}"
+    );
+    assert!(
+        (e / e_plain - 1.0).abs() < 1e-9,
+        "paths differ: {e} vs {e_plain}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Column collapse, hopper discharge and drum: the same headline on both paths within the
+/// scatter of such runs (the paths differ by round-off, which granular flow amplifies).
+#[test]
+fn column_hopper_and_drum_headlines_agree_on_both_paths() {
+    let dir = common::temp_dir("fast-headlines");
+    let (a, b) = both(
+        &dir,
+        "column",
+        &common::column(4, 6, 0.08, 0.5, ""),
+        "runout_m",
+    );
+    assert!((a / b - 1.0).abs() < 0.05, "column run-out {a} vs {b}");
+    let (a, b) = both(
+        &dir,
+        "hopper",
+        &hopper(250, 0.15),
+        "mass_flow_rate_kg_per_s",
+    );
+    assert!(a > 0.0 && b > 0.0, "the hopper discharged");
+    assert!((a / b - 1.0).abs() < 0.15, "hopper rate {a} vs {b}");
+    let (a, b) = both(
+        &dir,
+        "drum",
+        &common::drum(60, 0.5, ""),
+        "dynamic_angle_of_repose_deg",
+    );
+    assert!((a - b).abs() < 4.0, "drum angle {a} vs {b}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A closed cuboid as OBJ text (outward normals).
+fn obj_cuboid(lo: [f64; 3], hi: [f64; 3]) -> String {
+    let mut s = String::new();
+    for k in 0..8 {
+        let x = if matches!(k % 4, 1 | 2) { hi[0] } else { lo[0] };
+        let y = if matches!(k % 4, 2 | 3) { hi[1] } else { lo[1] };
+        let z = if k >= 4 { hi[2] } else { lo[2] };
+        s += &format!("v {x} {y} {z}\n");
+    }
+    for f in [
+        [1, 3, 2],
+        [1, 4, 3],
+        [5, 6, 7],
+        [5, 7, 8],
+        [1, 2, 6],
+        [1, 6, 5],
+        [4, 8, 7],
+        [4, 7, 3],
+        [1, 5, 8],
+        [1, 8, 4],
+        [2, 3, 7],
+        [2, 7, 6],
+    ] {
+        s += &format!("f {} {} {}\n", f[0], f[1], f[2]);
+    }
+    s
+}
+
+/// A drum (kinematic, rotating) with a mesh paddle turning with it: every sphere stays inside,
+/// nothing diverges, the paddle and the drum both touch spheres; the energy books close with
+/// damping, friction, rolling resistance and the drum's work booked as wall work.
+#[test]
+fn drum_with_a_mesh_paddle_keeps_every_sphere_and_closes_its_books() {
+    let dir = common::temp_dir("fast-drum-mesh");
+    common::write(
+        &dir,
+        "paddle.obj",
+        &obj_cuboid([-0.002, -0.005, -0.02], [0.002, 0.005, -0.013]),
+    );
+    let paddle = r#"
+[[walls]]
+kind = "mesh"
+material = "grain"
+file = "paddle.obj"
+angular_velocity_rad_per_s = [0.0, 3.0, 0.0]
+rotation_center_m = [0.0, 0.0, 0.0]
+"#;
+    let summary = run(&dir, "drum_paddle", &common::drum(60, 0.6, paddle));
+    for (i, p) in summary.particles.iter().enumerate() {
+        let [x, y, z] = p.translation;
+        assert!(
+            x.is_finite() && y.is_finite() && z.is_finite(),
+            "sphere {i}"
+        );
+        assert!(
+            (x * x + z * z).sqrt() < 0.02,
+            "sphere {i} left the drum: {x} {z}"
+        );
+        assert!(y.abs() < 0.005, "sphere {i} left through a cap: {y}");
+    }
+    let rows = &summary.energy;
+    assert!(rows.iter().all(|r| r.balance_j.is_finite()));
+    let last = rows.last().unwrap();
+    let dissipated = last.plastic_j + last.friction_j + last.damping_j + last.rolling_j;
+    let worst = |left_out: &dyn Fn(&EnergyRow) -> f64| {
+        let start = rows[0].balance_j - left_out(&rows[0]);
+        rows.iter()
+            .map(|r| (r.balance_j - left_out(r) - start).abs())
+            .fold(0.0, f64::max)
+    };
+    let drift = worst(&|_| 0.0);
+    let drift_without_wall_work = worst(&|r| -r.wall_work_j);
+    eprintln!(
+        "drum + paddle: wall work {:.4e} J, dissipated {dissipated:.4e} J (damping {:.3e}, \
+         friction {:.3e}, rolling {:.3e}, plastic {:.3e}), drift {drift:.3e} J, without the \
+         wall work {drift_without_wall_work:.3e} J",
+        last.wall_work_j, last.damping_j, last.friction_j, last.rolling_j, last.plastic_j
+    );
+    assert!(last.damping_j > 0.0 && last.friction_j > 0.0 && last.rolling_j > 0.0);
+    assert!(last.wall_work_j > 0.2 * dissipated, "the drum did work");
+    assert!(drift < 0.02 * dissipated, "books drift {drift:.3e} J");
+    assert!(drift_without_wall_work > 10.0 * drift);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Every other wall kind and placement: a box filled by lattice (normal sizes), random fill
+/// (uniform sizes, initial velocity), CSV and LAMMPS files; meshes from STL and OBJ files over a
+/// plane; the spheres stay inside and touch the walls.
+#[test]
+fn every_wall_kind_and_placement_runs_on_the_neighbour_list_path() {
+    let dir = common::temp_dir("fast-walls");
+    common::write(
+        &dir,
+        "spheres.csv",
+        "x_m,y_m,z_m,radius_m,vx_m_per_s,vy_m_per_s,vz_m_per_s\n\
+         -0.012,-0.012,0.03,0.0015,0.1,0.0,0.0\n0.012,0.012,0.03,0.0012,0.0,-0.1,0.0\n",
+    );
+    common::write(
+        &dir,
+        "spheres.data",
+        "LAMMPS data file\n\n2 atoms\n1 atom types\n\n-0.02 0.02 xlo xhi\n-0.02 0.02 ylo yhi\n\
+         0 0.05 zlo zhi\n\nAtoms # sphere\n\n1 1 0.003 2500 -0.012 0.012 0.035\n\
+         2 1 0.0026 2500 0.012 -0.012 0.035\n",
+    );
+    let head = r#"
+[run]
+name = "walls"
+seed = 9
+duration_s = 0.15
+dt_s = "auto"
+max_speed_m_per_s = 1.0
+steps_per_contact = 25
+output_interval_s = 0.05
+
+[gravity]
+acceleration_m_per_s2 = [0.0, 0.0, -9.81]
+
+[[material]]
+name = "grain"
+youngs_pa = 1.0e6
+poisson_ratio = 0.25
+density_kg_per_m3 = 2500.0
+
+[contact]
+normal = "thornton"
+yield_pressure_pa = 2.0e5
+tangential = "mindlin"
+friction = 0.3
+damping = "hertzian_viscous"
+damping_gamma_n_per_m_s = 2000.0
+"#;
+    let box_scene = format!(
+        r#"{head}
+[[particles]]
+material = "grain"
+count = 27
+size_distribution = "normal"
+radius_m = 0.0013
+radius_std_m = 0.0001
+radius_min_m = 0.0011
+radius_max_m = 0.0015
+placement = "lattice"
+region_min_m = [-0.008, -0.008, 0.0005]
+region_max_m = [0.008, 0.008, 0.012]
+
+[[particles]]
+material = "grain"
+count = 20
+size_distribution = "uniform"
+radius_min_m = 0.001
+radius_max_m = 0.0015
+placement = "random"
+region_min_m = [-0.018, -0.018, 0.014]
+region_max_m = [0.018, 0.018, 0.025]
+velocity_m_per_s = [0.2, -0.1, 0.0]
+
+[[particles]]
+material = "grain"
+placement = "csv"
+file = "spheres.csv"
+
+[[particles]]
+material = "grain"
+placement = "lammps"
+file = "spheres.data"
+
+[[walls]]
+kind = "box"
+material = "grain"
+min_m = [-0.02, -0.02, 0.0]
+max_m = [0.02, 0.02, 0.05]
+thickness_m = 0.004
+"#
+    );
+    let summary = run(&dir, "box", &box_scene);
+    assert_eq!(summary.particles.len(), 27 + 20 + 2 + 2);
+    for (i, p) in summary.particles.iter().enumerate() {
+        let [x, y, z] = p.translation;
+        assert!(x.abs() < 0.02 && y.abs() < 0.02, "sphere {i} left the box");
+        assert!(z > 0.0 && z < 0.05, "sphere {i} at z = {z}");
+    }
+    assert!(summary.energy.last().unwrap().contacts > 0);
+
+    // STL floor (x < 0) and OBJ floor (x > 0) at z = 0, a plane 5 mm below as a backstop.
+    let mut stl = String::from("solid floor\n");
+    for t in [
+        [[-0.02, -0.02], [0.0, -0.02], [0.0, 0.02]],
+        [[-0.02, -0.02], [0.0, 0.02], [-0.02, 0.02]],
+    ] {
+        stl += "facet normal 0 0 1\nouter loop\n";
+        for v in t {
+            stl += &format!("vertex {} {} 0\n", v[0], v[1]);
+        }
+        stl += "endloop\nendfacet\n";
+    }
+    stl += "endsolid floor\n";
+    common::write(&dir, "floor.stl", &stl);
+    common::write(
+        &dir,
+        "floor.obj",
+        "v 0 -0.02 0\nv 0.02 -0.02 0\nv 0.02 0.02 0\nv 0 0.02 0\nf 1 2 3\nf 1 3 4\n",
+    );
+    let mesh_scene = format!(
+        r#"{head}
+[[particles]]
+material = "grain"
+count = 32
+radius_m = 0.0015
+placement = "lattice"
+region_min_m = [-0.016, -0.004, 0.0005]
+region_max_m = [0.016, 0.004, 0.02]
+
+[[walls]]
+kind = "mesh"
+material = "grain"
+file = "floor.stl"
+
+[[walls]]
+kind = "mesh"
+material = "grain"
+file = "floor.obj"
+
+[[walls]]
+kind = "plane"
+material = "grain"
+point_m = [0.0, 0.0, -0.005]
+normal = [0.0, 0.0, 1.0]
+"#
+    );
+    let summary = run(&dir, "meshes", &mesh_scene);
+    let (mut left, mut right) = (0, 0);
+    for (i, p) in summary.particles.iter().enumerate() {
+        let [x, _, z] = p.translation;
+        assert!(z > 0.0, "sphere {i} fell through a mesh: z = {z}");
+        if x < 0.0 {
+            left += 1;
+        } else {
+            right += 1;
+        }
+    }
+    assert!(left > 0 && right > 0, "both meshes carry spheres");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The same scene in a pool of one thread and of two threads: the same bits.
+#[test]
+fn scene_results_do_not_depend_on_the_number_of_threads() {
+    let dir = common::temp_dir("fast-threads");
+    let text = common::drum(60, 0.1, "");
+    let in_pool = |threads: usize, name: &str| {
+        ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| run(&dir, name, &text))
+    };
+    let one = in_pool(1, "one");
+    let two = in_pool(2, "two");
+    for (a, b) in one.particles.iter().zip(&two.particles) {
+        assert_eq!(a, b);
+    }
+    for (a, b) in one.energy.iter().zip(&two.energy) {
+        assert_eq!(a.balance_j.to_bits(), b.balance_j.to_bits());
+        assert_eq!(a.wall_work_j.to_bits(), b.wall_work_j.to_bits());
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
