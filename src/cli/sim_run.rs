@@ -74,6 +74,18 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         .quiet(args.quiet)
         .resume(args.resume.clone())
         .interrupt(interrupt);
+    if scene.source.run.orifice_sweep_m.is_some() {
+        anyhow::ensure!(
+            args.resume.is_none(),
+            "--resume continues one run: write its diameter into orifice_diameter_m, remove orifice_sweep_m and resume that scene"
+        );
+        let sweep = mdr_sim::headline::run_orifice_sweep(&scene, &options)?;
+        for run in &sweep.runs {
+            println!("{}", run.headline.text);
+        }
+        println!("{}", sweep.text);
+        return Ok(());
+    }
     let summary = run_scene(&scene, &options)?;
     if summary.stopped_early {
         eprintln!(

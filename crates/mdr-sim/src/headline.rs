@@ -7,7 +7,10 @@
 //!   (1961), with `C = 0.58`, `k = 1.5`, `ρ_b = 0.6 ρ_p`);
 //! - rotating drum: dynamic angle of repose of the free surface;
 //! - drop: coefficient of restitution of the first bounce (compared with the law's energy route,
-//!   `MdrLaw::impact`, docs/theory.md §4).
+//!   `MdrLaw::impact`, docs/theory.md §4);
+//! - funnel: spheres left in the funnel against time (the discharge curve), written as a CSV;
+//! - hopper orifice sweep ([`run_orifice_sweep`]): the flow rate at several orifice diameters and
+//!   Beverloo's `C` and `k` fitted to them ([`fit_beverloo`]).
 
 use crate::scene::schema::WallKind;
 use crate::scene::{Headline, NormalSpec, Scene};
@@ -106,6 +109,14 @@ enum TrackerKind {
         radius: f64,
     },
     Drop,
+    Funnel {
+        /// Height (along `up`) below which a sphere has left the funnel.
+        discharge_z: f64,
+        /// Height below which a sphere is removed (`−∞` without a sink).
+        delete_z: f64,
+        /// Time the plug opens (s): the earliest `removed_at_s` of the walls (0 without one).
+        opened_at: f64,
+    },
 }
 
 fn up(scene: &Scene) -> Vector3<f64> {
@@ -201,6 +212,25 @@ impl Tracker {
                 }
             }
             Headline::Drop => TrackerKind::Drop,
+            Headline::Funnel => {
+                let up = up(scene);
+                let lowest = scene
+                    .particles
+                    .iter()
+                    .map(|p| p.position.dot(&up) - p.radius)
+                    .fold(f64::INFINITY, f64::min);
+                TrackerKind::Funnel {
+                    discharge_z: scene.discharge_height.unwrap_or(lowest),
+                    delete_z: scene.source.run.delete_below_m.unwrap_or(f64::NEG_INFINITY),
+                    opened_at: scene
+                        .walls
+                        .iter()
+                        .filter_map(|w| w.removed_at)
+                        .fold(f64::INFINITY, f64::min)
+                        .min(scene.duration)
+                        .max(0.0),
+                }
+            }
         };
         Self {
             kind,
@@ -216,6 +246,7 @@ impl Tracker {
             TrackerKind::Hopper { .. } => &["discharged_mass_kg"],
             TrackerKind::Drum { .. } => &["surface_angle_deg"],
             TrackerKind::Drop => &["height_m", "vertical_velocity_m_per_s"],
+            TrackerKind::Funnel { .. } => &["spheres_in_funnel", "spheres_remaining"],
         }
     }
 
@@ -293,6 +324,20 @@ impl Tracker {
                 &up(scene),
                 view,
             )],
+            TrackerKind::Funnel {
+                discharge_z,
+                delete_z,
+                ..
+            } => {
+                let up = up(scene);
+                let (mut inside, mut remaining) = (0usize, 0usize);
+                for p in view.position {
+                    let h = p.dot(&up);
+                    inside += usize::from(h >= discharge_z);
+                    remaining += usize::from(h >= delete_z);
+                }
+                vec![inside as f64, remaining as f64]
+            }
             TrackerKind::Drop => {
                 let up = up(scene);
                 vec![
@@ -317,8 +362,10 @@ impl Tracker {
                 let a = h0 / r0;
                 let spread = (runout - r0) / r0;
                 // Lube et al. (2004), axisymmetric collapse: ΔR/R0 = 1.24 a (a < 1.7),
-                // 1.6 a^{1/2} (a > 1.7).
+                // 1.6 a^{1/2} (a > 1.7); for a < 0.74 the failure surface does not reach the
+                // top of the column, which keeps its height: H∞ = H0.
                 let lube = if a < 1.7 { 1.24 * a } else { 1.6 * a.sqrt() };
+                let lube_height = if a < 0.74 { h0 } else { f64::NAN };
                 r.push("initial_radius_m", r0);
                 r.push("initial_height_m", h0);
                 r.push("aspect_ratio", a);
@@ -326,11 +373,17 @@ impl Tracker {
                 r.push("final_height_m", height);
                 r.push("normalised_runout", spread);
                 r.push("lube_2004_normalised_runout", lube);
+                r.push("lube_2004_final_height_m", lube_height);
                 r.text = format!(
                     "column collapse: aspect ratio a = H0/R0 = {a:.3} (R0 = {r0:.4e} m, H0 = {h0:.4e} m)\n  \
                      run-out R = {runout:.4e} m, (R − R0)/R0 = {spread:.3} (Lube et al. 2004: {lube:.3})\n  \
-                     final height at the axis H = {height:.4e} m, H/R0 = {:.3}",
-                    height / r0
+                     final height at the axis H = {height:.4e} m, H/R0 = {:.3} ({})",
+                    height / r0,
+                    if a < 0.74 {
+                        format!("Lube et al. 2004 for a < 0.74: H = H0 = {h0:.4e} m, ratio {:.3}", height / h0)
+                    } else {
+                        "no height correlation for a ≥ 0.74 here".to_owned()
+                    }
                 );
             }
             TrackerKind::Hopper { orifice, .. } => {
@@ -434,9 +487,250 @@ impl Tracker {
                 }
                 r.text = text;
             }
+            TrackerKind::Funnel { opened_at, .. } => {
+                let n0 = scene.particles.len() as f64;
+                let curve: Vec<(f64, f64)> =
+                    samples.iter().map(|s| (s.time, s.values[0])).collect();
+                let summary = discharge_summary(&curve, opened_at, n0);
+                let last = samples
+                    .last()
+                    .map_or([n0, n0], |s| [s.values[0], s.values[1]]);
+                r.push("spheres", n0);
+                r.push("opened_at_s", opened_at);
+                r.push("spheres_in_funnel_at_opening", summary.at_opening);
+                r.push("spheres_in_funnel_at_end", last[0]);
+                r.push("spheres_remaining_at_end", last[1]);
+                r.push("discharge_rate_spheres_per_s", summary.rate);
+                r.push("half_discharge_time_s", summary.half_time);
+                r.text = format!(
+                    "funnel discharge: {n0} spheres, plug removed at t = {opened_at:.4} s with {:.0} in the funnel\n  \
+                     steady discharge rate {:.4} spheres/s (fit while 90 % to 30 % of them remain), half emptied \
+                     {:.4} s after opening\n  at the end (t = {:.4} s): {:.0} in the funnel, {:.0} not removed",
+                    summary.at_opening,
+                    summary.rate,
+                    summary.half_time,
+                    samples.last().map_or(0.0, |s| s.time),
+                    last[0],
+                    last[1]
+                );
+            }
         }
         r
     }
+
+    /// Write the headline time series as CSV (`time_s` and one column per series name), e.g.
+    /// the funnel's discharge curve; nothing for a scene without series.
+    pub fn write_csv(
+        &self,
+        path: &std::path::Path,
+        samples: &[HeadlineSample],
+    ) -> std::io::Result<()> {
+        let names = self.series_names();
+        if names.is_empty() {
+            return Ok(());
+        }
+        let mut text = format!("time_s,{}\n", names.join(","));
+        for s in samples {
+            text.push_str(&format!("{:.9e}", s.time));
+            for v in &s.values {
+                text.push_str(&format!(",{v}"));
+            }
+            text.push('\n');
+        }
+        crate::output::atomic::write_atomic(path, text.as_bytes())
+    }
+}
+
+/// Figures of a discharge curve (spheres in the funnel against time).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DischargeSummary {
+    /// Spheres in the funnel when it opens (the sample nearest after the opening).
+    pub at_opening: f64,
+    /// Steady discharge rate (spheres/s): minus the slope of a least-squares line through the
+    /// samples after the opening while between 90 % and 30 % of `at_opening` remain (NaN with
+    /// fewer than three such samples).
+    pub rate: f64,
+    /// Time after the opening until half of `at_opening` have left, interpolated linearly
+    /// between samples (NaN if it does not happen within the curve).
+    pub half_time: f64,
+}
+
+/// Summarise a discharge curve `(time, spheres in the funnel)` of a funnel opened at `opened_at`
+/// that held `n0` spheres in all.
+pub fn discharge_summary(curve: &[(f64, f64)], opened_at: f64, n0: f64) -> DischargeSummary {
+    let after: Vec<(f64, f64)> = curve
+        .iter()
+        .copied()
+        .filter(|(t, _)| *t >= opened_at)
+        .collect();
+    let at_opening = after.first().map_or(n0, |p| p.1);
+    let window: Vec<(f64, f64)> = after
+        .iter()
+        .copied()
+        .filter(|(_, n)| *n <= 0.9 * at_opening && *n >= 0.3 * at_opening)
+        .collect();
+    let rate = linear_fit(&window).map_or(f64::NAN, |(_, b)| -b);
+    let half = 0.5 * at_opening;
+    let half_time = after
+        .windows(2)
+        .find(|w| w[0].1 > half && w[1].1 <= half)
+        .map_or(f64::NAN, |w| {
+            let f = (w[0].1 - half) / (w[0].1 - w[1].1);
+            w[0].0 + f * (w[1].0 - w[0].0) - opened_at
+        });
+    DischargeSummary {
+        at_opening,
+        rate,
+        half_time,
+    }
+}
+
+/// Beverloo's `C` and `k` fitted to measured flow rates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BeverlooFit {
+    /// Discharge coefficient `C`.
+    pub c: f64,
+    /// Empty-annulus coefficient `k`.
+    pub k: f64,
+    /// Intercept `a` and slope `b` of the line `W^{2/5} = a + b D`.
+    pub line: (f64, f64),
+}
+
+/// Fit Beverloo's correlation `W = C ρ_b √g (D − k d)^{5/2}` to `(D, W)` points (m, kg/s) of
+/// particles of diameter `d` (m), bulk density `ρ_b` (kg/m³) and gravity `g` (m/s²).
+/// Raising both sides to the power 2/5 makes it linear in `D`:
+/// `W^{2/5} = (C ρ_b √g)^{2/5} (D − k d) = a + b D` with `b = (C ρ_b √g)^{2/5}` and
+/// `a = −b k d`, so a least-squares line gives `C = b^{5/2} / (ρ_b √g)` and `k = −a / (b d)`.
+/// `None` with fewer than three points, a non-positive rate or slope, or non-finite input.
+pub fn fit_beverloo(
+    points: &[(f64, f64)],
+    d: f64,
+    bulk_density: f64,
+    g: f64,
+) -> Option<BeverlooFit> {
+    if points
+        .iter()
+        .any(|(dd, w)| !(dd.is_finite() && w.is_finite() && *w > 0.0))
+        || !(d > 0.0 && bulk_density > 0.0 && g > 0.0)
+    {
+        return None;
+    }
+    let line: Vec<(f64, f64)> = points.iter().map(|(dd, w)| (*dd, w.powf(0.4))).collect();
+    let (a, b) = linear_fit(&line)?;
+    if b <= 0.0 {
+        return None;
+    }
+    Some(BeverlooFit {
+        c: b.powf(2.5) / (bulk_density * g.sqrt()),
+        k: -a / (b * d),
+        line: (a, b),
+    })
+}
+
+/// The result of an orifice sweep.
+#[derive(Debug, Clone)]
+pub struct SweepSummary {
+    /// `(orifice diameter (m), measured mass flow rate (kg/s), Beverloo with C = 0.58, k = 1.5)`.
+    pub points: Vec<(f64, f64, f64)>,
+    /// The fit to the measured rates (`None` if a rate could not be measured).
+    pub fit: Option<BeverlooFit>,
+    /// Each run's summary, in sweep order.
+    pub runs: Vec<crate::run::RunSummary>,
+    /// Human-readable summary.
+    pub text: String,
+    /// Files written by the sweep itself (the CSV of the points).
+    pub files: Vec<std::path::PathBuf>,
+}
+
+/// Run a hopper scene once per diameter of its `orifice_sweep_m` (each run in
+/// `out_dir/<name>_D<i>`, the orifice plate's diameter replaced, everything else as written),
+/// then fit Beverloo's `C` and `k` to the measured flow rates ([`fit_beverloo`]) and write
+/// `<name>_beverloo.csv`. Resuming is per run: resume a run by writing its diameter into the
+/// scene and running it alone.
+pub fn run_orifice_sweep(
+    scene: &Scene,
+    options: &crate::run::RunOptions,
+) -> Result<SweepSummary, crate::SimError> {
+    let sweep = scene.source.run.orifice_sweep_m.clone().unwrap_or_default();
+    let mut points = Vec::new();
+    let mut runs = Vec::new();
+    for (i, diameter) in sweep.iter().enumerate() {
+        let mut file = scene.source.clone();
+        file.run.orifice_sweep_m = None;
+        file.run.name = format!("{}_D{i}", scene.source.run.name);
+        for w in file
+            .walls
+            .iter_mut()
+            .filter(|w| w.kind == WallKind::OrificePlate)
+        {
+            w.orifice_diameter_m = Some(*diameter);
+        }
+        let text = toml::to_string(&file)
+            .map_err(|e| crate::SimError::Build(format!("orifice sweep: {e}")))?;
+        let one = crate::scene::validate::parse_scene(&scene.file, &text)?;
+        let mut opts = options.clone();
+        opts.out_dir = options.out_dir.join(&one.name);
+        opts.resume = None;
+        let summary = crate::run::run_scene(&one, &opts)?;
+        let rate = summary
+            .headline
+            .get("mass_flow_rate_kg_per_s")
+            .unwrap_or(f64::NAN);
+        let beverloo = summary
+            .headline
+            .get("beverloo_kg_per_s")
+            .unwrap_or(f64::NAN);
+        points.push((*diameter, rate, beverloo));
+        let stopped = summary.stopped_early;
+        runs.push(summary);
+        if stopped {
+            break;
+        }
+    }
+    let d = mean_diameter(scene);
+    let rho_p = scene.materials[scene.particles[0].material].1.density();
+    let bulk = BULK_SOLID_FRACTION * rho_p;
+    let g = scene.gravity.norm();
+    let fit = fit_beverloo(
+        &points.iter().map(|p| (p.0, p.1)).collect::<Vec<_>>(),
+        d,
+        bulk,
+        g,
+    );
+    let mut text =
+        String::from("orifice sweep:\n  D (m)        D/d    W (kg/s)     Beverloo (kg/s)  ratio\n");
+    for (dd, w, b) in &points {
+        text.push_str(&format!(
+            "  {dd:.4e}  {:>5.2}  {w:.4e}   {b:.4e}       {:.3}\n",
+            dd / d,
+            w / b
+        ));
+    }
+    match fit {
+        Some(f) => text.push_str(&format!(
+            "  fitted W = C ρ_b √g (D − k d)^{{5/2}} (least squares of W^{{2/5}} against D): C = {:.4}, k = {:.4} \
+             (Beverloo et al. 1961: C = {BEVERLOO_C}, k = {BEVERLOO_K}; ρ_b = {BULK_SOLID_FRACTION} ρ_p, d = {d:.4e} m)",
+            f.c, f.k
+        )),
+        None => text.push_str("  fit: not possible (fewer than three measured flow rates)"),
+    }
+    let csv_path = options
+        .out_dir
+        .join(format!("{}_beverloo.csv", scene.source.run.name));
+    let mut csv = String::from("orifice_diameter_m,mass_flow_rate_kg_per_s,beverloo_kg_per_s\n");
+    for (dd, w, b) in &points {
+        csv.push_str(&format!("{dd},{w},{b}\n"));
+    }
+    std::fs::create_dir_all(&options.out_dir).map_err(crate::error::output(&options.out_dir))?;
+    crate::output::atomic::write_atomic(&csv_path, csv.as_bytes())
+        .map_err(crate::error::output(&csv_path))?;
+    Ok(SweepSummary {
+        points,
+        fit,
+        runs,
+        text,
+        files: vec![csv_path],
+    })
 }
 
 fn mean_diameter(scene: &Scene) -> f64 {
@@ -511,6 +805,48 @@ mod tests {
         let pts: Vec<(f64, f64)> = (0..10).map(|i| (i as f64, 2.0 + 0.5 * i as f64)).collect();
         let (a, b) = linear_fit(&pts).unwrap();
         assert!((a - 2.0).abs() < 1e-12 && (b - 0.5).abs() < 1e-12);
+    }
+
+    /// Rates from Beverloo's law with known `C`, `k` (exact, then with ±2 % scatter) give back
+    /// `C` and `k`: exactly, then within what the scatter allows.
+    #[test]
+    fn beverloo_fit_recovers_c_and_k_from_synthetic_rates() {
+        let (c, k, d, rho_b, g): (f64, f64, f64, f64, f64) = (0.58, 1.5, 0.003, 1500.0, 9.81);
+        let law = |dd: f64| c * rho_b * g.sqrt() * (dd - k * d).powf(2.5);
+        let diameters = [0.018, 0.024, 0.03, 0.036];
+        let exact: Vec<(f64, f64)> = diameters.iter().map(|&dd| (dd, law(dd))).collect();
+        let fit = fit_beverloo(&exact, d, rho_b, g).unwrap();
+        assert!((fit.c / c - 1.0).abs() < 1e-10, "{fit:?}");
+        assert!((fit.k - k).abs() < 1e-8, "{fit:?}");
+        let noisy: Vec<(f64, f64)> = exact
+            .iter()
+            .zip([1.02, 0.98, 1.01, 0.99])
+            .map(|((dd, w), f)| (*dd, w * f))
+            .collect();
+        let fit = fit_beverloo(&noisy, d, rho_b, g).unwrap();
+        assert!((fit.c / c - 1.0).abs() < 0.08, "{fit:?}");
+        assert!((fit.k - k).abs() < 0.4, "{fit:?}");
+        // A wrong law is not recovered: W ∝ D² gives a different k.
+        let square: Vec<(f64, f64)> = diameters.iter().map(|&dd| (dd, dd * dd)).collect();
+        let fit = fit_beverloo(&square, d, rho_b, g).unwrap();
+        assert!((fit.k - k).abs() > 1.0, "{fit:?}");
+        assert!(fit_beverloo(&exact[..2], d, rho_b, g).is_none());
+        assert!(fit_beverloo(&[(0.02, 1.0), (0.03, -1.0), (0.04, 2.0)], d, rho_b, g).is_none());
+    }
+
+    /// A plugged funnel of 100 spheres opened at t = 2 s and emptying at 10 spheres/s.
+    #[test]
+    fn discharge_summary_of_a_linear_curve() {
+        let curve: Vec<(f64, f64)> = (0..80)
+            .map(|i| {
+                let t = 0.1 * i as f64;
+                (t, (100.0 - 10.0 * (t - 2.0).max(0.0)).max(0.0))
+            })
+            .collect();
+        let s = discharge_summary(&curve, 2.0, 100.0);
+        assert!((s.at_opening - 100.0).abs() < 1e-9, "{s:?}");
+        assert!((s.rate - 10.0).abs() < 1e-9, "{s:?}");
+        assert!((s.half_time - 5.0).abs() < 1e-9, "{s:?}");
     }
 
     #[test]

@@ -55,6 +55,8 @@ pub struct Wall {
     pub origin: Vector3<f64>,
     /// Constant angular velocity (rad/s) of a kinematic wall; `None` for a fixed wall.
     pub angular_velocity: Option<Vector3<f64>>,
+    /// Simulated time (s) at which the wall is removed (a plug that opens); `None`: never.
+    pub removed_at: Option<f64>,
 }
 
 /// The rotation taking `z` to `axis`.
@@ -170,6 +172,221 @@ pub fn orifice_plate(
     pieces
 }
 
+/// A conical container (a frustum, open at both ends): `segments` solid convex pieces whose
+/// inner faces are tangent, at their mid-line, to the cone of radius `bottom_radius` at `center`
+/// and `top_radius` a distance `length` along the unit `axis`; each piece is `thickness` thick
+/// (measured across the axis). With `bottom_radius == top_radius` it is the open cylinder.
+///
+/// Each piece is the convex hull of two trapezoids, the inner one (the face the particles touch)
+/// and the outer one; the four corners of a trapezoid are coplanar because its bottom and top
+/// edges are parallel (both along `u(φ₁) − u(φ₀)`), so the inner face is one plane.
+pub fn cone_container(
+    center: Vector3<f64>,
+    axis: Vector3<f64>,
+    bottom_radius: f64,
+    top_radius: f64,
+    length: f64,
+    thickness: f64,
+    segments: u32,
+) -> Vec<WallPiece> {
+    let q = rotation_from_z(&axis);
+    let n = segments.max(3);
+    // Corners at r / cos(π/n): the faces' mid-lines lie on the cone (circumscribed polygon),
+    // face centres at φ = 2π i / n as in `cylinder_container`.
+    let corner = 1.0 / (PI / n as f64).cos();
+    let mut pieces = Vec::with_capacity(n as usize);
+    for i in 0..n {
+        let phi = 2.0 * PI * i as f64 / n as f64;
+        let (a0, a1) = (phi - PI / n as f64, phi + PI / n as f64);
+        let mut points = Vec::with_capacity(8);
+        for (z, r) in [(0.0, bottom_radius), (length, top_radius)] {
+            for extra in [0.0, thickness] {
+                for a in [a0, a1] {
+                    let local = Vector3::new(a.cos(), a.sin(), 0.0) * ((r + extra) * corner)
+                        + Vector3::new(0.0, 0.0, z);
+                    points.push(center + q * local);
+                }
+            }
+        }
+        pieces.push(WallPiece::ConvexHull { points });
+    }
+    pieces
+}
+
+/// Spheres leaving the scene: a sphere whose centre falls below `height` (measured along `up`,
+/// the direction against gravity) is removed from the run, as LAMMPS removes atoms that leave a
+/// fixed boundary. The fast path keeps its particle arrays fixed in size, so a removed sphere is
+/// parked instead: held at rest at its own spot of a simple cubic lattice below the height,
+/// `4 r_max` under it and with spacing `2.5 r_max`, so that it touches nothing (parked spheres are
+/// farther apart than the neighbour cut-off `2 r_max + skin` for any skin below `r_max / 2`, and
+/// live spheres, whose centres are above `height`, are farther than `4 r_max` away). The lattice
+/// is a compact block under the particles' initial centroid, so it enlarges the neighbour grid's
+/// bounding box only a little. A sphere counts as removed while its centre is below `height`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sink {
+    /// Height (m) along `up` below which a sphere is removed.
+    pub height: f64,
+    /// Unit vector against gravity.
+    pub up: Vector3<f64>,
+    spots: Vec<Vector3<f64>>,
+    r_max: f64,
+}
+
+impl Sink {
+    /// A sink at `height` along `up` (unit) for spheres with the given initial centres and radii.
+    pub fn new(height: f64, up: Vector3<f64>, centres: &[Vector3<f64>], radii: &[f64]) -> Self {
+        let n = centres.len();
+        let r_max = radii.iter().copied().fold(0.0, f64::max);
+        let spacing = 2.5 * r_max;
+        let side = (n as f64).cbrt().ceil().max(1.0) as usize;
+        // Horizontal frame (e1, e2) perpendicular to `up`.
+        let e1 = if up.x.abs() < 0.9 {
+            up.cross(&Vector3::x()).normalize()
+        } else {
+            up.cross(&Vector3::y()).normalize()
+        };
+        let e2 = up.cross(&e1);
+        let centroid = centres.iter().sum::<Vector3<f64>>() / n.max(1) as f64;
+        let horizontal = centroid - up * centroid.dot(&up);
+        let half = 0.5 * (side as f64 - 1.0);
+        let spots = (0..n)
+            .map(|i| {
+                let (ix, iy, iz) = (i % side, (i / side) % side, i / (side * side));
+                horizontal
+                    + e1 * (spacing * (ix as f64 - half))
+                    + e2 * (spacing * (iy as f64 - half))
+                    + up * (height - 4.0 * r_max - spacing * iz as f64)
+            })
+            .collect();
+        Self {
+            height,
+            up,
+            spots,
+            r_max,
+        }
+    }
+
+    /// Whether a sphere centred at `p` has been removed.
+    pub fn is_removed(&self, p: &Vector3<f64>) -> bool {
+        p.dot(&self.up) < self.height
+    }
+
+    /// The parking spot of sphere `i`.
+    pub fn spot(&self, i: usize) -> Vector3<f64> {
+        self.spots[i]
+    }
+
+    /// Hold every sphere below the height at rest on its spot. Returns whether a sphere was moved
+    /// by more than a quarter radius (a newly removed one: the neighbour lists need a rebuild).
+    pub fn apply(
+        &self,
+        position: &mut [Vector3<f64>],
+        linvel: &mut [Vector3<f64>],
+        angvel: &mut [Vector3<f64>],
+    ) -> bool {
+        let mut jumped = false;
+        for (i, ((x, v), w)) in position
+            .iter_mut()
+            .zip(linvel.iter_mut())
+            .zip(angvel.iter_mut())
+            .enumerate()
+        {
+            if x.dot(&self.up) < self.height {
+                let spot = self.spots[i];
+                jumped |= (*x - spot).norm_squared() > (0.25 * self.r_max).powi(2);
+                *x = spot;
+                *v = Vector3::zeros();
+                *w = Vector3::zeros();
+            }
+        }
+        jumped
+    }
+
+    /// [`Sink::apply`] on particles held as rapier bodies (`handles[i]` is sphere `i`).
+    pub fn apply_to_bodies(
+        &self,
+        bodies: &mut rapier3d_f64::prelude::RigidBodySet,
+        handles: &[rapier3d_f64::prelude::RigidBodyHandle],
+    ) -> bool {
+        use mdr_rapier::convert::{to_glam, to_na};
+        let mut jumped = false;
+        for (i, h) in handles.iter().enumerate() {
+            let Some(body) = bodies.get_mut(*h) else {
+                continue;
+            };
+            let x = to_na(body.translation());
+            if x.dot(&self.up) < self.height {
+                let spot = self.spots[i];
+                if x != spot {
+                    jumped |= (x - spot).norm_squared() > (0.25 * self.r_max).powi(2);
+                    body.set_translation(to_glam(&spot), true);
+                }
+                body.set_linvel(to_glam(&Vector3::zeros()), true);
+                body.set_angvel(to_glam(&Vector3::zeros()), true);
+            }
+        }
+        jumped
+    }
+
+    /// Number of removed spheres among `position`.
+    pub fn removed(&self, position: &[Vector3<f64>]) -> usize {
+        position.iter().filter(|p| self.is_removed(p)).count()
+    }
+}
+
+/// The scene's sink (`[run] delete_below_m`), if it has one.
+pub fn scene_sink(scene: &crate::scene::Scene) -> Option<Sink> {
+    let height = scene.source.run.delete_below_m?;
+    let g = scene.gravity.norm();
+    let up = if g > 0.0 {
+        -scene.gravity / g
+    } else {
+        Vector3::z()
+    };
+    let centres: Vec<_> = scene.particles.iter().map(|p| p.position).collect();
+    let radii: Vec<_> = scene.particles.iter().map(|p| p.radius).collect();
+    Some(Sink::new(height, up, &centres, &radii))
+}
+
+/// How far a removed wall is moved (m), against `up`: far below anything of the scene, so that no
+/// sphere can reach it again (a removed half-space still bounds the space below it).
+pub const REMOVED_WALL_DROP_M: f64 = 1.0e6;
+
+/// Remove every wall due at `time` (s) that is still in place: its body is moved
+/// [`REMOVED_WALL_DROP_M`] against `up` and its colliders follow at once. Idempotent (a wall
+/// already moved stays where it is), so a run resumed from a checkpoint removes it again at its
+/// first step. Returns whether a wall was removed now.
+pub fn remove_due_walls(
+    walls: &[Wall],
+    time: f64,
+    up: &Vector3<f64>,
+    world: &mut rapier3d_f64::prelude::PhysicsWorld,
+    wall_bodies: &[rapier3d_f64::prelude::RigidBodyHandle],
+) -> bool {
+    let mut removed = false;
+    for (wall, handle) in walls.iter().zip(wall_bodies) {
+        let Some(at) = wall.removed_at else { continue };
+        if time < at {
+            continue;
+        }
+        let target = wall.origin - up * REMOVED_WALL_DROP_M;
+        let Some(body) = world.bodies.get_mut(*handle) else {
+            continue;
+        };
+        let now = mdr_rapier::convert::to_na(body.translation());
+        if (now - target).norm() > 1.0 {
+            body.set_translation(mdr_rapier::convert::to_glam(&target), true);
+            removed = true;
+        }
+    }
+    if removed {
+        world
+            .bodies
+            .propagate_modified_body_positions_to_colliders(&mut world.colliders);
+    }
+    removed
+}
+
 /// Read a triangle mesh from an STL (binary or ASCII) or OBJ file, scale it and move it.
 pub fn read_mesh(path: &Path, scale: f64, offset: Vector3<f64>) -> Result<WallPiece, String> {
     let ext = path
@@ -250,7 +467,33 @@ pub fn read_mesh(path: &Path, scale: f64, offset: Vector3<f64>) -> Result<WallPi
     Ok(WallPiece::TriMesh { vertices, indices })
 }
 
+/// A signed-distance function of a wall piece (m, negative inside).
+pub type DistanceFn<'a> = Box<dyn Fn(&Vector3<f64>) -> f64 + 'a>;
+
 impl WallPiece {
+    /// A signed-distance function of the piece (m, negative inside) for the placement check:
+    /// exact for convex hulls (parry's point projection on the hull, built once here), as
+    /// [`WallPiece::signed_distance`] otherwise. A slanted hull (a cone's piece) has a bounding
+    /// box that reaches deep into the container, so the box bound would refuse valid placements.
+    pub fn distance_fn(&self) -> DistanceFn<'_> {
+        if let WallPiece::ConvexHull { points } = self {
+            let pts: Vec<_> = points.iter().map(mdr_rapier::convert::to_glam).collect();
+            if let Some(shape) = rapier3d_f64::prelude::SharedShape::convex_hull(&pts) {
+                return Box::new(move |p: &Vector3<f64>| {
+                    let q = mdr_rapier::convert::to_glam(p);
+                    let proj = shape.project_local_point(q, false);
+                    let d = mdr_rapier::convert::to_na(proj.point - q).norm();
+                    if proj.is_inside {
+                        -d
+                    } else {
+                        d
+                    }
+                });
+            }
+        }
+        Box::new(move |p: &Vector3<f64>| self.signed_distance(p))
+    }
+
     /// Signed distance (m) from `p` to the piece's surface, negative inside, approximately for
     /// meshes and convex hulls (used only to check the initial placement).
     pub fn signed_distance(&self, p: &Vector3<f64>) -> f64 {
@@ -287,5 +530,81 @@ impl WallPiece {
                 q.sup(&Vector3::zeros()).norm() + q.max().min(0.0)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The cone's inner faces touch the cone at their mid-lines: a point on the axis is
+    /// `r(z)` from the nearest piece at every height, and a point a little beyond the cone's
+    /// surface (between two pieces' corners, where the polygon reaches farthest) is inside a piece.
+    #[test]
+    fn cone_pieces_are_tangent_to_the_cone() {
+        let center = Vector3::new(25.0, 25.0, 10.0);
+        let pieces = cone_container(center, Vector3::z(), 2.0, 20.0, 40.0, 1.0, 64);
+        assert_eq!(pieces.len(), 64);
+        let distances: Vec<_> = pieces.iter().map(WallPiece::distance_fn).collect();
+        // Heights where the foot of the perpendicular from the axis lies on the pieces.
+        for z in [5.0, 10.0, 20.0, 39.5] {
+            let r = 2.0 + (20.0 - 2.0) * z / 40.0;
+            // The slant shortens the distance from the axis to the face by cos(slant).
+            let slant = ((20.0_f64 - 2.0) / 40.0).atan();
+            let p = center + Vector3::new(0.0, 0.0, z);
+            let nearest = distances
+                .iter()
+                .map(|d| d(&p))
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                (nearest - r * slant.cos()).abs() < 1e-9 * r,
+                "z = {z}: {nearest} vs {}",
+                r * slant.cos()
+            );
+            // Straight out at a face centre (φ = 0): on the surface at r, inside beyond it.
+            let on = center + Vector3::new(r, 0.0, z);
+            assert!(distances[0](&on).abs() < 1e-9, "{}", distances[0](&on));
+            let beyond = center + Vector3::new(r + 0.1, 0.0, z);
+            assert!(distances[0](&beyond) < 0.0);
+        }
+    }
+
+    /// Spheres below the sink are held at rest on distinct spots far enough apart that they do
+    /// not touch, and farther than `4 r_max` below the sink height; spheres above are untouched.
+    #[test]
+    fn sink_parks_removed_spheres_apart_and_below() {
+        let n = 30;
+        let centres: Vec<_> = (0..n)
+            .map(|i| Vector3::new(i as f64 * 0.01, 0.0, 1.0))
+            .collect();
+        let radii = vec![0.004; n];
+        let sink = Sink::new(-0.5, Vector3::z(), &centres, &radii);
+        let mut x = centres.clone();
+        let mut v = vec![Vector3::new(0.0, 0.0, -3.0); n];
+        let mut w = vec![Vector3::new(1.0, 0.0, 0.0); n];
+        for xi in x.iter_mut().take(10) {
+            xi.z = -0.6;
+        }
+        assert!(
+            sink.apply(&mut x, &mut v, &mut w),
+            "ten spheres jumped to their spots"
+        );
+        assert_eq!(sink.removed(&x), 10);
+        for i in 0..10 {
+            assert_eq!(x[i], sink.spot(i));
+            assert!(x[i].z <= -0.5 - 4.0 * 0.004 + 1e-12);
+            assert_eq!((v[i], w[i]), (Vector3::zeros(), Vector3::zeros()));
+            for j in 0..i {
+                assert!((x[i] - x[j]).norm() >= 2.5 * 0.004 - 1e-12);
+            }
+        }
+        for i in 10..n {
+            assert_eq!(x[i], centres[i]);
+            assert_eq!(v[i].z, -3.0);
+        }
+        // Held again after a small drift: no jump, back on the spot.
+        x[3].z -= 1e-6;
+        assert!(!sink.apply(&mut x, &mut v, &mut w));
+        assert_eq!(x[3], sink.spot(3));
     }
 }

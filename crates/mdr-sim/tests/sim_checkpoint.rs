@@ -54,7 +54,9 @@ fn resume_matches(text: &str, tag: &str, no_frames: bool) {
     let total = scene.total_steps();
     let whole = run_scene(
         &scene,
-        &RunOptions::new(dir.join("a")).quiet(true).no_frames(no_frames),
+        &RunOptions::new(dir.join("a"))
+            .quiet(true)
+            .no_frames(no_frames),
     )
     .expect("uninterrupted run");
     assert_eq!(whole.step, total);

@@ -123,8 +123,14 @@ fn drop_headline_is_the_same_on_both_paths() {
     let e_plain = plain.headline.get("restitution").unwrap();
     eprintln!("drop: e_n {e:.8} (rapier path {e_plain:.8}), closed form {reference:.8}");
     assert!(reference < 0.9, "the impact is plastic: {reference}");
-    assert!((e / reference - 1.0).abs() < 0.01, "e_n = {e} vs {reference}");
-    assert!((e / e_plain - 1.0).abs() < 1e-9, "paths differ: {e} vs {e_plain}");
+    assert!(
+        (e / reference - 1.0).abs() < 0.01,
+        "e_n = {e} vs {reference}"
+    );
+    assert!(
+        (e / e_plain - 1.0).abs() < 1e-9,
+        "paths differ: {e} vs {e_plain}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -140,7 +146,12 @@ fn column_hopper_and_drum_headlines_agree_on_both_paths() {
         "runout_m",
     );
     assert!((a / b - 1.0).abs() < 0.05, "column run-out {a} vs {b}");
-    let (a, b) = both(&dir, "hopper", &hopper(250, 0.15), "mass_flow_rate_kg_per_s");
+    let (a, b) = both(
+        &dir,
+        "hopper",
+        &hopper(250, 0.15),
+        "mass_flow_rate_kg_per_s",
+    );
     assert!(a > 0.0 && b > 0.0, "the hopper discharged");
     assert!((a / b - 1.0).abs() < 0.15, "hopper rate {a} vs {b}");
     let (a, b) = both(
@@ -203,8 +214,14 @@ rotation_center_m = [0.0, 0.0, 0.0]
     let summary = run(&dir, "drum_paddle", &common::drum(60, 0.6, paddle));
     for (i, p) in summary.particles.iter().enumerate() {
         let [x, y, z] = p.translation;
-        assert!(x.is_finite() && y.is_finite() && z.is_finite(), "sphere {i}");
-        assert!((x * x + z * z).sqrt() < 0.02, "sphere {i} left the drum: {x} {z}");
+        assert!(
+            x.is_finite() && y.is_finite() && z.is_finite(),
+            "sphere {i}"
+        );
+        assert!(
+            (x * x + z * z).sqrt() < 0.02,
+            "sphere {i} left the drum: {x} {z}"
+        );
         assert!(y.abs() < 0.005, "sphere {i} left through a cap: {y}");
     }
     let rows = &summary.energy;
@@ -223,11 +240,7 @@ rotation_center_m = [0.0, 0.0, 0.0]
         "drum + paddle: wall work {:.4e} J, dissipated {dissipated:.4e} J (damping {:.3e}, \
          friction {:.3e}, rolling {:.3e}, plastic {:.3e}), drift {drift:.3e} J, without the \
          wall work {drift_without_wall_work:.3e} J",
-        last.wall_work_j,
-        last.damping_j,
-        last.friction_j,
-        last.rolling_j,
-        last.plastic_j
+        last.wall_work_j, last.damping_j, last.friction_j, last.rolling_j, last.plastic_j
     );
     assert!(last.damping_j > 0.0 && last.friction_j > 0.0 && last.rolling_j > 0.0);
     assert!(last.wall_work_j > 0.2 * dissipated, "the drum did work");

@@ -19,6 +19,7 @@ pub use state::{BodyRecord, CheckpointData};
 use crate::checkpoint::{self, CheckpointError};
 use crate::error::{output, SimError};
 use crate::headline::{HeadlineReport, HeadlineSample, ParticleView, Tracker};
+use crate::laws::AnyRollingLaw;
 use crate::output::energy::{self, EnergyRow};
 use crate::output::plot;
 use crate::output::vtk::{self, CollectionEntry, ContactFrame, ParticleFrame};
@@ -29,12 +30,11 @@ use mdr_contact::normal::NormalLaw;
 use mdr_contact::rolling::RollingLaw;
 use mdr_rapier::convert::to_na;
 use mdr_rapier::geometry::sphere_sphere;
-use state::{FastPairHistory, SceneLaw};
-use crate::laws::AnyRollingLaw;
 use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use state::Books;
+use state::{FastPairHistory, SceneLaw};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -134,6 +134,8 @@ pub(crate) struct Sim<'a> {
     checkpoints: Vec<PathBuf>,
     /// Scratch: per-particle state for the trackers.
     view: ViewBuffers,
+    /// Spheres below `delete_below_m` leave the run (crate::walls::Sink).
+    sink: Option<crate::walls::Sink>,
 }
 
 #[derive(Default)]
@@ -300,6 +302,7 @@ impl<'a> Sim<'a> {
             samples: Vec::new(),
             checkpoints: Vec::new(),
             view: ViewBuffers::default(),
+            sink: crate::walls::scene_sink(scene),
         })
     }
 
@@ -421,12 +424,14 @@ impl<'a> Sim<'a> {
                 }
             }
             Coupling::Fast(stepper) => {
-                let state = data.fast.as_ref().and_then(|f| f.to_state()).ok_or_else(|| {
-                    CheckpointError::Incompatible {
+                let state = data
+                    .fast
+                    .as_ref()
+                    .and_then(|f| f.to_state())
+                    .ok_or_else(|| CheckpointError::Incompatible {
                         path: path.to_path_buf(),
                         reason: "it holds no valid neighbour-list state".to_owned(),
-                    }
-                })?;
+                    })?;
                 stepper.import_lists(world, state)?;
             }
             Coupling::Restitution(hooks) => {
@@ -474,6 +479,7 @@ impl<'a> Sim<'a> {
                 stopped_early = true;
                 break;
             }
+            self.scene_events();
             let last = k >= total;
             let frame_due = k % frame_every == 0 || last;
             self.compute_forces(frame_due && scene.contact_network && !options.no_frames)?;
@@ -542,7 +548,9 @@ impl<'a> Sim<'a> {
             particles: match &self.built.coupling {
                 Coupling::Fast(stepper) => {
                     let p = stepper.particles();
-                    (0..p.len()).map(|i| BodyRecord::of_particle(p, i)).collect()
+                    (0..p.len())
+                        .map(|i| BodyRecord::of_particle(p, i))
+                        .collect()
                 }
                 _ => self
                     .built
@@ -554,6 +562,41 @@ impl<'a> Sim<'a> {
             wall_seconds: started.elapsed().as_secs_f64(),
             files,
         })
+    }
+
+    /// Walls due to be removed and spheres below the sink (idempotent: a resumed run redoes
+    /// them at its first step).
+    fn scene_events(&mut self) {
+        let world = &mut self.built.world;
+        let up = -self
+            .scene
+            .gravity
+            .try_normalize(0.0)
+            .unwrap_or(-Vector3::z());
+        let removed = crate::walls::remove_due_walls(
+            &self.scene.walls,
+            self.step as f64 * self.scene.dt,
+            &up,
+            world,
+            &self.built.wall_bodies,
+        );
+        match &mut self.built.coupling {
+            Coupling::Fast(stepper) => {
+                let mut jumped = false;
+                if let Some(sink) = &self.sink {
+                    let p = stepper.particles_mut();
+                    jumped = sink.apply(&mut p.position, &mut p.linvel, &mut p.angvel);
+                }
+                if removed || jumped {
+                    stepper.request_rebuild();
+                }
+            }
+            _ => {
+                if let Some(sink) = &self.sink {
+                    sink.apply_to_bodies(&mut world.bodies, &self.built.particle_bodies);
+                }
+            }
+        }
     }
 
     /// Forces at `x_k` and the books of this step; `keep_wrenches`: the neighbour-list path
@@ -722,16 +765,16 @@ impl<'a> Sim<'a> {
             row.contacts = stepper.contacts().len() as u64;
         }
         if let Coupling::Fast(stepper) = &self.built.coupling {
-            let mut add = |(law, rolling): &(SceneLaw, AnyRollingLaw),
-                           h: &FastPairHistory,
-                           overlap: f64| {
-                row.elastic_normal_j += law.normal.elastic_energy(&h.contact.normal, overlap);
-                let t = &h.contact.tangential;
-                row.elastic_tangential_j +=
-                    0.5 * law.tangential.stiffness(t.contact_radius) * t.displacement.norm_squared();
-                row.elastic_rolling_j += rolling.elastic_energy(&h.rolling);
-                row.contacts += 1;
-            };
+            let mut add =
+                |(law, rolling): &(SceneLaw, AnyRollingLaw), h: &FastPairHistory, overlap: f64| {
+                    row.elastic_normal_j += law.normal.elastic_energy(&h.contact.normal, overlap);
+                    let t = &h.contact.tangential;
+                    row.elastic_tangential_j += 0.5
+                        * law.tangential.stiffness(t.contact_radius)
+                        * t.displacement.norm_squared();
+                    row.elastic_rolling_j += rolling.elastic_energy(&h.rolling);
+                    row.contacts += 1;
+                };
             let p = stepper.particles();
             let sp = stepper.surface_pairs();
             for q in (0..sp.len()).filter(|&q| sp.active[q]) {
@@ -745,8 +788,9 @@ impl<'a> Sim<'a> {
             let pairs = stepper.pairs();
             for q in (0..pairs.len()).filter(|&q| pairs.active[q]) {
                 let (i, j) = (pairs.i[q] as usize, pairs.j[q] as usize);
-                let overlap = sphere_sphere(&p.position[i], p.radius[i], &p.position[j], p.radius[j])
-                    .map_or(0.0, |c| c.overlap);
+                let overlap =
+                    sphere_sphere(&p.position[i], p.radius[i], &p.position[j], p.radius[j])
+                        .map_or(0.0, |c| c.overlap);
                 add(stepper.sphere_pair_laws(i, j), &pairs.history[q], overlap);
             }
         }
@@ -828,8 +872,10 @@ impl<'a> Sim<'a> {
                     net.force.push(force.into());
                     net.normal_force.push(force.dot(&c.normal));
                     net.overlap.push(c.overlap);
-                    net.plastic_indentation
-                        .push(law.normal.residual_overlap(&pairs.history[q].contact.normal));
+                    net.plastic_indentation.push(
+                        law.normal
+                            .residual_overlap(&pairs.history[q].contact.normal),
+                    );
                 }
             }
             if let Coupling::Force(stepper) = &self.built.coupling {
@@ -884,6 +930,13 @@ impl<'a> Sim<'a> {
             return Ok(());
         }
         files.push(csv);
+        let series_csv = out.join(format!("{name}_headline.csv"));
+        if !self.tracker.series_names().is_empty() {
+            self.tracker
+                .write_csv(&series_csv, &self.samples)
+                .map_err(output(&series_csv))?;
+            files.push(series_csv);
+        }
         let svg = out.join(format!("{name}_energy.svg"));
         plot::write_energy_plot(&svg, &format!("{name}: energy books"), &self.energy)
             .map_err(output(&svg))?;

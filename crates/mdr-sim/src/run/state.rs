@@ -361,10 +361,8 @@ pub struct FastRecord {
     pub surface_histories: Vec<ContactRecord>,
 }
 
-pub(crate) type FastPairHistory = mdr_rapier::kernel::PairHistory<
-    ContactState<AnyNormalState, MindlinState>,
-    EpsdRollingState,
->;
+pub(crate) type FastPairHistory =
+    mdr_rapier::kernel::PairHistory<ContactState<AnyNormalState, MindlinState>, EpsdRollingState>;
 
 impl FastRecord {
     pub(crate) fn of(stepper: &FastSceneStepper) -> Self {
@@ -519,7 +517,9 @@ impl CheckpointData {
         let mut records: Vec<BodyRecord> = match &sim.built.coupling {
             Coupling::Fast(stepper) => {
                 let p = stepper.particles();
-                (0..p.len()).map(|i| BodyRecord::of_particle(p, i)).collect()
+                (0..p.len())
+                    .map(|i| BodyRecord::of_particle(p, i))
+                    .collect()
             }
             _ => Vec::new(),
         };

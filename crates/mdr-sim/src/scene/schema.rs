@@ -82,6 +82,8 @@ pub enum Headline {
     Drum,
     /// Single-sphere drop: coefficient of restitution of the first bounce.
     Drop,
+    /// Funnel discharge: spheres left in the funnel against time (the discharge curve).
+    Funnel,
 }
 
 /// `[run]`.
@@ -124,9 +126,17 @@ pub struct RunSection {
     /// Also write the contact network (pairs, force, overlap, plastic indentation) per frame.
     #[serde(default)]
     pub contact_network: bool,
-    /// Hopper only: height (m) below which a particle counts as discharged.
+    /// Hopper and funnel: height (m) below which a particle counts as discharged.
     #[serde(default)]
     pub discharge_height_m: Option<f64>,
+    /// Height (m, along −gravity) below which a sphere is removed from the run (counted as
+    /// discharged and parked at rest out of reach); none when absent.
+    #[serde(default)]
+    pub delete_below_m: Option<f64>,
+    /// Hopper only: run the scene once per orifice diameter (m) in this list (at least three)
+    /// and fit Beverloo's `C` and `k` to the measured flow rates.
+    #[serde(default)]
+    pub orifice_sweep_m: Option<Vec<f64>>,
 }
 
 /// `[gravity]`.
@@ -275,6 +285,11 @@ pub struct ParticleGroup {
     /// Standard deviation (m) of `normal`.
     #[serde(default)]
     pub radius_std_m: Option<f64>,
+    /// `uniform`/`normal`: round every drawn radius down to one of this many + 1 equally spaced
+    /// values from `radius_min_m` to `radius_max_m` (2 to 255; the fast path binds its laws per
+    /// distinct radius and holds at most 256 species); continuous when absent.
+    #[serde(default)]
+    pub radius_classes: Option<u32>,
     /// Placement.
     pub placement: PlacementKind,
     /// Lower corner of the region (m) for `lattice`/`random`.
@@ -283,6 +298,11 @@ pub struct ParticleGroup {
     /// Upper corner of the region (m) for `lattice`/`random`.
     #[serde(default)]
     pub region_max_m: Option<[f64; 3]>,
+    /// `lattice`/`random`: keep only the spheres whose centre lies within this distance (m) of
+    /// the region's central line parallel to z (a cylindrical region); `count` is the number
+    /// placed in the box before this trim.
+    #[serde(default)]
+    pub region_radius_m: Option<f64>,
     /// Lattice: extra gap between neighbours as a fraction of the diameter (default 0.01).
     #[serde(default)]
     pub gap_fraction: Option<f64>,
@@ -314,6 +334,9 @@ pub enum WallKind {
     Mesh,
     /// A horizontal disc with a circular hole (a flat-bottomed hopper's bottom).
     OrificePlate,
+    /// A conical funnel (frustum, open at both ends) around `axis` from `center_m` (radius
+    /// `radius_m`) to `length_m` along the axis (radius `top_radius_m`).
+    Cone,
 }
 
 /// `[[walls]]`.
@@ -339,25 +362,31 @@ pub struct WallSection {
     /// Box: whether the top face is open (default true).
     #[serde(default)]
     pub open_top: Option<bool>,
-    /// Box / orifice plate: wall thickness (m), default: a tenth of the smallest inside size.
+    /// Box / orifice plate / cylinder / cone: wall thickness (m), default: a tenth of the smallest
+    /// inside size (box), a tenth of the outer radius (plate), a fifth of the radius (cylinder), a
+    /// tenth of the larger radius (cone).
     #[serde(default)]
     pub thickness_m: Option<f64>,
-    /// Cylinder: centre of the axis (m); orifice plate: centre of the hole (m).
+    /// Cylinder: centre of the axis (m); cone: centre of its `radius_m` end (m); orifice plate:
+    /// centre of the hole (m).
     #[serde(default)]
     pub center_m: Option<[f64; 3]>,
-    /// Cylinder: unit axis (default `[0, 0, 1]`).
+    /// Cylinder / cone: unit axis (default `[0, 0, 1]`).
     #[serde(default)]
     pub axis: Option<[f64; 3]>,
-    /// Cylinder: inner radius (m).
+    /// Cylinder: inner radius (m); cone: inner radius at `center_m` (m).
     #[serde(default)]
     pub radius_m: Option<f64>,
-    /// Cylinder: length along the axis (m).
+    /// Cone: inner radius at the far end, `length_m` along the axis from `center_m` (m).
+    #[serde(default)]
+    pub top_radius_m: Option<f64>,
+    /// Cylinder / cone: length along the axis (m).
     #[serde(default)]
     pub length_m: Option<f64>,
     /// Cylinder: whether both ends are closed by discs (default false).
     #[serde(default)]
     pub capped: Option<bool>,
-    /// Cylinder / orifice plate: number of segments around the circle (default 48).
+    /// Cylinder / cone / orifice plate: number of segments around the circle (default 48).
     #[serde(default)]
     pub segments: Option<u32>,
     /// Orifice plate: outer radius of the plate (m).
@@ -381,4 +410,7 @@ pub struct WallSection {
     /// Centre of the kinematic rotation (m), default the origin.
     #[serde(default)]
     pub rotation_center_m: Option<[f64; 3]>,
+    /// Simulated time (s) at which the wall is removed (a plug that opens); never when absent.
+    #[serde(default)]
+    pub removed_at_s: Option<f64>,
 }

@@ -325,11 +325,55 @@ impl Checker<'_, '_> {
                 "applies to coupling = \"force\" only (restitution mode runs on rapier's pipeline)",
             );
         }
-        if r.discharge_height_m.is_some() && r.headline != Headline::Hopper {
+        if r.discharge_height_m.is_some()
+            && !matches!(r.headline, Headline::Hopper | Headline::Funnel)
+        {
             self.error(
                 &run.key("discharge_height_m"),
-                "is used only with headline = \"hopper\"",
+                "is used only with headline = \"hopper\" or \"funnel\"",
             );
+        }
+        if let Some(h) = r.delete_below_m {
+            if let Some(h) = self.finite(&run.key("delete_below_m"), h) {
+                if let Some(d) = r.discharge_height_m.filter(|d| d.is_finite() && *d < h) {
+                    self.error(
+                        &run.key("discharge_height_m"),
+                        format!("= {d} m is below delete_below_m = {h} m: a sphere is removed before it counts as discharged"),
+                    );
+                }
+            }
+        }
+        if let Some(sweep) = &r.orifice_sweep_m {
+            let key = run.key("orifice_sweep_m");
+            if r.headline != Headline::Hopper {
+                self.error(&key, "is used only with headline = \"hopper\"");
+            } else if sweep.len() < 3 {
+                self.error(
+                    &key,
+                    format!(
+                        "has {} diameter(s): at least 3 are needed to fit Beverloo's C and k",
+                        sweep.len()
+                    ),
+                );
+            } else if sweep.iter().any(|d| !(d.is_finite() && *d > 0.0)) {
+                self.error(
+                    &key,
+                    format!("= {sweep:?}: every diameter must be in (0, inf) m"),
+                );
+            } else if sweep.windows(2).any(|w| w[1] <= w[0]) {
+                self.error(&key, format!("= {sweep:?}: the diameters must increase"));
+            } else if file
+                .walls
+                .iter()
+                .filter(|w| w.kind == WallKind::OrificePlate)
+                .count()
+                != 1
+            {
+                self.error(
+                    &key,
+                    "needs exactly one wall of kind orifice_plate (its diameter is swept)",
+                );
+            }
         }
         let discharge = r
             .discharge_height_m
@@ -394,10 +438,17 @@ impl Checker<'_, '_> {
                 None => Some(Vector3::zeros()),
             };
             let placed = self.place_group(&table, group, &mut rng, &mut total);
-            if let (Some(material), Some(velocity), Some(placed)) = (material, velocity, placed) {
+            let placed = self.trim_to_cylinder(&table, group, placed);
+            let classes = self.radius_classes(&table, group);
+            if let (Some(material), Some(velocity), Some(placed), Some(classes)) =
+                (material, velocity, placed, classes)
+            {
                 particles.extend(placed.into_iter().map(|(p, r, v)| ParticleInit {
                     position: p,
-                    radius: r,
+                    radius: classes.map_or(r, |(lo, step)| {
+                        // Down to the class below: never larger than drawn, so never overlapping.
+                        lo + ((r - lo) / step + 1e-9).floor().max(0.0) * step
+                    }),
                     velocity: v.unwrap_or(velocity),
                     material,
                     group: g,
@@ -934,6 +985,72 @@ impl Checker<'_, '_> {
         out
     }
 
+    /// `region_radius_m`: the placed spheres within that distance of the region's central line
+    /// parallel to z; an error when the key does not apply or nothing is left.
+    fn trim_to_cylinder(
+        &mut self,
+        table: &KeyPath,
+        g: &ParticleGroup,
+        placed: Option<Vec<placement::ReadSphere>>,
+    ) -> Option<Vec<placement::ReadSphere>> {
+        let Some(radius) = g.region_radius_m else {
+            return placed;
+        };
+        let key = table.key("region_radius_m");
+        if !matches!(g.placement, PlacementKind::Lattice | PlacementKind::Random) {
+            self.error(
+                &key,
+                "is used only with placement = \"lattice\" or \"random\": remove it",
+            );
+            return None;
+        }
+        let radius = self.positive(&key, radius)?;
+        let (lo, hi) = (g.region_min_m?, g.region_max_m?);
+        let (cx, cy) = (0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]));
+        let kept: Vec<_> = placed?
+            .into_iter()
+            .filter(|(p, _, _)| (p.x - cx).hypot(p.y - cy) <= radius)
+            .collect();
+        if kept.is_empty() {
+            self.error(
+                &key,
+                format!("= {radius} m leaves no sphere of the group in the region"),
+            );
+            return None;
+        }
+        Some(kept)
+    }
+
+    /// `radius_classes`: `Some(None)` when absent, `Some(Some((radius_min_m, class width)))` when
+    /// valid, `None` after an error.
+    fn radius_classes(&mut self, table: &KeyPath, g: &ParticleGroup) -> Option<Option<(f64, f64)>> {
+        let Some(n) = g.radius_classes else {
+            return Some(None);
+        };
+        let key = table.key("radius_classes");
+        if !matches!(
+            g.size_distribution,
+            Some(SizeDistribution::Uniform | SizeDistribution::Normal)
+        ) {
+            self.error(
+                &key,
+                "is used only with size_distribution = \"uniform\" or \"normal\": remove it",
+            );
+            return None;
+        }
+        if !(2..=255).contains(&n) {
+            self.error(&key, format!("= {n} is outside the allowed range [2, 255]"));
+            return None;
+        }
+        match (g.radius_min_m, g.radius_max_m) {
+            (Some(lo), Some(hi)) if lo.is_finite() && hi.is_finite() && hi > lo => {
+                Some(Some((lo, (hi - lo) / n as f64)))
+            }
+            // radius_law reports the bounds' own problems.
+            _ => None,
+        }
+    }
+
     fn radius_law(&mut self, table: &KeyPath, g: &ParticleGroup) -> Option<RadiusLaw> {
         let dist = g.size_distribution.unwrap_or(SizeDistribution::Mono);
         let pos = |c: &mut Self, key: &str, v: Option<f64>, why: &str| -> Option<f64> {
@@ -1037,6 +1154,7 @@ impl Checker<'_, '_> {
             ("file", w.file.is_some()),
             ("scale", w.scale.is_some()),
             ("offset_m", w.offset_m.is_some()),
+            ("top_radius_m", w.top_radius_m.is_some()),
         ];
         let used: &[&str] = match w.kind {
             WallKind::Plane => &["point_m", "normal"],
@@ -1051,6 +1169,15 @@ impl Checker<'_, '_> {
                 "thickness_m",
             ],
             WallKind::Mesh => &["file", "scale", "offset_m"],
+            WallKind::Cone => &[
+                "center_m",
+                "axis",
+                "radius_m",
+                "top_radius_m",
+                "length_m",
+                "segments",
+                "thickness_m",
+            ],
             WallKind::OrificePlate => &[
                 "center_m",
                 "outer_radius_m",
@@ -1131,6 +1258,26 @@ impl Checker<'_, '_> {
                     w.capped.unwrap_or(false),
                 )
             }
+            WallKind::Cone => {
+                let center = vec_req(self, "center_m", w.center_m);
+                let axis = match w.axis {
+                    Some(a) => self.unit(&table.key("axis"), a),
+                    None => Some(Vector3::z()),
+                };
+                let radius = pos_req(self, "radius_m", w.radius_m);
+                let top = pos_req(self, "top_radius_m", w.top_radius_m);
+                let length = pos_req(self, "length_m", w.length_m);
+                let (center, axis, radius, top, length) = (center?, axis?, radius?, top?, length?);
+                walls::cone_container(
+                    center,
+                    axis,
+                    radius,
+                    top,
+                    length,
+                    thickness.unwrap_or(radius.max(top) / 10.0),
+                    segments,
+                )
+            }
             WallKind::OrificePlate => {
                 let center = vec_req(self, "center_m", w.center_m);
                 let outer = pos_req(self, "outer_radius_m", w.outer_radius_m);
@@ -1191,6 +1338,17 @@ impl Checker<'_, '_> {
             );
             return None;
         }
+        let removed_at = match w.removed_at_s {
+            Some(t) => Some(self.non_negative(&table.key("removed_at_s"), t)?),
+            None => None,
+        };
+        if removed_at.is_some() && angular_velocity.is_some() {
+            self.error(
+                &table.key("removed_at_s"),
+                "a rotating wall cannot be removed: remove one of removed_at_s and angular_velocity_rad_per_s",
+            );
+            return None;
+        }
         let origin = match w.rotation_center_m {
             Some(c) => self.vector(&table.key("rotation_center_m"), c)?,
             None => Vector3::zeros(),
@@ -1203,6 +1361,7 @@ impl Checker<'_, '_> {
             pieces,
             origin,
             angular_velocity,
+            removed_at,
         })
     }
 
@@ -1226,8 +1385,9 @@ impl Checker<'_, '_> {
         let mut reported = 0;
         'walls: for wall in walls {
             for piece in &wall.pieces {
+                let distance = piece.distance_fn();
                 for (k, p) in particles.iter().enumerate() {
-                    let d = piece.signed_distance(&(p.position - wall.origin));
+                    let d = distance(&(p.position - wall.origin));
                     if d < p.radius * (1.0 - OVERLAP_TOLERANCE) {
                         self.error(
                             &root.key("walls").index(wall.index),

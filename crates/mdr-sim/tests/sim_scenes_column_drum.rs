@@ -1,0 +1,86 @@
+//! The column and drum headlines on small scenes: the Lube et al. (2004) comparison of a
+//! low-aspect-ratio column and the drum's dynamic angle of repose.
+
+mod common;
+
+use mdr_sim::scene::validate::parse_scene;
+use mdr_sim::{run_scene, RunOptions};
+
+/// A wide, low column (a < 0.74): the report compares with Lube et al. (2004) in that regime,
+/// (R − R0)/R0 = 1.24 a and H = H0, and the measured deposit is a spread, lower column whose
+/// centre keeps most of its height.
+#[test]
+fn low_column_is_compared_with_lube_in_its_regime() {
+    let dir = common::temp_dir("column-lube");
+    let text = common::column(8, 3, 0.15, 0.5, "");
+    let scene = parse_scene(&dir.join("column.toml"), &text).unwrap_or_else(|p| panic!("{p}"));
+    let summary = run_scene(
+        &scene,
+        &RunOptions::new(dir.join("out")).quiet(true).no_frames(true),
+    )
+    .expect("run");
+    let h = &summary.headline;
+    eprintln!("{}", h.text);
+    let a = h.get("aspect_ratio").unwrap();
+    let h0 = h.get("initial_height_m").unwrap();
+    assert!(a < 0.74, "{a}");
+    assert!((h.get("lube_2004_normalised_runout").unwrap() - 1.24 * a).abs() < 1e-12);
+    assert_eq!(h.get("lube_2004_final_height_m"), Some(h0));
+    let spread = h.get("normalised_runout").unwrap();
+    let height = h.get("final_height_m").unwrap();
+    assert!(spread > 0.0 && spread.is_finite(), "{spread}");
+    assert!(
+        height <= h0 * 1.01 && height > 0.5 * h0,
+        "H = {height}, H0 = {h0}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A thin drum (two spheres deep) turning in the rolling regime: a finite angle of repose in
+/// the range of frictional spheres (15°–55°) with a small scatter over the second half.
+#[test]
+fn small_drum_has_a_dynamic_angle_of_repose() {
+    let dir = common::temp_dir("drum-small");
+    let text = std::fs::read_to_string(
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/drum.toml"),
+    )
+    .unwrap();
+    let replace = [
+        ("duration_s = 2.0", "duration_s = 0.8"),
+        ("output_interval_s = 0.04", "output_interval_s = 0.02"),
+        ("checkpoint_interval_s = 1.0\n", ""),
+        ("count = 10404", "count = 162"),
+        (
+            "region_min_m = [-0.0687, -0.0195, -0.0687]",
+            "region_min_m = [-0.0184, -0.0055, -0.0184]",
+        ),
+        (
+            "region_max_m = [0.0687, 0.0195, 0.0687]",
+            "region_max_m = [0.0184, 0.0055, 0.0184]",
+        ),
+        ("radius_m = 0.1\n", "radius_m = 0.03\n"),
+        ("length_m = 0.04", "length_m = 0.012"),
+        ("thickness_m = 0.01", "thickness_m = 0.005"),
+        // Froude number ω²R/g ≈ 0.016 as in the full drum.
+        ("[0.0, 1.25, 0.0]", "[0.0, 2.3, 0.0]"),
+    ];
+    let mut small = text.clone();
+    for (a, b) in replace {
+        assert!(small.contains(a), "{a}");
+        small = small.replace(a, b);
+    }
+    let scene = parse_scene(&dir.join("drum.toml"), &small).unwrap_or_else(|p| panic!("{p}"));
+    assert_eq!(scene.particles.len(), 162);
+    let summary = run_scene(
+        &scene,
+        &RunOptions::new(dir.join("out")).quiet(true).no_frames(true),
+    )
+    .expect("run");
+    let h = &summary.headline;
+    eprintln!("{}", h.text);
+    let angle = h.get("dynamic_angle_of_repose_deg").unwrap();
+    let std = h.get("angle_std_deg").unwrap();
+    assert!((15.0..55.0).contains(&angle), "{angle}");
+    assert!(std < 10.0, "{std}");
+    std::fs::remove_dir_all(&dir).ok();
+}

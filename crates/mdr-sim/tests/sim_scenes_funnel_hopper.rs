@@ -1,0 +1,417 @@
+//! The scene features of the funnel and the hopper sweep, on small scenes: the cone wall, the plug
+//! removed at a given time, spheres removed below a height, the funnel's discharge curve, the
+//! orifice sweep with its Beverloo fit, and the validation of their keys (file, line, key).
+
+mod common;
+
+use mdr_sim::scene::validate::parse_scene;
+use mdr_sim::scene::Problems;
+use mdr_sim::{run_scene, RunOptions};
+use std::path::Path;
+
+/// A small funnel: a cone (radius 2 cm at z = 2 cm to 4 cm at z = 6 cm) over a spout (radius
+/// 1 cm, z = 0..2 cm) plugged at z = 0 until `open_at`; `count` spheres of radius 2 mm fall in
+/// from rest; spheres below z = −3 cm are removed.
+fn funnel(count: usize, duration: f64, open_at: f64) -> String {
+    format!(
+        r#"
+[run]
+name = "funnel"
+seed = 3
+duration_s = {duration}
+dt_s = "auto"
+max_speed_m_per_s = 1.5
+output_interval_s = 0.01
+headline = "funnel"
+discharge_height_m = 0.0
+delete_below_m = -0.03
+
+[gravity]
+acceleration_m_per_s2 = [0.0, 0.0, -9.81]
+
+[[material]]
+name = "grain"
+youngs_pa = 1.0e7
+poisson_ratio = 0.25
+density_kg_per_m3 = 2500.0
+
+[contact]
+normal = "hertz"
+tangential = "mindlin"
+friction = 0.3
+damping = "stiffness_viscous"
+damping_eta = 0.3
+
+[[particles]]
+material = "grain"
+count = {count}
+radius_m = 0.002
+placement = "lattice"
+region_min_m = [-0.012, -0.012, 0.035]
+region_max_m = [0.012, 0.012, 0.09]
+gap_fraction = 0.1
+
+[[walls]]
+kind = "cone"
+material = "grain"
+center_m = [0.0, 0.0, 0.02]
+radius_m = 0.01
+top_radius_m = 0.04
+length_m = 0.08
+segments = 32
+thickness_m = 0.004
+
+[[walls]]
+kind = "cylinder"
+material = "grain"
+center_m = [0.0, 0.0, 0.01]
+radius_m = 0.01
+length_m = 0.02
+segments = 32
+thickness_m = 0.004
+
+[[walls]]
+kind = "plane"
+material = "grain"
+point_m = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+removed_at_s = {open_at}
+"#
+    )
+}
+
+fn problems(text: &str) -> Problems {
+    match parse_scene(Path::new("scene.toml"), text) {
+        Ok(scene) => Problems(scene.warnings),
+        Err(p) => p,
+    }
+}
+
+fn line_of(text: &str, needle: &str) -> usize {
+    text.lines()
+        .position(|l| l.contains(needle))
+        .expect("needle")
+        + 1
+}
+
+/// The error on `key`, checked to be on the line holding `needle`.
+fn refused(text: &str, key: &str, needle: &str) -> String {
+    let p = problems(text);
+    let e = p
+        .errors()
+        .find(|e| e.key.ends_with(key))
+        .cloned()
+        .unwrap_or_else(|| panic!("no error on `{key}`; got:\n{p}"));
+    assert_eq!(e.line, line_of(text, needle), "{e}");
+    assert!(e.to_string().starts_with("scene.toml:"), "{e}");
+    e.message
+}
+
+#[test]
+fn the_small_funnel_is_valid() {
+    let p = problems(&funnel(40, 0.2, 0.1));
+    assert!(!p.has_errors() && p.0.is_empty(), "{p}");
+}
+
+#[test]
+fn bad_funnel_and_sweep_keys_are_refused_with_file_line_and_key() {
+    let good = funnel(40, 0.2, 0.1);
+    let m = refused(
+        &good.replace("removed_at_s = 0.1", "removed_at_s = -1.0"),
+        "removed_at_s",
+        "removed_at_s = -1.0",
+    );
+    assert!(m.contains("[0, inf)"), "{m}");
+    let m = refused(
+        &good.replace("delete_below_m = -0.03", "delete_below_m = nan"),
+        "delete_below_m",
+        "delete_below_m = nan",
+    );
+    assert!(m.contains("finite"), "{m}");
+    let m = refused(
+        &good.replace("delete_below_m = -0.03", "delete_below_m = 0.01"),
+        "discharge_height_m",
+        "discharge_height_m = 0.0",
+    );
+    assert!(m.contains("below delete_below_m"), "{m}");
+    let m = refused(
+        &good.replace("top_radius_m = 0.04", "top_radius_m = 0.0"),
+        "top_radius_m",
+        "top_radius_m = 0.0",
+    );
+    assert!(m.contains("(0, inf)"), "{m}");
+    // top_radius_m on a cylinder is not a key of that kind.
+    let text = good.replace("length_m = 0.02", "length_m = 0.02\ntop_radius_m = 0.02");
+    let m = refused(&text, "top_radius_m", "top_radius_m = 0.02");
+    assert!(m.contains("not used"), "{m}");
+    // A hopper sweep with too few diameters, and on a scene that is not a hopper.
+    let text = good.replace(
+        "headline = \"funnel\"",
+        "headline = \"funnel\"\norifice_sweep_m = [0.01, 0.02]",
+    );
+    let m = refused(&text, "orifice_sweep_m", "orifice_sweep_m");
+    assert!(m.contains("hopper"), "{m}");
+    let text = common::column(2, 2, 0.01, 0.3, "").replace(
+        "headline = \"column\"",
+        "headline = \"hopper\"\norifice_sweep_m = [0.01, 0.02]",
+    );
+    let m = refused(&text, "orifice_sweep_m", "orifice_sweep_m");
+    assert!(m.contains("at least 3"), "{m}");
+    let text = text.replace("[0.01, 0.02]", "[0.01, 0.03, 0.02]");
+    let m = refused(&text, "orifice_sweep_m", "orifice_sweep_m");
+    assert!(m.contains("increase"), "{m}");
+    // Radius classes: only with a size distribution, within [2, 255].
+    let text = good.replace(
+        "radius_m = 0.002\n",
+        "radius_m = 0.002\nradius_classes = 8\n",
+    );
+    let m = refused(&text, "radius_classes", "radius_classes = 8");
+    assert!(m.contains("uniform"), "{m}");
+    let text = good.replace(
+        "radius_m = 0.002\n",
+        "size_distribution = \"uniform\"\nradius_min_m = 0.0015\nradius_max_m = 0.002\nradius_classes = 1\n",
+    );
+    let m = refused(&text, "radius_classes", "radius_classes = 1");
+    assert!(m.contains("[2, 255]"), "{m}");
+}
+
+#[test]
+fn radius_classes_round_every_radius_down_to_its_class() {
+    let text = funnel(40, 0.2, 0.1).replace(
+        "radius_m = 0.002\n",
+        "size_distribution = \"uniform\"\nradius_min_m = 0.0015\nradius_max_m = 0.002\nradius_classes = 4\n",
+    );
+    let scene = parse_scene(Path::new("scene.toml"), &text).unwrap_or_else(|p| panic!("{p}"));
+    let classes = [0.0015, 0.001625, 0.00175, 0.001875, 0.002];
+    let mut seen = std::collections::BTreeSet::new();
+    for p in &scene.particles {
+        let k = classes
+            .iter()
+            .position(|c| (p.radius - c).abs() < 1e-12)
+            .unwrap_or_else(|| panic!("radius {} is not a class", p.radius));
+        seen.insert(k);
+    }
+    assert!(
+        seen.len() >= 3,
+        "40 uniform draws fill most of 4 classes: {seen:?}"
+    );
+}
+
+/// The plug holds the spheres until it is removed; then they fall through the spout, leave the
+/// funnel and are removed below the sink height: the discharge curve starts at every sphere,
+/// stays there while plugged, and ends at none.
+#[test]
+fn spheres_fall_through_once_the_plug_is_removed_and_are_removed_below_the_sink() {
+    let dir = common::temp_dir("funnel-plug");
+    let n = 40;
+    let text = funnel(n, 0.45, 0.2);
+    let path = common::write(&dir, "funnel.toml", &text);
+    let scene = mdr_sim::load_scene(&path).unwrap_or_else(|p| panic!("{p}"));
+    assert_eq!(scene.particles.len(), n);
+    let summary = run_scene(
+        &scene,
+        &RunOptions::new(dir.join("out")).quiet(true).no_frames(true),
+    )
+    .expect("run");
+    let h = &summary.headline;
+    eprintln!("{}", h.text);
+    assert_eq!(h.get("spheres_in_funnel_at_opening"), Some(n as f64));
+    assert_eq!(h.get("spheres_in_funnel_at_end"), Some(0.0), "{}", h.text);
+    assert_eq!(h.get("spheres_remaining_at_end"), Some(0.0), "{}", h.text);
+    // Removed spheres are parked at rest below the sink height, apart from each other.
+    for p in &summary.particles {
+        assert!(p.translation[2] < -0.03, "{:?}", p.translation);
+        assert!(p.linvel.iter().all(|v| v.abs() < 1e-9), "{:?}", p.linvel);
+    }
+    // The CSV: every sphere in the funnel until the plug opens, then non-increasing to zero.
+    let csv = std::fs::read_to_string(dir.join("out/funnel_headline.csv")).expect("curve CSV");
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next(),
+        Some("time_s,spheres_in_funnel,spheres_remaining")
+    );
+    let rows: Vec<(f64, f64, f64)> = lines
+        .map(|l| {
+            let f: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            (f[0], f[1], f[2])
+        })
+        .collect();
+    assert!(rows.len() > 40);
+    for (t, inside, remaining) in &rows {
+        if *t < 0.2 {
+            assert_eq!(
+                (*inside, *remaining),
+                (n as f64, n as f64),
+                "t = {t}: plugged"
+            );
+        }
+        assert!(inside <= remaining);
+    }
+    assert!(rows
+        .windows(2)
+        .filter(|w| w[0].0 >= 0.2)
+        .all(|w| w[1].1 <= w[0].1 + 1.0));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A sphere resting on the plug of a closed funnel that never opens stays: nothing is removed.
+#[test]
+fn without_removal_the_plug_holds() {
+    let dir = common::temp_dir("funnel-closed");
+    let text = funnel(20, 0.25, 10.0);
+    let scene = parse_scene(&dir.join("funnel.toml"), &text).unwrap_or_else(|p| panic!("{p}"));
+    let summary = run_scene(
+        &scene,
+        &RunOptions::new(dir.join("out")).quiet(true).no_frames(true),
+    )
+    .expect("run");
+    assert_eq!(summary.headline.get("spheres_in_funnel_at_end"), Some(20.0));
+    assert!(summary.particles.iter().all(|p| p.translation[2] > 0.0));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A small flat-bottomed hopper of soft spheres: `count` lattice sites trimmed to a cylinder,
+/// run for `duration` s per orifice of `sweep`.
+fn hopper(count: usize, duration: f64, sweep: &str) -> String {
+    r#"
+[run]
+name = "hopper"
+seed = 3
+duration_s = DURATION
+dt_s = "auto"
+max_speed_m_per_s = 1.5
+output_interval_s = 0.005
+headline = "hopper"
+discharge_height_m = -0.006
+delete_below_m = -0.02
+orifice_sweep_m = SWEEP
+
+[gravity]
+acceleration_m_per_s2 = [0.0, 0.0, -9.81]
+
+[[material]]
+name = "grain"
+youngs_pa = 1.0e5
+poisson_ratio = 0.25
+density_kg_per_m3 = 2500.0
+
+[contact]
+normal = "hertz"
+tangential = "mindlin"
+friction = 0.4
+damping = "stiffness_viscous"
+damping_eta = 0.3
+
+[[particles]]
+material = "grain"
+count = COUNT
+radius_m = 0.001
+placement = "lattice"
+region_min_m = [-0.011, -0.011, 0.0002]
+region_max_m = [0.011, 0.011, 0.06]
+region_radius_m = 0.0105
+gap_fraction = 0.02
+jitter_fraction = 0.5
+
+[[walls]]
+kind = "cylinder"
+material = "grain"
+center_m = [0.0, 0.0, 0.04]
+radius_m = 0.0125
+length_m = 0.08
+segments = 32
+thickness_m = 0.003
+
+[[walls]]
+kind = "orifice_plate"
+material = "grain"
+center_m = [0.0, 0.0, 0.0]
+outer_radius_m = 0.016
+orifice_diameter_m = 0.012
+thickness_m = 0.002
+segments = 32
+"#
+    .replace("DURATION", &duration.to_string())
+    .replace("SWEEP", sweep)
+    .replace("COUNT", &count.to_string())
+}
+
+/// The sweep's mechanics, CI-sized (three short runs of ~150 spheres): one run per diameter, each
+/// with that orifice, in its own directory, the points and the CSV written, and the fit
+/// consistent with the points it was made from.
+#[test]
+fn hopper_orifice_sweep_runs_once_per_diameter_and_fits_the_rates() {
+    let dir = common::temp_dir("hopper-sweep-small");
+    let path = common::write(
+        &dir,
+        "hopper.toml",
+        &hopper(200, 0.06, "[0.008, 0.010, 0.012]"),
+    );
+    let scene = mdr_sim::load_scene(&path).unwrap_or_else(|p| panic!("{p}"));
+    let sweep = mdr_sim::headline::run_orifice_sweep(
+        &scene,
+        &RunOptions::new(dir.join("out")).quiet(true).no_frames(true),
+    )
+    .expect("sweep");
+    eprintln!("{}", sweep.text);
+    assert_eq!(sweep.points.len(), 3);
+    for ((run, point), d) in sweep
+        .runs
+        .iter()
+        .zip(&sweep.points)
+        .zip([0.008, 0.010, 0.012])
+    {
+        assert_eq!(run.headline.get("orifice_diameter_m"), Some(d));
+        assert_eq!(point.0, d);
+        assert_eq!(Some(point.1), run.headline.get("mass_flow_rate_kg_per_s"));
+    }
+    let csv = std::fs::read_to_string(dir.join("out/hopper_beverloo.csv")).expect("csv");
+    assert_eq!(csv.lines().count(), 4, "{csv}");
+    for i in 0..3 {
+        assert!(dir
+            .join(format!("out/hopper_D{i}/hopper_D{i}_headline.toml"))
+            .exists());
+    }
+    if let Some(fit) = sweep.fit {
+        let (a, b) = fit.line;
+        let rho_b = mdr_sim::headline::BULK_SOLID_FRACTION * 2500.0;
+        assert!((fit.c - b.powf(2.5) / (rho_b * 9.81f64.sqrt())).abs() < 1e-12 * fit.c.abs());
+        assert!((fit.k + a / (b * 0.002)).abs() < 1e-9 * fit.k.abs().max(1.0));
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The physics of the sweep (minutes on a loaded machine: `cargo test -p mdr-sim --test
+/// sim_scenes_funnel_hopper -- --ignored`): ~760 soft spheres, orifices of 5, 6, 7 d, 0.2 s
+/// each: the rate grows with the orifice and the fitted correlation passes through the rates.
+#[test]
+#[ignore]
+fn hopper_orifice_sweep_rates_grow_with_the_orifice() {
+    let dir = common::temp_dir("hopper-sweep");
+    let path = common::write(
+        &dir,
+        "hopper.toml",
+        &hopper(1000, 0.2, "[0.010, 0.012, 0.014]"),
+    );
+    let scene = mdr_sim::load_scene(&path).unwrap_or_else(|p| panic!("{p}"));
+    let sweep = mdr_sim::headline::run_orifice_sweep(
+        &scene,
+        &RunOptions::new(dir.join("out")).quiet(true).no_frames(true),
+    )
+    .expect("sweep");
+    eprintln!("{}", sweep.text);
+    for w in sweep.points.windows(2) {
+        assert!(
+            w[1].1 > w[0].1,
+            "the rate grows with the orifice: {:?}",
+            sweep.points
+        );
+    }
+    let fit = sweep.fit.expect("fit");
+    for (d, w, _) in &sweep.points {
+        let (a, b) = fit.line;
+        let back = (a + b * d).powf(2.5);
+        assert!((back / w - 1.0).abs() < 0.1, "D = {d}: fit {back} vs {w}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
