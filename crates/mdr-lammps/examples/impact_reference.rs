@@ -1,5 +1,5 @@
 //! Reference coefficient of restitution of a head-on impact of two equal steel spheres (the
-//! paper's values, Fig. 2), from mdr-contact's closed-form energy route (eq. 14, model.md §4):
+//! paper's values, Fig. 2), from mdr-contact's closed-form energy route (eq. 14, docs/theory.md §4):
 //! the same `e_n` the single-impact validator gives, for the pair's `E*`, `R = r/2`, `m = m₁/2`.
 //! Usage: `impact_reference RADIUS SPEED...` (m, m/s); prints `speed e_n` lines.
 use mdr_contact::material::{ContactPair, Material};

@@ -1,6 +1,6 @@
 //! `pair_coeff` keywords of `pair_style mdrdem`: parsing with range checks that name the keyword,
 //! and the per-type-pair models (materials mixed as mdr-contact mixes them: `E*` eq. 3, `G*`
-//! model.md §5).
+//! docs/theory.md §5).
 
 use crate::error::PluginError;
 use mdr_contact::damping::HertzianViscous;
@@ -35,7 +35,7 @@ pub struct CoeffLine {
     pub rolling: f64,
     /// `estar`: `E*` of the pair given directly (pressure, > 0), instead of eq. (3).
     pub estar: Option<f64>,
-    /// `gstar`: `G*` of the pair given directly (pressure, > 0), instead of model.md §5.
+    /// `gstar`: `G*` of the pair given directly (pressure, > 0), instead of docs/theory.md §5.
     pub gstar: Option<f64>,
 }
 
@@ -223,7 +223,7 @@ impl PairModel {
     }
 
     /// Mix the lines of types I (`pair_coeff I I`) and J (`pair_coeff J J`): `E*` by eq. (3),
-    /// `G*` by model.md §5 from the two materials; the law parameters must agree (mdr-dem uses
+    /// `G*` by docs/theory.md §5 from the two materials; the law parameters must agree (mdr-dem uses
     /// one model for every pair of a simulation and mixes only materials).
     pub fn mixed(i: usize, a: &CoeffLine, j: usize, b: &CoeffLine) -> Result<Self, PluginError> {
         for ((keyword, va), (_, vb)) in a.law_parameters().iter().zip(b.law_parameters()) {
