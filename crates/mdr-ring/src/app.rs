@@ -152,11 +152,12 @@ pub const WAKE_LEVEL: f64 = 0.5;
 /// (uniform random particles give about 1): no pitch angle or wavelength is reported.
 pub const WAKE_MIN_ANISOTROPY: f64 = 1.5;
 
-/// Cell of the surface-density grid for a box of side `side` (m): 2.5 m (about one and a half mean
-/// particle radii; wakes are tens of metres wide), at most 128 cells per side so that the direct
-/// autocorrelation stays cheap.
+/// Cell of the surface-density grid for a box of side `side` (m): 5 m (a few particles per cell;
+/// wakes are tens of metres apart, 2.5 m cells left one large particle per cell and no correlation
+/// between neighbouring cells), at most 128 cells per side so that the direct autocorrelation stays
+/// cheap.
 pub fn wake_cell(side: f64) -> f64 {
-    (side / 128.0).max(2.5)
+    (side / 128.0).max(5.0)
 }
 
 /// Run and write the outputs.

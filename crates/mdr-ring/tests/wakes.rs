@@ -160,7 +160,13 @@ fn wake_anisotropy(
             let k = (s.t_orbits * 10.0).round() as u64;
             if s.t_orbits >= 0.5 * orbits && k % 5 == 0 {
                 acfs.push(
-                    SurfaceDensity::of(&domain, p, s.t_orbits * period, 2.5).autocorrelation(),
+                    SurfaceDensity::of(
+                        &domain,
+                        p,
+                        s.t_orbits * period,
+                        mdr_ring::app::wake_cell(200.0),
+                    )
+                    .autocorrelation(),
                 );
             }
         })
