@@ -521,7 +521,10 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
             figures.contacts_per_particle, figures.wall_contacts
         );
         match figures.rebuilds {
-            Some(r) => println!("  peak RSS {:.1} MB; {r} neighbour-list builds", figures.peak_rss_mb),
+            Some(r) => println!(
+                "  peak RSS {:.1} MB; {r} neighbour-list builds",
+                figures.peak_rss_mb
+            ),
             None => println!("  peak RSS {:.1} MB", figures.peak_rss_mb),
         }
     }

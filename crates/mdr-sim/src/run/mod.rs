@@ -19,6 +19,7 @@ pub use state::{BodyRecord, CheckpointData};
 use crate::checkpoint::{self, CheckpointError};
 use crate::error::{output, SimError};
 use crate::headline::{HeadlineReport, HeadlineSample, ParticleView, Tracker};
+use crate::laws::AnyRollingLaw;
 use crate::output::energy::{self, EnergyRow};
 use crate::output::plot;
 use crate::output::vtk::{self, CollectionEntry, ContactFrame, ParticleFrame};
@@ -29,12 +30,11 @@ use mdr_contact::normal::NormalLaw;
 use mdr_contact::rolling::RollingLaw;
 use mdr_rapier::convert::to_na;
 use mdr_rapier::geometry::sphere_sphere;
-use state::{FastPairHistory, SceneLaw};
-use crate::laws::AnyRollingLaw;
 use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use state::Books;
+use state::{FastPairHistory, SceneLaw};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -343,8 +343,8 @@ impl<'a> Sim<'a> {
         }
         // Restitution mode: rapier's whole world (decoded and checked before anything is used).
         let world = match sim.built.coupling {
-            Coupling::Force(_) | Coupling::Fast(_) => None,
-            Coupling::Restitution(_) => {
+            Coupling::Force(_) => None,
+            Coupling::Fast(_) | Coupling::Restitution(_) => {
                 let world: rapier3d_f64::prelude::PhysicsWorld = postcard::from_bytes(&data.world)
                     .map_err(|e| CheckpointError::Decode {
                         path: path.to_path_buf(),
@@ -369,21 +369,20 @@ impl<'a> Sim<'a> {
             .chain(&sim.built.wall_bodies)
             .copied()
             .collect();
+        if let Coupling::Fast(stepper) = &mut sim.built.coupling {
+            let p = stepper.particles_mut();
+            for (i, record) in data.bodies.iter().take(n_particles).enumerate() {
+                record.apply_to_particle(p, i);
+            }
+        }
         match world {
-            // Restitution: the world continues exactly where it stopped (the bodies are in it).
+            // Restitution and the neighbour-list path: rapier's world continues exactly where it
+            // stopped (the bodies are in it).
             Some(world) => sim.built.world = world,
             None => {
-                let mut records = data.bodies.iter();
-                if let Coupling::Fast(stepper) = &mut sim.built.coupling {
-                    let p = stepper.particles_mut();
-                    for (i, record) in records.by_ref().take(n_particles).enumerate() {
-                        record.apply_to_particle(p, i);
-                    }
-                }
-                for (h, record) in handles.iter().zip(records) {
+                for (h, record) in handles.iter().zip(&data.bodies) {
                     record.apply(&mut sim.built.world.bodies[*h]);
                 }
-                // Also puts the wall colliders where their bodies now are.
                 sim.built.world.detect_collisions(&(), &());
             }
         }
@@ -421,12 +420,14 @@ impl<'a> Sim<'a> {
                 }
             }
             Coupling::Fast(stepper) => {
-                let state = data.fast.as_ref().and_then(|f| f.to_state()).ok_or_else(|| {
-                    CheckpointError::Incompatible {
+                let state = data
+                    .fast
+                    .as_ref()
+                    .and_then(|f| f.to_state())
+                    .ok_or_else(|| CheckpointError::Incompatible {
                         path: path.to_path_buf(),
                         reason: "it holds no valid neighbour-list state".to_owned(),
-                    }
-                })?;
+                    })?;
                 stepper.import_lists(world, state)?;
             }
             Coupling::Restitution(hooks) => {
@@ -542,7 +543,9 @@ impl<'a> Sim<'a> {
             particles: match &self.built.coupling {
                 Coupling::Fast(stepper) => {
                     let p = stepper.particles();
-                    (0..p.len()).map(|i| BodyRecord::of_particle(p, i)).collect()
+                    (0..p.len())
+                        .map(|i| BodyRecord::of_particle(p, i))
+                        .collect()
                 }
                 _ => self
                     .built
@@ -722,16 +725,16 @@ impl<'a> Sim<'a> {
             row.contacts = stepper.contacts().len() as u64;
         }
         if let Coupling::Fast(stepper) = &self.built.coupling {
-            let mut add = |(law, rolling): &(SceneLaw, AnyRollingLaw),
-                           h: &FastPairHistory,
-                           overlap: f64| {
-                row.elastic_normal_j += law.normal.elastic_energy(&h.contact.normal, overlap);
-                let t = &h.contact.tangential;
-                row.elastic_tangential_j +=
-                    0.5 * law.tangential.stiffness(t.contact_radius) * t.displacement.norm_squared();
-                row.elastic_rolling_j += rolling.elastic_energy(&h.rolling);
-                row.contacts += 1;
-            };
+            let mut add =
+                |(law, rolling): &(SceneLaw, AnyRollingLaw), h: &FastPairHistory, overlap: f64| {
+                    row.elastic_normal_j += law.normal.elastic_energy(&h.contact.normal, overlap);
+                    let t = &h.contact.tangential;
+                    row.elastic_tangential_j += 0.5
+                        * law.tangential.stiffness(t.contact_radius)
+                        * t.displacement.norm_squared();
+                    row.elastic_rolling_j += rolling.elastic_energy(&h.rolling);
+                    row.contacts += 1;
+                };
             let p = stepper.particles();
             let sp = stepper.surface_pairs();
             for q in (0..sp.len()).filter(|&q| sp.active[q]) {
@@ -745,8 +748,9 @@ impl<'a> Sim<'a> {
             let pairs = stepper.pairs();
             for q in (0..pairs.len()).filter(|&q| pairs.active[q]) {
                 let (i, j) = (pairs.i[q] as usize, pairs.j[q] as usize);
-                let overlap = sphere_sphere(&p.position[i], p.radius[i], &p.position[j], p.radius[j])
-                    .map_or(0.0, |c| c.overlap);
+                let overlap =
+                    sphere_sphere(&p.position[i], p.radius[i], &p.position[j], p.radius[j])
+                        .map_or(0.0, |c| c.overlap);
                 add(stepper.sphere_pair_laws(i, j), &pairs.history[q], overlap);
             }
         }
@@ -828,8 +832,10 @@ impl<'a> Sim<'a> {
                     net.force.push(force.into());
                     net.normal_force.push(force.dot(&c.normal));
                     net.overlap.push(c.overlap);
-                    net.plastic_indentation
-                        .push(law.normal.residual_overlap(&pairs.history[q].contact.normal));
+                    net.plastic_indentation.push(
+                        law.normal
+                            .residual_overlap(&pairs.history[q].contact.normal),
+                    );
                 }
             }
             if let Coupling::Force(stepper) = &self.built.coupling {
