@@ -151,3 +151,55 @@ fn bench_bed_refuses_bad_values_by_name() {
     assert!(!output.status.success());
     assert!(String::from_utf8_lossy(&output.stderr).contains("/nonexistent/bed.data"));
 }
+
+/// `bench scene` on a small column: the JSON contract (keys present, figures positive) on both
+/// force paths, and bad values refused by their flag.
+#[test]
+fn bench_scene_json_contract_and_bad_values() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_bench_scene");
+    std::fs::create_dir_all(&dir).unwrap();
+    let column =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/column.toml"))
+            .unwrap();
+    let path = dir.join("column.toml");
+    std::fs::write(&path, &column).unwrap();
+    let scene = path.to_str().unwrap();
+    for threads in ["1", "2"] {
+        let out = mdr_dem(&[
+            "bench",
+            "scene",
+            scene,
+            "--steps",
+            "20",
+            "--warmup",
+            "5",
+            "--threads",
+            threads,
+            "--json",
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let d: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        for key in [
+            "particle_steps_per_s",
+            "cpu_particle_steps_per_s",
+            "ms_per_step",
+            "peak_rss_mb",
+        ] {
+            assert!(d[key].as_f64().unwrap() > 0.0, "{key}: {d}");
+        }
+        assert!(d["contacts_per_particle"].as_f64().unwrap() >= 0.0);
+        assert_eq!(d["threads"].as_u64().unwrap().to_string(), threads);
+        assert!(d["particles"].as_u64().unwrap() > 100);
+        assert_eq!(d["path"], "neighbour_list");
+    }
+    for (flag, value) in [("--steps", "0"), ("--threads", "0")] {
+        let out = mdr_dem(&["bench", "scene", scene, flag, value]);
+        assert!(!out.status.success());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(flag), "{flag}: {err}");
+    }
+}

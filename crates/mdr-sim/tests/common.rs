@@ -121,8 +121,8 @@ material = "grain"
 count = {count}
 radius_m = 0.0015
 placement = "lattice"
-region_min_m = [-0.014, -0.004, -0.019]
-region_max_m = [0.014, 0.004, 0.0]
+region_min_m = [-0.011, -0.004, -0.013]
+region_max_m = [0.011, 0.004, 0.0]
 gap_fraction = 0.05
 jitter_fraction = 0.5
 

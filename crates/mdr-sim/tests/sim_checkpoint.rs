@@ -39,7 +39,7 @@ fn resumed_run_on_the_rapier_path_is_bit_identical_to_the_uninterrupted_run() {
 /// periodic checkpoints: stopped between two neighbour-list builds and resumed, bit for bit.
 #[test]
 fn resumed_drum_on_the_neighbour_list_path_is_bit_identical() {
-    let text = common::drum(60, 0.06, "").replace(
+    let text = common::drum(48, 0.06, "").replace(
         "headline = \"drum\"",
         "headline = \"drum\"\ncontact_network = true\ncheckpoint_interval_s = 0.013",
     );
@@ -185,8 +185,8 @@ fn damaged_and_foreign_checkpoints_are_refused() {
     );
 
     // Checkpoints of the earlier formats (1: before the rolling books and rapier's world; 2:
-    // before the springs' stiffness books) are refused with both versions named.
-    for old in [1u8, 2] {
+    // before the springs' stiffness books; 3: before the neighbour-list state) are refused with both versions named.
+    for old in [1u8, 2, 3] {
         let mut version = bytes.clone();
         version[8] = old;
         std::fs::write(&p, &version).unwrap();
@@ -194,7 +194,7 @@ fn damaged_and_foreign_checkpoints_are_refused() {
         assert!(
             matches!(
                 e,
-                SimError::Checkpoint(CheckpointError::Version { found, expected: 3, .. })
+                SimError::Checkpoint(CheckpointError::Version { found, expected: 4, .. })
                     if found == u32::from(old)
             ),
             "{e}"

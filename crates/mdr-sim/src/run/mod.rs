@@ -346,8 +346,8 @@ impl<'a> Sim<'a> {
         }
         // Restitution mode: rapier's whole world (decoded and checked before anything is used).
         let world = match sim.built.coupling {
-            Coupling::Force(_) | Coupling::Fast(_) => None,
-            Coupling::Restitution(_) => {
+            Coupling::Force(_) => None,
+            Coupling::Fast(_) | Coupling::Restitution(_) => {
                 let world: rapier3d_f64::prelude::PhysicsWorld = postcard::from_bytes(&data.world)
                     .map_err(|e| CheckpointError::Decode {
                         path: path.to_path_buf(),
@@ -372,21 +372,20 @@ impl<'a> Sim<'a> {
             .chain(&sim.built.wall_bodies)
             .copied()
             .collect();
+        if let Coupling::Fast(stepper) = &mut sim.built.coupling {
+            let p = stepper.particles_mut();
+            for (i, record) in data.bodies.iter().take(n_particles).enumerate() {
+                record.apply_to_particle(p, i);
+            }
+        }
         match world {
-            // Restitution: the world continues exactly where it stopped (the bodies are in it).
+            // Restitution and the neighbour-list path: rapier's world continues exactly where it
+            // stopped (the bodies are in it).
             Some(world) => sim.built.world = world,
             None => {
-                let mut records = data.bodies.iter();
-                if let Coupling::Fast(stepper) = &mut sim.built.coupling {
-                    let p = stepper.particles_mut();
-                    for (i, record) in records.by_ref().take(n_particles).enumerate() {
-                        record.apply_to_particle(p, i);
-                    }
-                }
-                for (h, record) in handles.iter().zip(records) {
+                for (h, record) in handles.iter().zip(&data.bodies) {
                     record.apply(&mut sim.built.world.bodies[*h]);
                 }
-                // Also puts the wall colliders where their bodies now are.
                 sim.built.world.detect_collisions(&(), &());
             }
         }

@@ -488,12 +488,13 @@ pub struct CheckpointData {
     pub fast: Option<FastRecord>,
     /// Restitution mode: `(pair key, largest overlap)` of the impact history.
     pub impacts: Vec<(u64, f64)>,
-    /// Restitution mode: rapier's world as `postcard` bytes of `PhysicsWorld` (bodies,
+    /// Restitution mode and the neighbour-list path (whose world holds the walls only):
+    /// rapier's world as `postcard` bytes of `PhysicsWorld` (bodies,
     /// colliders, broad phase, narrow phase with every contact manifold and its warm-start
     /// impulses, islands; rapier leaves out only its pipelines' scratch buffers). Rapier's
     /// solver reads its contacts' previous impulses and its broad phase's tree, so rebuilding
-    /// the world from the scene would continue correctly but not bit-identically. Empty in
-    /// force mode, where rapier solves no contacts and the bodies alone are the state.
+    /// the world from the scene would continue correctly but not bit-identically. Empty on
+    /// rapier's force path, where rapier solves no contacts and the bodies alone are the state.
     pub world: Vec<u8>,
     /// Energy books.
     pub books: Books,
@@ -559,9 +560,14 @@ impl CheckpointData {
             }
         };
         let world = match &sim.built.coupling {
-            Coupling::Force(_) | Coupling::Fast(_) => Vec::new(),
-            Coupling::Restitution(_) => postcard::to_stdvec(&sim.built.world)
-                .map_err(|e| format!("rapier's world does not encode: {e}"))?,
+            Coupling::Force(_) => Vec::new(),
+            // The neighbour-list path's world holds the walls only (small): kept whole, so that
+            // kinematic walls continue exactly (their derived state, e.g. the world centre of
+            // mass, is not in a body record).
+            Coupling::Fast(_) | Coupling::Restitution(_) => {
+                postcard::to_stdvec(&sim.built.world)
+                    .map_err(|e| format!("rapier's world does not encode: {e}"))?
+            }
         };
         Ok(Self {
             scene_name: sim.scene.name.clone(),
