@@ -28,6 +28,7 @@ SUMMARY_KEYS = {
     "collisions_per_particle_per_orbit",
     "wall_s_per_orbit",
     "optical_depth",
+    "toomre_q",
 }
 
 

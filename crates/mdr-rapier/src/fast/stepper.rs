@@ -602,14 +602,15 @@ where
         pairs.reindex(n);
         self.pairs = pairs;
         self.old_pairs = PairList::default();
-        let mut sp = SurfacePairs::default();
-        sp.particle = state.surface_pairs.iter().map(|p| p.0).collect();
-        sp.surface = state.surface_pairs.iter().map(|p| p.1).collect();
-        sp.active = state.surface_active;
-        sp.history = state.surface_history;
-        sp.wrench = vec![PairWrench::default(); ms];
-        sp.contact = vec![SurfaceContact::default(); ms];
-        sp.start = vec![0; n + 1];
+        let mut sp = SurfacePairs {
+            particle: state.surface_pairs.iter().map(|p| p.0).collect(),
+            surface: state.surface_pairs.iter().map(|p| p.1).collect(),
+            active: state.surface_active,
+            history: state.surface_history,
+            wrench: vec![PairWrench::default(); ms],
+            contact: vec![SurfaceContact::default(); ms],
+            start: vec![0; n + 1],
+        };
         for &i in &sp.particle {
             sp.start[i as usize + 1] += 1;
         }
