@@ -134,8 +134,8 @@ fn drop_headline_is_the_same_on_both_paths() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// Column collapse, hopper discharge and drum: the same headline on both paths within the
-/// scatter of such runs (the paths differ by round-off, which granular flow amplifies).
+/// Column collapse and hopper discharge: the same headline on both paths, and the drum the same
+/// wall work, within the scatter of such runs (the paths differ by round-off, which granular flow amplifies).
 #[test]
 fn column_hopper_and_drum_headlines_agree_on_both_paths() {
     let dir = common::temp_dir("fast-headlines");
@@ -154,13 +154,20 @@ fn column_hopper_and_drum_headlines_agree_on_both_paths() {
     );
     assert!(a > 0.0 && b > 0.0, "the hopper discharged");
     assert!((a / b - 1.0).abs() < 0.15, "hopper rate {a} vs {b}");
-    let (a, b) = both(
-        &dir,
-        "drum",
-        &common::drum(48, 0.5, ""),
-        "dynamic_angle_of_repose_deg",
+    // The small drum is too short for its angle fit (NaN on both paths): compare the work the
+    // turning drum did on the spheres instead.
+    let text = common::drum(48, 0.3, "");
+    let fast = run(&dir, "drum_fast", &text);
+    let plain = run(&dir, "drum_rapier", &on_rapier(&text));
+    let (a, b) = (
+        fast.energy.last().unwrap().wall_work_j,
+        plain.energy.last().unwrap().wall_work_j,
     );
-    assert!((a - b).abs() < 4.0, "drum angle {a} vs {b}");
+    eprintln!("drum: wall work neighbour list {a:.6e} J, rapier {b:.6e} J");
+    assert!(
+        a > 0.0 && (a / b - 1.0).abs() < 0.1,
+        "drum wall work {a} vs {b}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -310,7 +310,7 @@ where
         self
     }
 
-    /// Add a material; pair moduli follow from eq. (3) and docs/theory.md §5 unless overridden by
+    /// Add a material; pair moduli follow from eq. (3) and model.md §5 unless overridden by
     /// [`FastForceStepper::set_pair_moduli`].
     pub fn insert_material(&mut self, material: Material) -> MaterialHandle {
         let old_n = self.materials.len();
@@ -593,30 +593,33 @@ where
         for (s, pose) in self.surfaces.iter_mut().zip(&state.surface_poses) {
             s.pose_at_build = *pose;
         }
-        let mut pairs = PairList::default();
-        pairs.i = state.pairs.iter().map(|p| p.0).collect();
-        pairs.j = state.pairs.iter().map(|p| p.1).collect();
-        pairs.image = state.pairs.iter().map(|p| p.2).collect();
-        pairs.active = state.pair_active;
-        pairs.history = state.pair_history;
+        let mut pairs = PairList {
+            i: state.pairs.iter().map(|p| p.0).collect(),
+            j: state.pairs.iter().map(|p| p.1).collect(),
+            image: state.pairs.iter().map(|p| p.2).collect(),
+            active: state.pair_active,
+            history: state.pair_history,
+            ..PairList::default()
+        };
         pairs.reindex(n);
         self.pairs = pairs;
         self.old_pairs = PairList::default();
-        let mut sp = SurfacePairs {
+        let mut start = vec![0u32; n + 1];
+        for &(i, _) in &state.surface_pairs {
+            start[i as usize + 1] += 1;
+        }
+        for i in 0..n {
+            start[i + 1] += start[i];
+        }
+        let sp = SurfacePairs {
             particle: state.surface_pairs.iter().map(|p| p.0).collect(),
             surface: state.surface_pairs.iter().map(|p| p.1).collect(),
             active: state.surface_active,
             history: state.surface_history,
             wrench: vec![PairWrench::default(); ms],
             contact: vec![SurfaceContact::default(); ms],
-            start: vec![0; n + 1],
+            start,
         };
-        for &i in &sp.particle {
-            sp.start[i as usize + 1] += 1;
-        }
-        for i in 0..n {
-            sp.start[i + 1] += sp.start[i];
-        }
         self.surface_pairs = sp;
         self.old_surface_pairs = SurfacePairs::default();
         self.needs_build = false;
