@@ -310,7 +310,7 @@ where
         self
     }
 
-    /// Add a material; pair moduli follow from eq. (3) and model.md §5 unless overridden by
+    /// Add a material; pair moduli follow from eq. (3) and docs/theory.md §5 unless overridden by
     /// [`FastForceStepper::set_pair_moduli`].
     pub fn insert_material(&mut self, material: Material) -> MaterialHandle {
         let old_n = self.materials.len();
