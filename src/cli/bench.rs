@@ -45,6 +45,10 @@ pub struct SceneArgs {
     /// Worker threads.
     #[arg(long, default_value_t = 1)]
     pub threads: usize,
+    /// Start from a checkpoint written by `sim run` of the same scene (a settled bed, a
+    /// discharge under way) instead of the scene's set-up.
+    #[arg(long)]
+    pub resume: Option<PathBuf>,
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
@@ -437,6 +441,8 @@ struct SceneFigures {
     wall_seconds: f64,
     /// `"neighbour_list"` or `"rapier"` (`force_path`), or `"restitution"`.
     path: &'static str,
+    /// Step the run started from (0, or the checkpoint's step with `--resume`).
+    start_step: u64,
     /// Neighbour-list builds during the timed steps (neighbour-list path).
     rebuilds: Option<u64>,
     scene: String,
@@ -449,7 +455,11 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
     let pool = rayon_pool(args.threads)?;
     let scene = mdr_sim::scene::load_scene(&args.scene).map_err(|p| anyhow::anyhow!("{p}"))?;
     let figures = pool.install(|| -> anyhow::Result<SceneFigures> {
-        let mut steps = mdr_sim::run::SceneSteps::new(&scene)?;
+        let mut steps = match &args.resume {
+            Some(path) => mdr_sim::run::SceneSteps::resume(&scene, path)?,
+            None => mdr_sim::run::SceneSteps::new(&scene)?,
+        };
+        let start_step = steps.steps_done();
         for _ in 0..args.warmup {
             steps.step()?;
         }
@@ -485,6 +495,7 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
                 (_, mdr_sim::scene::ForcePath::Rapier) => "rapier",
                 (_, mdr_sim::scene::ForcePath::NeighbourList) => "neighbour_list",
             },
+            start_step,
             rebuilds: steps
                 .rebuilds()
                 .zip(rebuilds0)
@@ -496,13 +507,14 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
         println!("{}", serde_json::to_string(&figures)?);
     } else {
         println!(
-            "bench scene {}: {} spheres, {} path, {} threads, {} timed steps after {} warm-up steps",
+            "bench scene {}: {} spheres, {} path, {} threads, {} timed steps after {} warm-up steps from step {}",
             figures.scene,
             figures.particles,
             figures.path,
             figures.threads,
             figures.steps,
-            figures.warmup
+            figures.warmup,
+            figures.start_step
         );
         println!(
             "  {:.3} M particle-steps/s, {:.3} ms/step",

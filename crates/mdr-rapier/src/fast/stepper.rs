@@ -29,8 +29,7 @@ use super::particles::{FastParticles, Species};
 use super::surfaces::{surface_displacement, FastSurface, SurfacePairs};
 use crate::convert::{to_glam, to_na};
 use crate::error::{positive, CouplingError, Result};
-use crate::geometry::SurfaceContact;
-use crate::geometry::{sphere_shape, sphere_sphere};
+use crate::geometry::{sphere_sphere, ConvexFaces, SurfaceContact};
 use crate::kernel::{evaluate_pair, Arms, ContactKinematics, PairHistory, PairWrench, SphereArms};
 use crate::particles::{MaterialHandle, SphereBuilder};
 use mdr_contact::damping::{DampingModel, NoDamping};
@@ -46,6 +45,7 @@ use nalgebra::Vector3;
 use rapier3d_f64::parry::mass_properties::MassProperties;
 use rapier3d_f64::prelude::*;
 use rayon::prelude::*;
+use std::sync::Arc;
 
 /// Pairs per parallel work item of the force loops.
 const CHUNK: usize = 2048;
@@ -99,6 +99,8 @@ pub struct FastForceStepper<
     sphere_laws: Vec<(Law<N, T, D>, R::Law)>,
     /// Particle–surface laws by `(species, surface)` at `species * surfaces + surface`.
     surface_laws: Vec<(Law<N, T, D>, R::Law)>,
+    /// Mass of each surface's dynamic body (infinite otherwise) when `surface_laws` were bound.
+    surface_masses: Vec<f64>,
     laws_species: usize,
     surfaces: Vec<FastSurface>,
     pairs: PairList<FastHistory<N, T, R, B>>,
@@ -174,6 +176,7 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> FastForceStepper<N, T,
             built_at: Vec::new(),
             sphere_laws: Vec::new(),
             surface_laws: Vec::new(),
+            surface_masses: Vec::new(),
             laws_species: 0,
             surfaces: Vec::new(),
             pairs: PairList::default(),
@@ -273,6 +276,11 @@ where
             laws_species: if fresh { 0 } else { self.laws_species },
             sphere_laws,
             surface_laws,
+            surface_masses: if fresh {
+                Vec::new()
+            } else {
+                self.surface_masses
+            },
             surfaces: self.surfaces,
             pairs,
             old_pairs: PairList::default(),
@@ -421,6 +429,10 @@ where
             material,
             pose_at_build: *co.position(),
             bounding_radius: co.shape().compute_local_bounding_sphere().radius(),
+            convex: co
+                .shape()
+                .as_convex_polyhedron()
+                .map(|poly| Arc::new(ConvexFaces::of(poly))),
         };
         // Keep surfaces in collider-index order (the plain path's summation order).
         let at = self
@@ -647,7 +659,8 @@ where
         let table = &self.particles.species_table;
         let ns = table.len();
         let nm = self.materials.len();
-        if self.laws_species != ns {
+        let species_changed = self.laws_species != ns;
+        if species_changed {
             self.sphere_laws.clear();
             for a in table {
                 for b in table {
@@ -665,16 +678,28 @@ where
             }
             self.laws_species = ns;
         }
-        // Surface laws each build: a dynamic body's mass may change.
-        self.surface_laws.clear();
-        for a in table {
-            for s in &self.surfaces {
-                let (e, g) = self.moduli[a.material.0 as usize * nm + s.material.0 as usize];
-                let m2 = s
-                    .body
+        // Surface laws again when a dynamic body's mass changed (or the species or surfaces).
+        let masses: Vec<f64> = self
+            .surfaces
+            .iter()
+            .map(|s| {
+                s.body
                     .and_then(|h| bodies.get(h))
                     .filter(|b| b.is_dynamic())
-                    .map_or(f64::INFINITY, |b| b.mass());
+                    .map_or(f64::INFINITY, |b| b.mass())
+            })
+            .collect();
+        if !species_changed
+            && self.surface_laws.len() == ns * self.surfaces.len()
+            && masses == self.surface_masses
+        {
+            return Ok(());
+        }
+        self.surface_masses = masses;
+        self.surface_laws.clear();
+        for a in table {
+            for (s, &m2) in self.surfaces.iter().zip(&self.surface_masses) {
+                let (e, g) = self.moduli[a.material.0 as usize * nm + s.material.0 as usize];
                 let mass = if m2.is_finite() {
                     a.mass * m2 / (a.mass + m2)
                 } else {
@@ -737,19 +762,33 @@ where
             .iter()
             .map(|s| colliders.get(s.collider).map(|co| (co, co.compute_aabb())))
             .collect();
-        for i in 0..n {
-            let x = to_glam(&p.position[i]);
-            let reach = p.radius[i] + skin;
-            for (k, entry) in aabbs.iter().enumerate() {
-                let Some((co, aabb)) = entry else {
-                    continue;
-                };
-                let inside =
-                    (0..3).all(|d| x[d] >= aabb.mins[d] - reach && x[d] <= aabb.maxs[d] + reach);
-                if inside && co.shape().distance_to_point(co.position(), x, true) < reach {
-                    self.surface_candidates.push((i as u32, k as u32));
+        // In parallel over fixed blocks of particles, joined in block order: the candidates
+        // come out in particle order whatever the number of threads.
+        const SEARCH_BLOCK: usize = 1024;
+        let (position, radius, surfaces) = (&p.position, &p.radius, &self.surfaces);
+        let found: Vec<Vec<(u32, u32)>> = (0..n.div_ceil(SEARCH_BLOCK))
+            .into_par_iter()
+            .map(|b| {
+                let mut found = Vec::new();
+                for i in b * SEARCH_BLOCK..((b + 1) * SEARCH_BLOCK).min(n) {
+                    let x = to_glam(&position[i]);
+                    let reach = radius[i] + skin;
+                    for (k, entry) in aabbs.iter().enumerate() {
+                        let Some((co, aabb)) = entry else {
+                            continue;
+                        };
+                        let inside = (0..3)
+                            .all(|d| x[d] >= aabb.mins[d] - reach && x[d] <= aabb.maxs[d] + reach);
+                        if inside && surfaces[k].within(co, &position[i], reach) {
+                            found.push((i as u32, k as u32));
+                        }
+                    }
                 }
-            }
+                found
+            })
+            .collect();
+        for block in &found {
+            self.surface_candidates.extend_from_slice(block);
         }
         std::mem::swap(&mut self.surface_pairs, &mut self.old_surface_pairs);
         self.surface_pairs
@@ -1016,9 +1055,9 @@ where
                     let q = base + k;
                     let (i, s) = (particle[q] as usize, surface[q] as usize);
                     let surf = &surfaces[s];
-                    let contact = colliders.get(surf.collider).and_then(|co| {
-                        sphere_shape(&p.position[i], p.radius[i], co.shape(), co.position())
-                    });
+                    let contact = colliders
+                        .get(surf.collider)
+                        .and_then(|co| surf.sphere_contact(co, &p.position[i], p.radius[i]));
                     let Some(contact) = contact else {
                         if active[k] {
                             active[k] = false;

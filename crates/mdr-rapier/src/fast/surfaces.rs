@@ -1,15 +1,21 @@
 //! Particles against rapier colliders (walls, meshes, containers, user bodies): candidate pairs
 //! found at neighbour-list rebuilds with parry distance queries, exact contacts every step with
-//! [`crate::geometry::sphere_shape`], histories carried over rebuilds by `(particle, surface)`.
+//! [`crate::geometry::sphere_shape`] (or, for convex polyhedra, the face projection of
+//! [`crate::geometry::sphere_convex`]), histories carried over rebuilds by `(particle, surface)`.
 
-use crate::geometry::SurfaceContact;
+use crate::convert::to_glam;
+use crate::geometry::{
+    convex_distance_within, sphere_convex, sphere_shape, ConvexFaces, SurfaceContact,
+};
 use crate::kernel::PairWrench;
 use crate::particles::MaterialHandle;
+use nalgebra::Vector3;
 use rapier3d_f64::math::Pose;
-use rapier3d_f64::prelude::{ColliderHandle, RigidBodyHandle};
+use rapier3d_f64::prelude::{Collider, ColliderHandle, RigidBodyHandle};
+use std::sync::Arc;
 
 /// A rapier collider registered as a surface of the fast path.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct FastSurface {
     /// The collider.
     pub collider: ColliderHandle,
@@ -22,6 +28,33 @@ pub struct FastSurface {
     /// Radius of the collider's local bounding sphere (infinite for a half-space), to bound the
     /// displacement of its points under a rotation.
     pub bounding_radius: f64,
+    /// The faces of a convex-polyhedron collider (its contacts then take the exact face
+    /// projection of [`crate::geometry::sphere_convex`] instead of parry's GJK).
+    pub convex: Option<Arc<ConvexFaces>>,
+}
+
+impl FastSurface {
+    /// Contact of a sphere with this surface's collider `co`.
+    #[inline]
+    pub fn sphere_contact(
+        &self,
+        co: &Collider,
+        center: &Vector3<f64>,
+        radius: f64,
+    ) -> Option<SurfaceContact> {
+        match &self.convex {
+            Some(faces) => sphere_convex(center, radius, faces, co.shape(), co.position()),
+            None => sphere_shape(center, radius, co.shape(), co.position()),
+        }
+    }
+
+    /// Whether the centre `x` is within `reach` of the collider `co`.
+    pub fn within(&self, co: &Collider, x: &Vector3<f64>, reach: f64) -> bool {
+        match &self.convex {
+            Some(faces) => convex_distance_within(x, faces, co.position(), reach).is_some(),
+            None => co.shape().distance_to_point(co.position(), to_glam(x), true) < reach,
+        }
+    }
 }
 
 /// Particle–surface candidate pairs, sorted by `(particle, surface)`.

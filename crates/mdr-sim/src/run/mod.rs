@@ -194,6 +194,14 @@ impl<'a> SceneSteps<'a> {
         })
     }
 
+    /// Continue `scene` from a checkpoint written by [`run_scene`] (e.g. a settled bed, to
+    /// time the scene in the state its headline is measured in).
+    pub fn resume(scene: &'a Scene, checkpoint: &Path) -> Result<Self, SimError> {
+        Ok(Self {
+            sim: Sim::resume(scene, checkpoint)?,
+        })
+    }
+
     /// One step.
     pub fn step(&mut self) -> Result<(), SimError> {
         let sim = &mut self.sim;

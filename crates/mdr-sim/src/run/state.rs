@@ -18,6 +18,7 @@ use mdr_rapier::fast::particles::FastParticles;
 use mdr_rapier::fast::FastListState;
 use nalgebra::Vector3;
 use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
 use rapier3d_f64::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -91,8 +92,10 @@ impl Books {
         dt: f64,
     ) {
         let entries = stepper.contacts().entries();
-        let mut next = Vec::with_capacity(entries.len());
-        let mut j = 0;
+        let mut block = BlockBooks {
+            next: Vec::with_capacity(entries.len()),
+            ..BlockBooks::default()
+        };
         let particle = |c: ColliderHandle| {
             particle_of_collider
                 .get(c.into_raw_parts().0 as usize)
@@ -101,15 +104,14 @@ impl Books {
         };
         for e in entries {
             let owners = (particle(e.collider1), particle(e.collider2));
-            self.book_pair(
+            block.book_pair(
+                &self.last,
                 e.key.0,
                 &e.law,
                 &e.rolling,
                 &e.history.contact,
                 &e.history.rolling,
                 owners,
-                &mut j,
-                &mut next,
             );
             // Work of a moving wall on the sphere: F · v_wall(contact point) dt.
             let on_wall = wall_of_collider
@@ -118,92 +120,159 @@ impl Books {
             if on_wall {
                 if let Some(b2) = e.body2.and_then(|h| bodies.get(h)) {
                     if b2.is_kinematic() {
-                        self.wall_work += wall_power(b2, &e.contact.point, &e.wrench.force) * dt;
+                        block.totals.wall_work +=
+                            wall_power(b2, &e.contact.point, &e.wrench.force) * dt;
                     }
                 }
             }
         }
-        self.last = next;
+        self.last = Vec::new();
+        self.join(block);
     }
 
     /// [`Books::take`] on the neighbour-list path. Pairs are visited per particle `i` in the
     /// stepper's order, its surfaces first (key `i · 2³² + s`), then its partners `j > i` (key
     /// `i · 2³² + 2³¹ + j`), so the keys increase as the books' merge needs (scenes are not
     /// periodic: one image per pair).
+    ///
+    /// The particles are booked in parallel in blocks of a fixed size: each block finds its
+    /// first key in `self.last`, keeps its own totals and pair books, and lists its per-particle
+    /// plastic increments in visit order. The blocks are then joined in order, so the books do
+    /// not depend on the number of threads, and each particle's plastic work takes its
+    /// increments in the same order as a one-block pass.
     pub(crate) fn take_fast(&mut self, stepper: &FastSceneStepper, bodies: &RigidBodySet, dt: f64) {
+        /// Particles per block.
+        const BLOCK: usize = 2048;
         let p = stepper.particles();
         let pairs = stepper.pairs();
         let sp = stepper.surface_pairs();
         let surfaces = stepper.surfaces();
-        let mut next = Vec::with_capacity(self.last.len() + 64);
-        let mut j = 0;
-        for i in 0..p.len() {
-            for q in sp.start[i] as usize..sp.start[i + 1] as usize {
-                if !sp.active[q] {
-                    continue;
-                }
-                let s = sp.surface[q] as usize;
-                let (law, rolling) = stepper.surface_pair_laws(i, s);
-                let h = &sp.history[q];
-                let key = ((i as u64) << 32) | s as u64;
-                self.book_pair(
-                    key,
-                    law,
-                    rolling,
-                    &h.contact,
-                    &h.rolling,
-                    (Some(i), None),
-                    &mut j,
-                    &mut next,
-                );
-                if let Some(b2) = surfaces[s].body.and_then(|h| bodies.get(h)) {
-                    if b2.is_kinematic() {
-                        self.wall_work +=
-                            wall_power(b2, &sp.contact[q].point, &sp.wrench[q].force) * dt;
+        let last = &self.last;
+        let n = p.len();
+        let blocks: Vec<BlockBooks> = (0..n.div_ceil(BLOCK))
+            .into_par_iter()
+            .map(|b| {
+                let first_key = ((b * BLOCK) as u64) << 32;
+                let mut block = BlockBooks {
+                    j: last.partition_point(|l| l.key < first_key),
+                    ..BlockBooks::default()
+                };
+                for i in b * BLOCK..((b + 1) * BLOCK).min(n) {
+                    for q in sp.start[i] as usize..sp.start[i + 1] as usize {
+                        if !sp.active[q] {
+                            continue;
+                        }
+                        let s = sp.surface[q] as usize;
+                        let (law, rolling) = stepper.surface_pair_laws(i, s);
+                        let h = &sp.history[q];
+                        let key = ((i as u64) << 32) | s as u64;
+                        block.book_pair(
+                            last,
+                            key,
+                            law,
+                            rolling,
+                            &h.contact,
+                            &h.rolling,
+                            (Some(i), None),
+                        );
+                        if let Some(b2) = surfaces[s].body.and_then(|h| bodies.get(h)) {
+                            if b2.is_kinematic() {
+                                block.totals.wall_work +=
+                                    wall_power(b2, &sp.contact[q].point, &sp.wrench[q].force) * dt;
+                            }
+                        }
+                    }
+                    for q in pairs.first[i] as usize..pairs.first[i + 1] as usize {
+                        if !pairs.active[q] {
+                            continue;
+                        }
+                        let pj = pairs.j[q] as usize;
+                        let (law, rolling) = stepper.sphere_pair_laws(i, pj);
+                        let h = &pairs.history[q];
+                        let key = ((i as u64) << 32) | (1 << 31) | pj as u64;
+                        block.book_pair(
+                            last,
+                            key,
+                            law,
+                            rolling,
+                            &h.contact,
+                            &h.rolling,
+                            (Some(i), Some(pj)),
+                        );
                     }
                 }
-            }
-            for q in pairs.first[i] as usize..pairs.first[i + 1] as usize {
-                if !pairs.active[q] {
-                    continue;
-                }
-                let pj = pairs.j[q] as usize;
-                let (law, rolling) = stepper.sphere_pair_laws(i, pj);
-                let h = &pairs.history[q];
-                let key = ((i as u64) << 32) | (1 << 31) | pj as u64;
-                self.book_pair(
-                    key,
-                    law,
-                    rolling,
-                    &h.contact,
-                    &h.rolling,
-                    (Some(i), Some(pj)),
-                    &mut j,
-                    &mut next,
-                );
-            }
+                block
+            })
+            .collect();
+        self.last = Vec::with_capacity(blocks.iter().map(|b| b.next.len()).sum());
+        for block in blocks {
+            self.join(block);
         }
-        self.last = next;
     }
 
+    /// Add a block's increments to the running totals and append its pair books to `last`.
+    fn join(&mut self, block: BlockBooks) {
+        let t = &block.totals;
+        self.plastic += t.plastic;
+        self.friction += t.friction;
+        self.damping += t.damping;
+        self.rolling += t.rolling;
+        self.wall_work += t.wall_work;
+        self.stiffness_tangential += t.stiffness_tangential;
+        self.stiffness_rolling += t.stiffness_rolling;
+        for (i, dp) in block.plastic_by_particle {
+            self.particle_plastic[i as usize] += dp;
+        }
+        if self.last.is_empty() {
+            self.last = block.next;
+        } else {
+            self.last.extend_from_slice(&block.next);
+        }
+    }
+}
+
+/// Increments of the running totals of [`Books`] over some pairs.
+#[derive(Debug, Clone, Copy, Default)]
+struct Totals {
+    plastic: f64,
+    friction: f64,
+    damping: f64,
+    rolling: f64,
+    wall_work: f64,
+    stiffness_tangential: f64,
+    stiffness_rolling: f64,
+}
+
+/// The books of one block of particles, or of one pair on the rapier path.
+#[derive(Debug, Default)]
+struct BlockBooks {
+    /// Position in the previous update's pair books from which the next key is looked for.
+    j: usize,
+    totals: Totals,
+    /// The block's pairs, in key order.
+    next: Vec<PairBooks>,
+    /// Plastic-work increments per particle, in visit order.
+    plastic_by_particle: Vec<(u32, f64)>,
+}
+
+impl BlockBooks {
     /// Book one touching pair: its work increments since the last update (found by key in
-    /// `self.last` from position `*j` on) and the energy its springs lost without work.
+    /// `last` from position `self.j` on) and the energy its springs lost without work.
     #[allow(clippy::too_many_arguments)]
     fn book_pair(
         &mut self,
+        last: &[PairBooks],
         key: u64,
         law: &SceneLaw,
         rolling_law: &AnyRollingLaw,
         contact: &ContactState<AnyNormalState, MindlinState>,
         rolling: &EpsdRollingState,
         owners: (Option<usize>, Option<usize>),
-        j: &mut usize,
-        next: &mut Vec<PairBooks>,
     ) {
-        while *j < self.last.len() && self.last[*j].key < key {
-            *j += 1;
+        while self.j < last.len() && last[self.j].key < key {
+            self.j += 1;
         }
-        let prev = match self.last.get(*j) {
+        let prev = match last.get(self.j) {
             Some(l) if l.key == key => *l,
             _ => PairBooks::default(),
         };
@@ -213,34 +282,36 @@ impl Books {
         let damping_work = contact.books.damping_work();
         let rolling_work = rolling_law.dissipated_work(rolling);
         let dp = plastic_work - prev.plastic;
-        self.plastic += dp;
-        self.friction += friction_work - prev.friction;
-        self.damping += damping_work - prev.damping;
-        self.rolling += rolling_work - prev.rolling;
+        let t = &mut self.totals;
+        t.plastic += dp;
+        t.friction += friction_work - prev.friction;
+        t.damping += damping_work - prev.damping;
+        t.rolling += rolling_work - prev.rolling;
         // The springs' energy change without work in this update, from the state the update
         // started from (docs/theory.md, "Energy books of the incremental springs").
         let tangential = &contact.tangential;
-        self.stiffness_tangential -= law.tangential.stiffness_energy_change(
+        t.stiffness_tangential -= law.tangential.stiffness_energy_change(
             prev.displacement_len2,
             prev.contact_radius,
             tangential.contact_radius,
         );
-        self.stiffness_rolling -= EpsdRollingState::stiffness_energy_change(
+        t.stiffness_rolling -= EpsdRollingState::stiffness_energy_change(
             prev.torque_len2,
             prev.rolling_stiffness,
             rolling.stiffness,
         );
         if dp != 0.0 {
+            let plastic = &mut self.plastic_by_particle;
             match owners {
                 (Some(a), Some(b)) => {
-                    self.particle_plastic[a] += 0.5 * dp;
-                    self.particle_plastic[b] += 0.5 * dp;
+                    plastic.push((a as u32, 0.5 * dp));
+                    plastic.push((b as u32, 0.5 * dp));
                 }
-                (Some(a), None) | (None, Some(a)) => self.particle_plastic[a] += dp,
+                (Some(a), None) | (None, Some(a)) => plastic.push((a as u32, dp)),
                 (None, None) => {}
             }
         }
-        next.push(PairBooks {
+        self.next.push(PairBooks {
             key,
             plastic: plastic_work,
             friction: friction_work,
