@@ -23,7 +23,7 @@ pub const MAGIC: &[u8; 8] = b"MDRSIMCK";
 /// Version of the layout of the payload; bumped whenever it changes (1 lacked the rolling books
 /// and rapier's world, 2 the springs' stiffness books and the spring states they start from, 3
 /// the neighbour-list path's particles and lists).
-pub const FORMAT_VERSION: u32 = 4;
+pub const FORMAT_VERSION: u32 = 5;
 const HEADER_LEN: usize = 24;
 
 /// Why a checkpoint was refused.

@@ -269,3 +269,23 @@ fn force_path_is_checked_with_line_and_key() {
     assert_eq!(e.key, "run.force_path");
     assert_eq!(e.line, line_of(&text, "force_path = "));
 }
+
+#[test]
+fn neighbour_skin_is_checked_with_line_and_key() {
+    let text = good().replacen("[run]\n", "[run]\nneighbour_skin_m = -0.001\n", 1);
+    let e = error_on(&text, "neighbour_skin_m");
+    assert_eq!(e.key, "run.neighbour_skin_m");
+    assert_eq!(e.line, line_of(&text, "neighbour_skin_m = -0.001"));
+    assert!(e.message.contains("(0, inf)"), "{e}");
+
+    let text = good().replacen("[run]\n", "[run]\nneighbour_skin_m = 0.001\n", 1);
+    assert!(!problems(&text).has_errors());
+
+    let text = good().replacen(
+        "[run]\n",
+        "[run]\nforce_path = \"rapier\"\nneighbour_skin_m = 0.001\n",
+        1,
+    );
+    let e = error_on(&text, "neighbour_skin_m");
+    assert!(e.message.contains("neighbour-list path only"), "{e}");
+}

@@ -60,7 +60,9 @@ pub trait NormalLaw: Send + Sync {
     /// Overlap at which the force vanishes on unloading: the residual (plastic) indentation (m).
     fn residual_overlap(&self, state: &Self::State) -> f64;
 
-    /// Work dissipated by plasticity so far (J).
+    /// Work dissipated by plasticity so far (J). A function of the largest overlap
+    /// ([`NormalLaw::max_overlap`]) alone, as the plastic memory of these laws is: callers that
+    /// book it every step recompute it only when that grew.
     fn dissipated_work(&self, state: &Self::State) -> f64;
 
     /// Elastic energy stored at `overlap` for this history (J): the work the contact returns

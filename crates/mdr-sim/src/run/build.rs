@@ -97,10 +97,13 @@ fn prediction_distance(scene: &Scene) -> f64 {
     (4.0 * scene.max_speed * scene.dt).max(0.1 * r_min)
 }
 
-/// Neighbour skin (m) of the neighbour-list path: a tenth of the mean diameter, the low end of
-/// LAMMPS's usual 0.1 d–0.3 d (the lists are rebuilt once something moved half of it).
+/// Neighbour skin (m) of the neighbour-list path: `[run] neighbour_skin_m`, by default a tenth
+/// of the mean diameter, the low end of LAMMPS's usual 0.1 d–0.3 d (the lists are rebuilt once
+/// something moved half of it).
 pub fn skin(scene: &Scene) -> f64 {
-    0.2 * scene.particles.iter().map(|p| p.radius).sum::<f64>() / scene.particles.len() as f64
+    scene.source.run.neighbour_skin_m.unwrap_or_else(|| {
+        0.2 * scene.particles.iter().map(|p| p.radius).sum::<f64>() / scene.particles.len() as f64
+    })
 }
 
 /// Build the world of `scene`.

@@ -25,7 +25,7 @@ use serde::{Deserialize, Serialize};
 /// Running totals of the dissipated work and of the work of moving walls. A pair's history (and
 /// its work books) is dropped when the pair separates, so the totals take each contact's
 /// increments step by step.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
 pub struct Books {
     /// Plastic work since the start (J).
     pub plastic: f64,
@@ -45,10 +45,34 @@ pub struct Books {
     /// stiffness changes at fixed torque.
     pub stiffness_rolling: f64,
     /// Every touching pair at the last update, sorted by key: its work books and the spring
-    /// states the next update starts from.
+    /// states the next update starts from. The neighbour-list path keeps them per block of
+    /// particles between its updates instead (`blocks`, empty here); a checkpoint holds them
+    /// here ([`Books::for_checkpoint`]).
     pub last: Vec<PairBooks>,
     /// Plastic work per particle (J).
     pub particle_plastic: Vec<f64>,
+    /// Neighbour-list path: the pair books of each block of particles at the last update.
+    #[serde(skip)]
+    blocks: Vec<Vec<PairBooks>>,
+    /// Buffers for the next update's blocks (reused, so steady updates do not allocate).
+    #[serde(skip)]
+    spare: Vec<Vec<PairBooks>>,
+}
+
+/// Equal totals and equal pair books, however each keeps its pairs between updates.
+impl PartialEq for Books {
+    fn eq(&self, other: &Self) -> bool {
+        let (a, b) = (self.for_checkpoint(), other.for_checkpoint());
+        a.plastic == b.plastic
+            && a.friction == b.friction
+            && a.damping == b.damping
+            && a.rolling == b.rolling
+            && a.wall_work == b.wall_work
+            && a.stiffness_tangential == b.stiffness_tangential
+            && a.stiffness_rolling == b.stiffness_rolling
+            && a.last == b.last
+            && a.particle_plastic == b.particle_plastic
+    }
 }
 
 /// What the books keep of one touching pair between updates.
@@ -58,6 +82,8 @@ pub struct PairBooks {
     pub key: u64,
     /// Plastic work of the pair so far (J).
     pub plastic: f64,
+    /// Largest overlap of the pair so far (m), which the plastic work is a function of.
+    pub max_overlap: f64,
     /// Friction work (J).
     pub friction: f64,
     /// Damping work (J).
@@ -126,8 +152,9 @@ impl Books {
                 }
             }
         }
-        self.last = Vec::new();
-        self.join(block);
+        self.add(&block.totals, &block.plastic_by_particle);
+        self.last = block.next;
+        self.blocks.clear();
     }
 
     /// [`Books::take`] on the neighbour-list path. Pairs are visited per particle `i` in the
@@ -135,8 +162,8 @@ impl Books {
     /// `i · 2³² + 2³¹ + j`), so the keys increase as the books' merge needs (scenes are not
     /// periodic: one image per pair).
     ///
-    /// The particles are booked in parallel in blocks of a fixed size: each block finds its
-    /// first key in `self.last`, keeps its own totals and pair books, and lists its per-particle
+    /// The particles are booked in parallel in blocks of a fixed size: each block merges with
+    /// its own pair books of the last update, keeps its own totals, and lists its per-particle
     /// plastic increments in visit order. The blocks are then joined in order, so the books do
     /// not depend on the number of threads, and each particle's plastic work takes its
     /// increments in the same order as a one-block pass.
@@ -147,14 +174,27 @@ impl Books {
         let pairs = stepper.pairs();
         let sp = stepper.surface_pairs();
         let surfaces = stepper.surfaces();
-        let last = &self.last;
         let n = p.len();
-        let blocks: Vec<BlockBooks> = (0..n.div_ceil(BLOCK))
-            .into_par_iter()
-            .map(|b| {
-                let first_key = ((b * BLOCK) as u64) << 32;
+        let nblocks = n.div_ceil(BLOCK);
+        // The last update's books of each block: kept per block, or (after a restart or a
+        // rapier-path update) found by key in the flat list.
+        let last = &self.last;
+        let previous: Vec<&[PairBooks]> = if last.is_empty() && self.blocks.len() == nblocks {
+            self.blocks.iter().map(Vec::as_slice).collect()
+        } else {
+            let at = |b: usize| last.partition_point(|l| l.key < ((b * BLOCK) as u64) << 32);
+            (0..nblocks).map(|b| &last[at(b)..at(b + 1)]).collect()
+        };
+        let mut spare = std::mem::take(&mut self.spare);
+        spare.resize_with(nblocks, Vec::new);
+        let blocks: Vec<BlockBooks> = spare
+            .par_drain(..nblocks)
+            .zip(previous.into_par_iter())
+            .enumerate()
+            .map(|(b, (mut next, last))| {
+                next.clear();
                 let mut block = BlockBooks {
-                    j: last.partition_point(|l| l.key < first_key),
+                    next,
                     ..BlockBooks::default()
                 };
                 for i in b * BLOCK..((b + 1) * BLOCK).min(n) {
@@ -204,15 +244,28 @@ impl Books {
                 block
             })
             .collect();
-        self.last = Vec::with_capacity(blocks.iter().map(|b| b.next.len()).sum());
-        for block in blocks {
-            self.join(block);
+        // The last update's block buffers become the next update's spares.
+        self.spare = std::mem::take(&mut self.blocks);
+        self.last.clear();
+        for mut block in blocks {
+            self.add(&block.totals, &block.plastic_by_particle);
+            self.blocks.push(std::mem::take(&mut block.next));
         }
     }
 
-    /// Add a block's increments to the running totals and append its pair books to `last`.
-    fn join(&mut self, block: BlockBooks) {
-        let t = &block.totals;
+    /// A copy for a checkpoint: every pair's books in the flat list `last`.
+    pub(crate) fn for_checkpoint(&self) -> Self {
+        let mut books = self.clone();
+        if !self.blocks.is_empty() {
+            books.last = self.blocks.concat();
+            books.blocks.clear();
+        }
+        books.spare.clear();
+        books
+    }
+
+    /// Add a block's increments to the running totals.
+    fn add(&mut self, t: &Totals, plastic_by_particle: &[(u32, f64)]) {
         self.plastic += t.plastic;
         self.friction += t.friction;
         self.damping += t.damping;
@@ -220,13 +273,8 @@ impl Books {
         self.wall_work += t.wall_work;
         self.stiffness_tangential += t.stiffness_tangential;
         self.stiffness_rolling += t.stiffness_rolling;
-        for (i, dp) in block.plastic_by_particle {
+        for &(i, dp) in plastic_by_particle {
             self.particle_plastic[i as usize] += dp;
-        }
-        if self.last.is_empty() {
-            self.last = block.next;
-        } else {
-            self.last.extend_from_slice(&block.next);
         }
     }
 }
@@ -276,8 +324,14 @@ impl BlockBooks {
             Some(l) if l.key == key => *l,
             _ => PairBooks::default(),
         };
-        // The law's report without its elastic energy (not needed here).
-        let plastic_work = law.normal.dissipated_work(&contact.normal);
+        // The plastic work is a function of the largest overlap (`NormalLaw::dissipated_work`):
+        // the same as at the last update unless that grew.
+        let max_overlap = law.normal.max_overlap(&contact.normal);
+        let plastic_work = if max_overlap == prev.max_overlap && prev.key == key {
+            prev.plastic
+        } else {
+            law.normal.dissipated_work(&contact.normal)
+        };
         let friction_work = contact.books.friction_work();
         let damping_work = contact.books.damping_work();
         let rolling_work = rolling_law.dissipated_work(rolling);
@@ -314,6 +368,7 @@ impl BlockBooks {
         self.next.push(PairBooks {
             key,
             plastic: plastic_work,
+            max_overlap,
             friction: friction_work,
             damping: damping_work,
             rolling: rolling_work,
@@ -650,7 +705,7 @@ impl CheckpointData {
             fast,
             impacts,
             world,
-            books: sim.books.clone(),
+            books: sim.books.for_checkpoint(),
             rng: RngRecord::of(&sim.rng),
             tracker: sim.tracker.clone(),
             collection: sim.collection.clone(),

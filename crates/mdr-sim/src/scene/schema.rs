@@ -120,6 +120,10 @@ pub struct RunSection {
     /// serialisation when absent, so checkpoints of scenes without it keep their fingerprint.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub force_path: Option<ForcePath>,
+    /// Neighbour-list path: the skin (m) of the neighbour lists (default a tenth of the mean
+    /// diameter). Left out of the serialisation when absent, as `force_path`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub neighbour_skin_m: Option<f64>,
     /// Headline quantity.
     #[serde(default)]
     pub headline: Headline,

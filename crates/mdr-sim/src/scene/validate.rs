@@ -319,6 +319,20 @@ impl Checker<'_, '_> {
                 );
             }
         }
+        if let Some(skin) = r.neighbour_skin_m {
+            let key = run.key("neighbour_skin_m");
+            if r.coupling == CouplingMode::Restitution || r.force_path == Some(ForcePath::Rapier) {
+                self.error(
+                    &key,
+                    "applies to the neighbour-list path only (coupling = \"force\", force_path = \"neighbour_list\")",
+                );
+            } else if !(skin.is_finite() && skin > 0.0) {
+                self.error(
+                    &key,
+                    format!("= {skin} m is outside the allowed range (0, inf) m"),
+                );
+            }
+        }
         if r.coupling == CouplingMode::Restitution && r.force_path.is_some() {
             self.error(
                 &run.key("force_path"),
