@@ -443,6 +443,9 @@ struct SceneFigures {
     path: &'static str,
     /// Step the run started from (0, or the checkpoint's step with `--resume`).
     start_step: u64,
+    /// The largest sphere speed at the last step (m/s; neighbour-list path): with the skin,
+    /// what sets how often the lists are rebuilt.
+    max_speed_m_per_s: Option<f64>,
     /// Neighbour-list builds during the timed steps (neighbour-list path).
     rebuilds: Option<u64>,
     scene: String,
@@ -496,6 +499,7 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
                 (_, mdr_sim::scene::ForcePath::NeighbourList) => "neighbour_list",
             },
             start_step,
+            max_speed_m_per_s: steps.max_speed(),
             rebuilds: steps
                 .rebuilds()
                 .zip(rebuilds0)
@@ -531,12 +535,16 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
             "  {:.3} contacts per particle (sphere-sphere), {} wall contacts",
             figures.contacts_per_particle, figures.wall_contacts
         );
-        match figures.rebuilds {
-            Some(r) => println!(
+        match (figures.rebuilds, figures.max_speed_m_per_s) {
+            (Some(r), Some(v)) => println!(
+                "  peak RSS {:.1} MB; {r} neighbour-list builds; largest sphere speed {v:.3} m/s",
+                figures.peak_rss_mb
+            ),
+            (Some(r), None) => println!(
                 "  peak RSS {:.1} MB; {r} neighbour-list builds",
                 figures.peak_rss_mb
             ),
-            None => println!("  peak RSS {:.1} MB", figures.peak_rss_mb),
+            (None, _) => println!("  peak RSS {:.1} MB", figures.peak_rss_mb),
         }
     }
     Ok(())

@@ -118,7 +118,8 @@ impl ConvexFaces {
         faces.start.push(0);
         for face in poly.faces() {
             let first = face.first_vertex_or_edge as usize;
-            let ring: Vec<Vector3<f64>> = adjacent[first..first + face.num_vertices_or_edges as usize]
+            let ring: Vec<Vector3<f64>> = adjacent
+                [first..first + face.num_vertices_or_edges as usize]
                 .iter()
                 .map(|&v| to_na(points[v as usize]))
                 .collect();
@@ -288,10 +289,21 @@ mod tests {
         assert!((deep.normal - Vector3::y()).norm() < 1e-15);
     }
 
+    /// A sphere of radius 0.05–0.4 centred in the cube of side 2.4 around the origin.
+    fn random_sphere(rng: &mut rand_chacha::ChaCha8Rng) -> (Vector3<f64>, f64) {
+        use rand::Rng;
+        let c = Vector3::new(
+            rng.random_range(-1.2..1.2),
+            rng.random_range(-1.2..1.2),
+            rng.random_range(-1.2..1.2),
+        );
+        (c, rng.random_range(0.05..0.4))
+    }
+
     /// A hull of a box's corners against parry's closed-form box projection (exact both).
     #[test]
     fn convex_faces_of_a_box_match_the_cuboid_projection() {
-        use rand::{Rng, SeedableRng};
+        use rand::SeedableRng;
         let half = Vector::new(0.3, 0.5, 0.2);
         let corners: Vec<Vector> = (0..8)
             .map(|k| {
@@ -302,21 +314,21 @@ mod tests {
                 )
             })
             .collect();
-        let hull = rapier3d_f64::parry::shape::ConvexPolyhedron::from_convex_hull(&corners).unwrap();
+        let hull =
+            rapier3d_f64::parry::shape::ConvexPolyhedron::from_convex_hull(&corners).unwrap();
         let faces = ConvexFaces::of(&hull);
-        assert_eq!(faces.len(), 6, "the hull's coplanar triangles merge into the box's faces");
+        assert_eq!(
+            faces.len(),
+            6,
+            "the hull's coplanar triangles merge into the box's faces"
+        );
         let cube = Cuboid::new(half);
         let pose = Pose::from_translation(Vector::new(0.1, -0.2, 0.3))
             * Pose::rotation(Vector::new(0.3, -0.4, 0.5));
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
         let (mut touching, mut worst) = (0, 0.0f64);
         for _ in 0..20_000 {
-            let c = Vector3::new(
-                rng.random_range(-1.2..1.2),
-                rng.random_range(-1.2..1.2),
-                rng.random_range(-1.2..1.2),
-            );
-            let r = rng.random_range(0.05..0.4);
+            let (c, r) = random_sphere(&mut rng);
             let exact = sphere_shape(&c, r, &cube, &pose);
             let fast = sphere_convex(&c, r, &faces, &hull, &pose);
             match (exact, fast) {
@@ -358,12 +370,7 @@ mod tests {
             * Pose::rotation(Vector::new(-0.2, 0.7, 0.1));
         let (mut touching, mut worst) = (0, 0.0f64);
         for _ in 0..20_000 {
-            let c = Vector3::new(
-                rng.random_range(-1.2..1.2),
-                rng.random_range(-1.2..1.2),
-                rng.random_range(-1.2..1.2),
-            );
-            let r = rng.random_range(0.05..0.4);
+            let (c, r) = random_sphere(&mut rng);
             let gjk = sphere_shape(&c, r, &hull, &pose);
             let fast = sphere_convex(&c, r, &faces, &hull, &pose);
             match (gjk, fast) {

@@ -251,6 +251,21 @@ fn spheres_fall_through_once_the_plug_is_removed_and_are_removed_below_the_sink(
         .windows(2)
         .filter(|w| w[0].0 >= 0.2)
         .all(|w| w[1].1 <= w[0].1 + 1.0));
+    // The books close with the spheres gone: what they carried out is booked in `removed_j`
+    // (their energy at removal, here all of the run's kinetic and gravitational energy).
+    let (first, last) = (&summary.energy[0], summary.energy.last().unwrap());
+    let drift = last.balance_j - first.balance_j;
+    eprintln!(
+        "removed {:.4e} J, drift {drift:.3e} J ({:.3} %)",
+        last.removed_j,
+        100.0 * drift / last.removed_j
+    );
+    assert!(last.removed_j > 0.0);
+    assert!(
+        drift.abs() < 0.02 * last.removed_j,
+        "drift {drift:e} J against {:e} J removed",
+        last.removed_j
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -52,7 +52,11 @@ impl FastSurface {
     pub fn within(&self, co: &Collider, x: &Vector3<f64>, reach: f64) -> bool {
         match &self.convex {
             Some(faces) => convex_distance_within(x, faces, co.position(), reach).is_some(),
-            None => co.shape().distance_to_point(co.position(), to_glam(x), true) < reach,
+            None => {
+                co.shape()
+                    .distance_to_point(co.position(), to_glam(x), true)
+                    < reach
+            }
         }
     }
 }

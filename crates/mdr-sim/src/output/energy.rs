@@ -7,7 +7,8 @@
 //! The two stiffness books hold the energy the incremental tangential and rolling springs lose
 //! without work, because their stiffness follows the contact while they carry a fixed
 //! displacement (Mindlin) or torque (rolling); docs/theory.md, "Energy books of the incremental
-//! springs".
+//! springs". Spheres that leave the run (`delete_below_m`) take their energy with them into
+//! `removed_j`, which the balance counts as well.
 
 use super::atomic::write_atomic;
 use serde::{Deserialize, Serialize};
@@ -58,6 +59,10 @@ pub struct EnergyRow {
     /// fixed torque.
     #[serde(default)]
     pub stiffness_rolling_j: f64,
+    /// Energy carried out of the run by removed spheres since the start (J): their kinetic and
+    /// gravitational energy when `delete_below_m` parks them, less what they have on their spot.
+    #[serde(default)]
+    pub removed_j: f64,
 }
 
 impl EnergyRow {
@@ -75,6 +80,7 @@ impl EnergyRow {
             + self.rolling_j
             + self.stiffness_tangential_j
             + self.stiffness_rolling_j
+            + self.removed_j
             - self.wall_work_j;
         self
     }
@@ -110,6 +116,7 @@ pub fn write_csv(path: &Path, rows: &[EnergyRow]) -> std::io::Result<()> {
                 "rolling_j",
                 "stiffness_tangential_j",
                 "stiffness_rolling_j",
+                "removed_j",
             ])
             .map_err(std::io::Error::other)?;
     }
@@ -154,6 +161,7 @@ mod tests {
         assert_eq!(rows[0].rolling_j, 0.0);
         assert_eq!(rows[0].stiffness_tangential_j, 0.0);
         assert_eq!(rows[0].stiffness_rolling_j, 0.0);
+        assert_eq!(rows[0].removed_j, 0.0);
         assert_eq!(rows[0].with_balance().balance_j, 27.0);
 
         let row = EnergyRow {
@@ -163,11 +171,12 @@ mod tests {
             rolling_j: 0.5,
             stiffness_tangential_j: 0.25,
             stiffness_rolling_j: -0.0625,
+            removed_j: 2.0,
             contacts: 2,
             ..EnergyRow::default()
         }
         .with_balance();
-        assert_eq!(row.balance_j, 1.8125);
+        assert_eq!(row.balance_j, 3.8125);
         let new = dir.join("new.csv");
         write_csv(&new, &[row]).unwrap();
         let text = std::fs::read_to_string(&new).unwrap();
@@ -175,7 +184,7 @@ mod tests {
             text.starts_with("time_s,")
                 && text.lines().next().unwrap().ends_with(
                     "balance_j,contacts,elastic_rolling_j,rolling_j,\
-                         stiffness_tangential_j,stiffness_rolling_j"
+                         stiffness_tangential_j,stiffness_rolling_j,removed_j"
                 ),
             "{text}"
         );

@@ -29,10 +29,12 @@ use indicatif::{ProgressBar, ProgressStyle};
 use mdr_contact::normal::NormalLaw;
 use mdr_contact::rolling::RollingLaw;
 use mdr_rapier::convert::to_na;
+use mdr_rapier::fast::particles::FastParticles;
 use mdr_rapier::geometry::sphere_sphere;
 use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use rapier3d_f64::prelude::RigidBodySet;
 use state::Books;
 use state::{FastPairHistory, SceneLaw};
 use std::path::{Path, PathBuf};
@@ -171,8 +173,9 @@ fn every(interval: f64, dt: f64) -> u64 {
 }
 
 /// A scene's steps without any output, for timing (`mdr-dem bench scene`): each
-/// [`SceneSteps::step`] is a step of [`run_scene`] (forces, energy books, the headline tracker
-/// where it samples every step, integration) without its energy rows, frames and checkpoints.
+/// [`SceneSteps::step`] is a step of [`run_scene`] (scene events such as removed walls and
+/// spheres, forces, energy books, the headline tracker where it samples every step,
+/// integration) without its energy rows, frames and checkpoints.
 pub struct SceneSteps<'a> {
     sim: Sim<'a>,
 }
@@ -205,6 +208,7 @@ impl<'a> SceneSteps<'a> {
     /// One step.
     pub fn step(&mut self) -> Result<(), SimError> {
         let sim = &mut self.sim;
+        sim.scene_events();
         sim.compute_forces(false)?;
         if sim.tracker.needs_every_step() {
             sim.gather_view();
@@ -223,6 +227,21 @@ impl<'a> SceneSteps<'a> {
     /// Steps done.
     pub fn steps_done(&self) -> u64 {
         self.sim.step
+    }
+
+    /// The largest sphere speed (m/s) now (neighbour-list path; `None` on rapier's paths).
+    pub fn max_speed(&self) -> Option<f64> {
+        match &self.sim.built.coupling {
+            Coupling::Fast(stepper) => Some(
+                stepper
+                    .particles()
+                    .linvel
+                    .iter()
+                    .map(|v| v.norm())
+                    .fold(0.0, f64::max),
+            ),
+            _ => None,
+        }
     }
 
     /// Number of particles.
@@ -587,12 +606,28 @@ impl<'a> Sim<'a> {
             world,
             &self.built.wall_bodies,
         );
+        let g = self.scene.gravity;
+        // Kinetic + gravitational energy of a sphere (solid: I = (2/5) m r²).
+        let energy = |m: f64, r: f64, x: &Vector3<f64>, v: &Vector3<f64>, w: &Vector3<f64>| {
+            0.5 * m * v.norm_squared() + 0.2 * m * r * r * w.norm_squared() - m * g.dot(x)
+        };
         match &mut self.built.coupling {
             Coupling::Fast(stepper) => {
                 let mut jumped = false;
                 if let Some(sink) = &self.sink {
                     let p = stepper.particles_mut();
+                    let removed_energy = |p: &FastParticles| -> f64 {
+                        (0..p.len())
+                            .filter(|&i| sink.is_removed(&p.position[i]))
+                            .map(|i| {
+                                let m = p.species_table[p.species[i] as usize].mass;
+                                energy(m, p.radius[i], &p.position[i], &p.linvel[i], &p.angvel[i])
+                            })
+                            .sum()
+                    };
+                    let before = removed_energy(p);
                     jumped = sink.apply(&mut p.position, &mut p.linvel, &mut p.angvel);
+                    self.books.removed += before - removed_energy(p);
                 }
                 if removed || jumped {
                     stepper.request_rebuild();
@@ -600,7 +635,24 @@ impl<'a> Sim<'a> {
             }
             _ => {
                 if let Some(sink) = &self.sink {
-                    sink.apply_to_bodies(&mut world.bodies, &self.built.particle_bodies);
+                    let handles = &self.built.particle_bodies;
+                    let radii = &self.scene.particles;
+                    let removed_energy = |bodies: &RigidBodySet| -> f64 {
+                        handles
+                            .iter()
+                            .zip(radii)
+                            .filter_map(|(h, p)| bodies.get(*h).map(|b| (b, p.radius)))
+                            .filter(|(b, _)| sink.is_removed(&to_na(b.translation())))
+                            .map(|(b, r)| {
+                                let (x, v, w) =
+                                    (to_na(b.translation()), to_na(b.linvel()), to_na(b.angvel()));
+                                energy(b.mass(), r, &x, &v, &w)
+                            })
+                            .sum()
+                    };
+                    let before = removed_energy(&world.bodies);
+                    sink.apply_to_bodies(&mut world.bodies, handles);
+                    self.books.removed += before - removed_energy(&world.bodies);
                 }
             }
         }
@@ -808,6 +860,7 @@ impl<'a> Sim<'a> {
         row.stiffness_tangential_j = self.books.stiffness_tangential;
         row.stiffness_rolling_j = self.books.stiffness_rolling;
         row.wall_work_j = self.books.wall_work;
+        row.removed_j = self.books.removed;
         row.with_balance()
     }
 

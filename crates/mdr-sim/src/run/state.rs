@@ -18,8 +18,8 @@ use mdr_rapier::fast::particles::FastParticles;
 use mdr_rapier::fast::FastListState;
 use nalgebra::Vector3;
 use rand_chacha::ChaCha8Rng;
-use rayon::prelude::*;
 use rapier3d_f64::prelude::*;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// Running totals of the dissipated work and of the work of moving walls. A pair's history (and
@@ -44,6 +44,8 @@ pub struct Books {
     /// Energy the rolling springs lost without work since the start (J; negative when gained):
     /// stiffness changes at fixed torque.
     pub stiffness_rolling: f64,
+    /// Kinetic and gravitational energy removed spheres took out of the run (J).
+    pub removed: f64,
     /// Every touching pair at the last update, sorted by key: its work books and the spring
     /// states the next update starts from. The neighbour-list path keeps them per block of
     /// particles between its updates instead (`blocks`, empty here); a checkpoint holds them
@@ -70,6 +72,7 @@ impl PartialEq for Books {
             && a.wall_work == b.wall_work
             && a.stiffness_tangential == b.stiffness_tangential
             && a.stiffness_rolling == b.stiffness_rolling
+            && a.removed == b.removed
             && a.last == b.last
             && a.particle_plastic == b.particle_plastic
     }
