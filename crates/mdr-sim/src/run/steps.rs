@@ -1,0 +1,126 @@
+//! A scene's steps without output, for timing (`mdr-dem bench scene`).
+
+use super::*;
+
+/// A scene's steps without any output, for timing (`mdr-dem bench scene`): each
+/// [`SceneSteps::step`] is a step of [`run_scene`] (scene events such as removed walls and
+/// spheres, forces, energy books, the headline tracker where it samples every step,
+/// integration) without its energy rows, frames and checkpoints.
+pub struct SceneSteps<'a> {
+    sim: Sim<'a>,
+}
+
+/// Contacts of a [`SceneSteps`] at its last force evaluation.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ContactCounts {
+    /// Touching sphere–sphere pairs.
+    pub sphere: usize,
+    /// Touching sphere–wall pairs.
+    pub wall: usize,
+}
+
+impl<'a> SceneSteps<'a> {
+    /// Build `scene`.
+    pub fn new(scene: &'a Scene) -> Result<Self, SimError> {
+        Ok(Self {
+            sim: Sim::new(scene)?,
+        })
+    }
+
+    /// Continue `scene` from a checkpoint written by [`run_scene`] (e.g. a settled bed, to
+    /// time the scene in the state its headline is measured in).
+    pub fn resume(scene: &'a Scene, checkpoint: &Path) -> Result<Self, SimError> {
+        Ok(Self {
+            sim: Sim::resume(scene, checkpoint)?,
+        })
+    }
+
+    /// One step.
+    pub fn step(&mut self) -> Result<(), SimError> {
+        let sim = &mut self.sim;
+        sim.scene_events();
+        sim.compute_forces(false)?;
+        if sim.tracker.needs_every_step() {
+            sim.gather_view();
+            let view = ParticleView {
+                position: &sim.view.position,
+                velocity: &sim.view.velocity,
+                radius: &sim.view.radius,
+                mass: &sim.view.mass,
+                contacts: &sim.view.contacts,
+            };
+            sim.tracker.on_step(sim.scene, &view);
+        }
+        sim.advance()
+    }
+
+    /// Steps done.
+    pub fn steps_done(&self) -> u64 {
+        self.sim.step
+    }
+
+    /// The largest sphere speed (m/s) now (neighbour-list path; `None` on rapier's paths).
+    pub fn max_speed(&self) -> Option<f64> {
+        match &self.sim.built.coupling {
+            Coupling::Fast(stepper) => Some(
+                stepper
+                    .particles()
+                    .linvel
+                    .iter()
+                    .map(|v| v.norm())
+                    .fold(0.0, f64::max),
+            ),
+            _ => None,
+        }
+    }
+
+    /// Number of particles.
+    pub fn particles(&self) -> usize {
+        self.sim.scene.particles.len()
+    }
+
+    /// Whether the scene runs on the neighbour-list path.
+    pub fn neighbour_list(&self) -> bool {
+        matches!(self.sim.built.coupling, Coupling::Fast(_))
+    }
+
+    /// Neighbour-list builds so far (neighbour-list path only).
+    pub fn rebuilds(&self) -> Option<u64> {
+        match &self.sim.built.coupling {
+            Coupling::Fast(stepper) => Some(stepper.rebuilds()),
+            _ => None,
+        }
+    }
+
+    /// Touching pairs at the last force evaluation.
+    pub fn contacts(&self) -> ContactCounts {
+        match &self.sim.built.coupling {
+            Coupling::Fast(stepper) => {
+                let report = stepper.last_report();
+                ContactCounts {
+                    sphere: report.sphere_contacts,
+                    wall: report.surface_contacts,
+                }
+            }
+            Coupling::Force(stepper) => {
+                let mut counts = ContactCounts::default();
+                let particle = |c: rapier3d_f64::prelude::ColliderHandle| {
+                    self.sim
+                        .built
+                        .particle_of_collider
+                        .get(c.into_raw_parts().0 as usize)
+                        .is_some_and(|&i| i != usize::MAX)
+                };
+                for e in stepper.contacts().entries() {
+                    if particle(e.collider1) && particle(e.collider2) {
+                        counts.sphere += 1;
+                    } else {
+                        counts.wall += 1;
+                    }
+                }
+                counts
+            }
+            Coupling::Restitution(_) => ContactCounts::default(),
+        }
+    }
+}
