@@ -101,13 +101,18 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         return Ok(());
     }
     if let (Some(first), Some(last)) = (summary.energy.first(), summary.energy.last()) {
+        // The energy the run moved around: a drum turning a bed that starts at rest near the
+        // origin has little initial energy but dissipates all the work the drum does.
+        let dissipated = last.plastic_j + last.friction_j + last.damping_j + last.rolling_j;
         let scale = first
             .kinetic()
             .abs()
             .max(first.gravitational_j.abs())
+            .max(dissipated.abs())
+            .max(last.wall_work_j.abs())
             .max(1e-300);
         println!(
-            "done: t = {:.6e} s, {} steps in {:.1} s; energy balance drift {:.3e} J ({:.3} % of the initial energy scale)",
+            "done: t = {:.6e} s, {} steps in {:.1} s; energy balance drift {:.3e} J ({:.3} % of the energy scale: the largest of the initial kinetic and gravitational energies, the dissipated work and the wall work)",
             summary.time,
             summary.step,
             summary.wall_seconds,
