@@ -126,10 +126,10 @@ where
     })
 }
 
-/// The shared reference bed `shared/bench/lammps/settled.data`, looked for next to the
-/// repository this package was built from, then upwards from the working directory.
+/// The repository's reference bed `benches/lammps/settled.data`, looked for in the repository
+/// this package was built from, then in the working directory and its parents.
 fn default_data() -> PyResult<PathBuf> {
-    let rel = Path::new("shared/bench/lammps/settled.data");
+    let rel = Path::new("benches/lammps/settled.data");
     let mut candidates: Vec<PathBuf> = Path::new(env!("CARGO_MANIFEST_DIR"))
         .ancestors()
         .map(|a| a.join(rel))
@@ -144,14 +144,14 @@ fn default_data() -> PyResult<PathBuf> {
         .ok_or_else(|| {
             invalid(
                 "data",
-                "the reference bed `shared/bench/lammps/settled.data` was not found next to the \
-             repository or above the working directory; pass data=PATH or count=N",
+                "the reference bed `benches/lammps/settled.data` was not found in the repository \
+             or above the working directory; pass data=PATH or count=N",
             )
         })
 }
 
 /// Throughput of the fast force-mode path on a settled bed (as `mdr-dem bench bed`): the LAMMPS
-/// data file `data` (default: the shared 10,000-sphere reference bed), or, with `count`, a bed of
+/// data file `data` (default: the repository's 10,000-sphere reference bed), or, with `count`, a bed of
 /// `count` spheres poured and settled with `settle_steps` steps first (untimed). `law`: "hertz"
 /// or "mdr" (`q_c = qc` in reduced units, Θ = 0.37 E*); `steps` timed steps after `warmup`;
 /// `threads` worker threads; `tile`: repeat the bed tile × tile times. Returns a dict:

@@ -173,3 +173,9 @@ def test_bench_bed_on_a_small_generated_bed():
     assert mdr["law"] == "mdr"
     with pytest.raises(ValueError, match="`threads`"):
         mdr_dem.bench_bed(count=200, threads=0)
+
+
+def test_bench_bed_defaults_to_the_repository_reference_bed():
+    out = mdr_dem.bench_bed(steps=2, warmup=0)
+    assert out["particles"] == 10_000 and out["steps"] == 2
+    assert out["floor_contacts"] > 0
