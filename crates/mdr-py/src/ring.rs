@@ -21,6 +21,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
+/// A column of the ring samples: its name and how to read it from one sample.
+type SampleColumn = (&'static str, fn(&Sample) -> f64);
+
 /// A Python callable `law(v) -> ε` (v: normal approach speed in m/s). The first exception or
 /// invalid value is kept and raised by `Ring.run`; later impacts of that step are elastic.
 struct PythonLaw {
@@ -399,7 +402,7 @@ impl Ring {
     fn samples<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let dict = PyDict::new(py);
         let s = &self.samples;
-        let columns: [(&str, fn(&Sample) -> f64); 11] = [
+        let columns: [SampleColumn; 11] = [
             ("t_orbits", |s| s.t_orbits),
             ("sigma_x", |s| s.sigma_x),
             ("sigma_y", |s| s.sigma_y),
