@@ -228,13 +228,33 @@ pub struct Sink {
     pub height: f64,
     /// Unit vector against gravity.
     pub up: Vector3<f64>,
+    /// Magnitude of gravity (m/s²), for the gravitational energy a parked sphere gives up.
+    pub gravity: f64,
     spots: Vec<Vector3<f64>>,
     r_max: f64,
 }
 
+/// What one [`Sink::apply`] did.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Parking {
+    /// A sphere was moved by more than a quarter radius (a newly removed one: the neighbour
+    /// lists need a rebuild).
+    pub jumped: bool,
+    /// Kinetic and gravitational energy the parked spheres lost (J): what they take out of the
+    /// run.
+    pub energy: f64,
+}
+
 impl Sink {
-    /// A sink at `height` along `up` (unit) for spheres with the given initial centres and radii.
-    pub fn new(height: f64, up: Vector3<f64>, centres: &[Vector3<f64>], radii: &[f64]) -> Self {
+    /// A sink at `height` along `up` (unit) under gravity of magnitude `gravity`, for spheres
+    /// with the given initial centres and radii.
+    pub fn new(
+        height: f64,
+        up: Vector3<f64>,
+        gravity: f64,
+        centres: &[Vector3<f64>],
+        radii: &[f64],
+    ) -> Self {
         let n = centres.len();
         let r_max = radii.iter().copied().fold(0.0, f64::max);
         let spacing = 2.5 * r_max;
@@ -261,6 +281,7 @@ impl Sink {
         Self {
             height,
             up,
+            gravity,
             spots,
             r_max,
         }
@@ -276,15 +297,16 @@ impl Sink {
         self.spots[i]
     }
 
-    /// Hold every sphere below the height at rest on its spot. Returns whether a sphere was moved
-    /// by more than a quarter radius (a newly removed one: the neighbour lists need a rebuild).
+    /// Hold every sphere below the height at rest on its spot; `inertia(i)` gives sphere `i`'s
+    /// mass and moment of inertia.
     pub fn apply(
         &self,
         position: &mut [Vector3<f64>],
         linvel: &mut [Vector3<f64>],
         angvel: &mut [Vector3<f64>],
-    ) -> bool {
-        let mut jumped = false;
+        inertia: impl Fn(usize) -> (f64, f64),
+    ) -> Parking {
+        let mut parking = Parking::default();
         for (i, ((x, v), w)) in position
             .iter_mut()
             .zip(linvel.iter_mut())
@@ -292,40 +314,63 @@ impl Sink {
             .enumerate()
         {
             if x.dot(&self.up) < self.height {
+                let (m, moment) = inertia(i);
+                parking.energy += self.lost_energy(i, m, moment, x, v, w);
                 let spot = self.spots[i];
-                jumped |= (*x - spot).norm_squared() > (0.25 * self.r_max).powi(2);
+                parking.jumped |= (*x - spot).norm_squared() > (0.25 * self.r_max).powi(2);
                 *x = spot;
                 *v = Vector3::zeros();
                 *w = Vector3::zeros();
             }
         }
-        jumped
+        parking
     }
 
-    /// [`Sink::apply`] on particles held as rapier bodies (`handles[i]` is sphere `i`).
+    /// [`Sink::apply`] on particles held as rapier bodies (`handles[i]` is sphere `i`, of radius
+    /// `radii[i]`).
     pub fn apply_to_bodies(
         &self,
         bodies: &mut rapier3d_f64::prelude::RigidBodySet,
         handles: &[rapier3d_f64::prelude::RigidBodyHandle],
-    ) -> bool {
+        radii: impl Fn(usize) -> f64,
+    ) -> Parking {
         use mdr_rapier::convert::{to_glam, to_na};
-        let mut jumped = false;
+        let mut parking = Parking::default();
         for (i, h) in handles.iter().enumerate() {
             let Some(body) = bodies.get_mut(*h) else {
                 continue;
             };
             let x = to_na(body.translation());
             if x.dot(&self.up) < self.height {
+                let (m, r) = (body.mass(), radii(i));
+                let (v, w) = (to_na(body.linvel()), to_na(body.angvel()));
+                parking.energy += self.lost_energy(i, m, 0.4 * m * r * r, &x, &v, &w);
                 let spot = self.spots[i];
                 if x != spot {
-                    jumped |= (x - spot).norm_squared() > (0.25 * self.r_max).powi(2);
+                    parking.jumped |= (x - spot).norm_squared() > (0.25 * self.r_max).powi(2);
                     body.set_translation(to_glam(&spot), true);
                 }
                 body.set_linvel(to_glam(&Vector3::zeros()), true);
                 body.set_angvel(to_glam(&Vector3::zeros()), true);
             }
         }
-        jumped
+        parking
+    }
+
+    /// Kinetic energy plus the gravitational energy above its spot of sphere `i` (mass `m`,
+    /// moment of inertia `moment`) at `x` moving with `v`, `w`: what parking it takes away.
+    fn lost_energy(
+        &self,
+        i: usize,
+        m: f64,
+        moment: f64,
+        x: &Vector3<f64>,
+        v: &Vector3<f64>,
+        w: &Vector3<f64>,
+    ) -> f64 {
+        0.5 * m * v.norm_squared()
+            + 0.5 * moment * w.norm_squared()
+            + m * self.gravity * self.up.dot(&(x - self.spots[i]))
     }
 
     /// Number of removed spheres among `position`.
@@ -345,7 +390,7 @@ pub fn scene_sink(scene: &crate::scene::Scene) -> Option<Sink> {
     };
     let centres: Vec<_> = scene.particles.iter().map(|p| p.position).collect();
     let radii: Vec<_> = scene.particles.iter().map(|p| p.radius).collect();
-    Some(Sink::new(height, up, &centres, &radii))
+    Some(Sink::new(height, up, g, &centres, &radii))
 }
 
 /// How far a removed wall is moved (m), against `up`: far below anything of the scene, so that no
@@ -578,16 +623,23 @@ mod tests {
             .map(|i| Vector3::new(i as f64 * 0.01, 0.0, 1.0))
             .collect();
         let radii = vec![0.004; n];
-        let sink = Sink::new(-0.5, Vector3::z(), &centres, &radii);
+        let sink = Sink::new(-0.5, Vector3::z(), 9.81, &centres, &radii);
         let mut x = centres.clone();
         let mut v = vec![Vector3::new(0.0, 0.0, -3.0); n];
         let mut w = vec![Vector3::new(1.0, 0.0, 0.0); n];
         for xi in x.iter_mut().take(10) {
             xi.z = -0.6;
         }
+        let (m, moment) = (2.0, 0.4 * 2.0 * 0.004 * 0.004);
+        let parking = sink.apply(&mut x, &mut v, &mut w, |_| (m, moment));
+        assert!(parking.jumped, "ten spheres jumped to their spots");
+        // Each took its kinetic energy and its fall from z = −0.6 to its spot with it.
+        let expected: f64 = (0..10)
+            .map(|i| 0.5 * m * 9.0 + 0.5 * moment + m * 9.81 * (-0.6 - sink.spot(i).z))
+            .sum();
         assert!(
-            sink.apply(&mut x, &mut v, &mut w),
-            "ten spheres jumped to their spots"
+            (parking.energy - expected).abs() < 1e-12 * expected,
+            "{parking:?}"
         );
         assert_eq!(sink.removed(&x), 10);
         for i in 0..10 {
@@ -604,7 +656,7 @@ mod tests {
         }
         // Held again after a small drift: no jump, back on the spot.
         x[3].z -= 1e-6;
-        assert!(!sink.apply(&mut x, &mut v, &mut w));
+        assert!(!sink.apply(&mut x, &mut v, &mut w, |_| (m, moment)).jumped);
         assert_eq!(x[3], sink.spot(3));
     }
 }

@@ -35,12 +35,10 @@ use indicatif::{ProgressBar, ProgressStyle};
 use mdr_contact::normal::NormalLaw;
 use mdr_contact::rolling::RollingLaw;
 use mdr_rapier::convert::to_na;
-use mdr_rapier::fast::particles::FastParticles;
 use mdr_rapier::geometry::sphere_sphere;
 use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use rapier3d_f64::prelude::RigidBodySet;
 use state::Books;
 use state::{FastPairHistory, SceneLaw};
 use std::path::{Path, PathBuf};
@@ -489,28 +487,21 @@ impl<'a> Sim<'a> {
             world,
             &self.built.wall_bodies,
         );
-        let g = self.scene.gravity;
-        // Kinetic + gravitational energy of a sphere (solid: I = (2/5) m r²).
-        let energy = |m: f64, r: f64, x: &Vector3<f64>, v: &Vector3<f64>, w: &Vector3<f64>| {
-            0.5 * m * v.norm_squared() + 0.2 * m * r * r * w.norm_squared() - m * g.dot(x)
-        };
         match &mut self.built.coupling {
             Coupling::Fast(stepper) => {
                 let mut jumped = false;
                 if let Some(sink) = &self.sink {
                     let p = stepper.particles_mut();
-                    let removed_energy = |p: &FastParticles| -> f64 {
-                        (0..p.len())
-                            .filter(|&i| sink.is_removed(&p.position[i]))
-                            .map(|i| {
-                                let m = p.species_table[p.species[i] as usize].mass;
-                                energy(m, p.radius[i], &p.position[i], &p.linvel[i], &p.angvel[i])
-                            })
-                            .sum()
+                    let (species, table, radius) = (&p.species, &p.species_table, &p.radius);
+                    // Solid spheres, I = (2/5) m r², as the energy rows count them.
+                    let inertia = |i: usize| {
+                        let m = table[species[i] as usize].mass;
+                        (m, 0.4 * m * radius[i] * radius[i])
                     };
-                    let before = removed_energy(p);
-                    jumped = sink.apply(&mut p.position, &mut p.linvel, &mut p.angvel);
-                    self.books.removed += before - removed_energy(p);
+                    let parking =
+                        sink.apply(&mut p.position, &mut p.linvel, &mut p.angvel, inertia);
+                    jumped = parking.jumped;
+                    self.books.removed += parking.energy;
                 }
                 if removed || jumped {
                     stepper.request_rebuild();
@@ -518,24 +509,12 @@ impl<'a> Sim<'a> {
             }
             _ => {
                 if let Some(sink) = &self.sink {
-                    let handles = &self.built.particle_bodies;
-                    let radii = &self.scene.particles;
-                    let removed_energy = |bodies: &RigidBodySet| -> f64 {
-                        handles
-                            .iter()
-                            .zip(radii)
-                            .filter_map(|(h, p)| bodies.get(*h).map(|b| (b, p.radius)))
-                            .filter(|(b, _)| sink.is_removed(&to_na(b.translation())))
-                            .map(|(b, r)| {
-                                let (x, v, w) =
-                                    (to_na(b.translation()), to_na(b.linvel()), to_na(b.angvel()));
-                                energy(b.mass(), r, &x, &v, &w)
-                            })
-                            .sum()
-                    };
-                    let before = removed_energy(&world.bodies);
-                    sink.apply_to_bodies(&mut world.bodies, handles);
-                    self.books.removed += before - removed_energy(&world.bodies);
+                    let particles = &self.scene.particles;
+                    let parking =
+                        sink.apply_to_bodies(&mut world.bodies, &self.built.particle_bodies, |i| {
+                            particles[i].radius
+                        });
+                    self.books.removed += parking.energy;
                 }
             }
         }
