@@ -153,6 +153,19 @@ struct ViewBuffers {
     contacts: Vec<u32>,
 }
 
+impl ViewBuffers {
+    /// The buffers as the headline tracker reads them.
+    fn view(&self) -> ParticleView<'_> {
+        ParticleView {
+            position: &self.position,
+            velocity: &self.velocity,
+            radius: &self.radius,
+            mass: &self.mass,
+            contacts: &self.contacts,
+        }
+    }
+}
+
 /// Whether a decoded world holds the bodies and colliders the scene builds, with the same
 /// handles and shapes' kinds (the colliders registered with the coupling refer to them).
 fn handles_match(sim: &Sim<'_>, world: &rapier3d_f64::prelude::PhysicsWorld) -> bool {
@@ -392,15 +405,7 @@ impl<'a> Sim<'a> {
             self.compute_forces(frame_due && scene.contact_network && !options.no_frames)?;
             let sampling = k % energy_every == 0 || k % frame_every == 0 || last;
             if sampling || self.tracker.needs_every_step() {
-                self.gather_view();
-                let view = ParticleView {
-                    position: &self.view.position,
-                    velocity: &self.view.velocity,
-                    radius: &self.view.radius,
-                    mass: &self.view.mass,
-                    contacts: &self.view.contacts,
-                };
-                self.tracker.on_step(scene, &view);
+                self.track_step();
             }
             if k % energy_every == 0 || last {
                 let row = self.energy_row();
@@ -622,13 +627,13 @@ impl<'a> Sim<'a> {
     }
 
     fn view_ref(&self) -> ParticleView<'_> {
-        ParticleView {
-            position: &self.view.position,
-            velocity: &self.view.velocity,
-            radius: &self.view.radius,
-            mass: &self.view.mass,
-            contacts: &self.view.contacts,
-        }
+        self.view.view()
+    }
+
+    /// Gather the particles' view and give it to the headline tracker for this step.
+    fn track_step(&mut self) {
+        self.gather_view();
+        self.tracker.on_step(self.scene, &self.view.view());
     }
 
     /// A NaN stops the run with a clear message.

@@ -41,15 +41,7 @@ impl<'a> SceneSteps<'a> {
         sim.scene_events();
         sim.compute_forces(false)?;
         if sim.tracker.needs_every_step() {
-            sim.gather_view();
-            let view = ParticleView {
-                position: &sim.view.position,
-                velocity: &sim.view.velocity,
-                radius: &sim.view.radius,
-                mass: &sim.view.mass,
-                contacts: &sim.view.contacts,
-            };
-            sim.tracker.on_step(sim.scene, &view);
+            sim.track_step();
         }
         sim.advance()
     }
