@@ -1,18 +1,15 @@
 //! `mdr-dem bench …`: throughput benchmarks. `bench bed` runs the fast force-mode path on the
 //! settled 10,000-sphere bed of `benches/lammps/` with the system of that directory's `in.bench`
-//! (`hertzhist`), or with the MDR law; see `docs/performance.md`.
+//! (`hertzhist`), or with the MDR law (the loop is `mdr_rapier::fast::bed::bench_bed`, which
+//! Python's `mdr_dem.bench_bed` runs too); see `docs/performance.md`.
 
 use anyhow::{bail, Context};
 use clap::{Args, Subcommand, ValueEnum};
-use mdr_contact::damping::HertzianViscous;
-use mdr_contact::model::WorkBooks;
-use mdr_contact::normal::{Hertz, MdrElastoPlastic, NormalLaw, NormalModel};
-use mdr_contact::rolling::NoRolling;
-use mdr_contact::tangential::Mindlin;
-use mdr_rapier::fast::bed::{reference_system, settled_bed, Bed, BedSpec};
+use mdr_rapier::fast::bed::{
+    bench_bed, peak_rss_mb, process_cpu_seconds, settled_bed, Bed, BedSpec, BenchFigures, BenchLaw,
+    BenchSettings, BenchValue,
+};
 use mdr_rapier::fast::rayon;
-use mdr_rapier::fast::FastForceStepper;
-use mdr_rapier::rapier::prelude::PhysicsWorld;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -176,103 +173,29 @@ fn default_data() -> anyhow::Result<PathBuf> {
     )
 }
 
-/// Peak resident set size (MB) from `VmHWM` in /proc/self/status; 0 where unavailable.
-fn peak_rss_mb() -> f64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("VmHWM:"))
-                .and_then(|l| l.split_whitespace().nth(1))
-                .and_then(|kb| kb.parse::<f64>().ok())
-        })
-        .map_or(0.0, |kb| kb / 1024.0)
-}
-
-/// CPU time (user + system, all threads) of this process so far (s), from
-/// `clock_gettime(CLOCK_PROCESS_CPUTIME_ID)` (nanosecond resolution, up to date for running
-/// threads too); `None` where the clock is unavailable.
-fn process_cpu_seconds() -> Option<f64> {
-    let mut time = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: clock_gettime writes one `timespec` through the valid pointer it is given.
-    let status = unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut time) };
-    (status == 0).then_some(time.tv_sec as f64 + time.tv_nsec as f64 * 1e-9)
-}
-
-/// Figures of one `bench bed` run.
-#[derive(Debug, serde::Serialize)]
-struct BedFigures {
-    particle_steps_per_s: f64,
-    ms_per_step: f64,
-    contacts_per_particle: f64,
-    peak_rss_mb: f64,
-    threads: usize,
-    /// Particle-steps per CPU second of the timed loop (all threads): per-core throughput that
-    /// does not depend on how much of the machine other jobs take.
-    particle_steps_per_cpu_s: f64,
-    cpu_seconds: f64,
-    wall_seconds: f64,
-    law: &'static str,
-    particles: usize,
-    steps: usize,
-    rebuilds: u64,
-    floor_contacts: usize,
-    plastic_contact_fraction: f64,
-    stepper_bytes_per_particle: f64,
-    /// Whether orientations were integrated (`--no-orientation` turns it off).
-    orientation: bool,
-    /// Whether the pair histories booked friction and damping work (`--no-work-books` turns
-    /// it off).
-    work_books: bool,
-    /// FNV-1a hash (hex) of the bits of every particle's final position, velocity and angular
-    /// velocity: two builds (or thread counts) gave the same trajectories iff it is the same.
-    state_checksum: String,
-}
-
-/// FNV-1a (64 bit) over the bit patterns of `values`.
-fn fnv1a(values: impl Iterator<Item = f64>) -> u64 {
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
-    for v in values {
-        for byte in v.to_bits().to_le_bytes() {
-            hash ^= u64::from(byte);
-            hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
-        }
-    }
-    hash
-}
-
 fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
     let path = match &args.data {
         Some(p) => p.clone(),
         None => default_data()?,
     };
-    if args.tile == 0 {
-        bail!("--tile = 0 is outside the allowed range [1, inf)");
-    }
-    if args.steps == 0 {
-        bail!("--steps = 0 is outside the allowed range [1, inf) (timed steps)");
-    }
-    let bed = Bed::read_lammps(&path).with_context(|| format!("reading {}", path.display()))?;
-    let bed = if args.tile > 1 {
-        bed.tiled(args.tile, args.tile)
-    } else {
-        bed
+    let settings = BenchSettings {
+        law: match args.law {
+            LawArg::Hertz => BenchLaw::Hertz,
+            LawArg::Mdr => BenchLaw::Mdr { qc: args.qc },
+        },
+        steps: args.steps,
+        warmup: args.warmup,
+        threads: args.threads,
+        tile: args.tile,
+        skin: args.skin,
+        orientation: !args.no_orientation,
+        work_books: !args.no_work_books,
     };
-    let pool = rayon_pool(args.threads)?;
-    let figures = pool.install(|| match args.law {
-        LawArg::Hertz => timed_run(Hertz, "hertz", &bed, args),
-        LawArg::Mdr => timed_run(
-            MdrElastoPlastic::new(args.qc, 0.37).map_err(anyhow::Error::from)?,
-            "mdr",
-            &bed,
-            args,
-        ),
-    })?;
+    settings.validate()?;
+    let bed = Bed::read_lammps(&path).with_context(|| format!("reading {}", path.display()))?;
+    let figures = bench_bed(&bed, &settings)?;
     if args.json {
-        println!("{}", serde_json::to_string(&figures)?);
+        println!("{}", serde_json::to_string(&BedJson(&figures))?);
     } else {
         println!(
             "bench bed: {} spheres, law {}, {} threads, {} timed steps after {} warm-up steps{}",
@@ -317,107 +240,25 @@ fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn timed_run<N>(
-    normal: N,
-    law_name: &'static str,
-    bed: &Bed,
-    args: &BedArgs,
-) -> anyhow::Result<BedFigures>
-where
-    N: NormalModel,
-    N::Law: Clone,
-{
-    for i in 0..bed.len() {
-        if (bed.diameter[i] - 1.0).abs() > 1e-12 || (bed.density[i] - 1.0).abs() > 1e-12 {
-            bail!(
-                "sphere {} has diameter {} and density {}: `bench bed` expects the reference bed \
-                 (diameter 1, density 1)",
-                i + 1,
-                bed.diameter[i],
-                bed.density[i]
-            );
-        }
-    }
-    let (stepper, world) = reference_system(normal, bed)?;
-    let stepper = stepper
-        .skin(args.skin)?
-        .track_orientation(!args.no_orientation);
-    if args.no_work_books {
-        measure(stepper.without_work_books(), world, law_name, bed, args)
-    } else {
-        measure(stepper, world, law_name, bed, args)
-    }
-}
+/// `bench bed --json`: the figures as one object, with the keys and in the order of
+/// [`BenchFigures::fields`].
+struct BedJson<'a>(&'a BenchFigures);
 
-/// Warm-up, then the timed steps, then the figures.
-fn measure<N, B>(
-    mut stepper: FastForceStepper<N, Mindlin, HertzianViscous, NoRolling, B>,
-    mut world: PhysicsWorld,
-    law_name: &'static str,
-    bed: &Bed,
-    args: &BedArgs,
-) -> anyhow::Result<BedFigures>
-where
-    N: NormalModel,
-    N::Law: Clone,
-    B: WorkBooks,
-{
-    for _ in 0..args.warmup {
-        stepper.step(&mut world)?;
-    }
-    let rebuilds0 = stepper.rebuilds();
-    let cpu0 = process_cpu_seconds();
-    let start = Instant::now();
-    for _ in 0..args.steps {
-        stepper.step(&mut world)?;
-    }
-    let seconds = start.elapsed().as_secs_f64();
-    let cpu_seconds = match (cpu0, process_cpu_seconds()) {
-        (Some(a), Some(b)) => b - a,
-        _ => f64::NAN,
-    };
-    let report = stepper.last_report();
-    let n = bed.len();
-    let pairs = stepper.pairs();
-    let (mut touching, mut plastic) = (0usize, 0usize);
-    for q in 0..pairs.len() {
-        if pairs.active[q] {
-            touching += 1;
-            let law = stepper.sphere_law(pairs.i[q] as usize, pairs.j[q] as usize);
-            let state = &pairs.history[q].contact.normal;
-            if law.normal.max_overlap(state) > law.normal.yield_overlap() {
-                plastic += 1;
+impl serde::Serialize for BedJson<'_> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let fields = self.0.fields();
+        let mut map = serializer.serialize_map(Some(fields.len()))?;
+        for (key, value) in fields {
+            match value {
+                BenchValue::Real(x) => map.serialize_entry(key, &x)?,
+                BenchValue::Count(n) => map.serialize_entry(key, &n)?,
+                BenchValue::Flag(b) => map.serialize_entry(key, &b)?,
+                BenchValue::Text(t) => map.serialize_entry(key, t)?,
             }
         }
+        map.end()
     }
-    Ok(BedFigures {
-        particle_steps_per_s: (n * args.steps) as f64 / seconds,
-        ms_per_step: 1e3 * seconds / args.steps.max(1) as f64,
-        contacts_per_particle: 2.0 * report.sphere_contacts as f64 / n as f64,
-        peak_rss_mb: peak_rss_mb(),
-        threads: args.threads,
-        particle_steps_per_cpu_s: (n * args.steps) as f64 / cpu_seconds,
-        cpu_seconds,
-        wall_seconds: seconds,
-        law: law_name,
-        particles: n,
-        steps: args.steps,
-        rebuilds: stepper.rebuilds() - rebuilds0,
-        floor_contacts: report.surface_contacts,
-        orientation: !args.no_orientation,
-        work_books: !args.no_work_books,
-        plastic_contact_fraction: if touching > 0 {
-            plastic as f64 / touching as f64
-        } else {
-            0.0
-        },
-        stepper_bytes_per_particle: stepper.memory_bytes() as f64 / n as f64,
-        state_checksum: {
-            let p = stepper.particles();
-            let vectors = p.position.iter().chain(&p.linvel).chain(&p.angvel);
-            format!("{:016x}", fnv1a(vectors.flat_map(|v| [v.x, v.y, v.z])))
-        },
-    })
 }
 
 /// Figures of one `bench scene` run.

@@ -1,129 +1,30 @@
-//! `bench_bed`: throughput of the fast force-mode path of `mdr-rapier` on a settled bed, as
-//! `mdr-dem bench bed` (the LAMMPS `gran/hertz/history` reference system of
-//! `mdr_rapier::fast::bed::reference_system`; docs/performance.md). The CLI's timing loop lives in
-//! the program, not in a library, so its few lines are repeated here with the same JSON keys.
+//! `bench_bed`: throughput of the fast force-mode path of `mdr-rapier` on a settled bed. The run
+//! is `mdr_rapier::fast::bed::bench_bed`, the loop `mdr-dem bench bed` runs; this module loads or
+//! generates the bed, converts the arguments and errors, and returns the figures under the keys
+//! of `mdr-dem bench bed --json`.
 
-use crate::errors::invalid;
-use mdr_contact::damping::HertzianViscous;
-use mdr_contact::model::WorkBooks;
-use mdr_contact::normal::{Hertz, MdrElastoPlastic, NormalLaw, NormalModel};
-use mdr_contact::rolling::NoRolling;
-use mdr_contact::tangential::Mindlin;
-use mdr_rapier::fast::bed::{reference_system, settled_bed, Bed, BedSpec};
+use crate::errors::{contact, invalid};
+use mdr_rapier::fast::bed::{
+    bench_bed as run_bench, settled_bed, Bed, BedError, BedSpec, BenchLaw, BenchSettings,
+    BenchValue,
+};
 use mdr_rapier::fast::rayon;
-use mdr_rapier::fast::FastForceStepper;
-use mdr_rapier::rapier::prelude::PhysicsWorld;
+use mdr_rapier::CouplingError;
 use pyo3::exceptions::{PyOSError, PyRuntimeError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
-/// Settings of one bench run.
-#[derive(Debug, Clone, Copy)]
-struct Settings {
-    steps: usize,
-    warmup: usize,
-    skin: f64,
-    orientation: bool,
-    work_books: bool,
-}
-
-/// Figures of one run (the keys of `mdr-dem bench bed --json` that do not need OS clocks).
-struct Figures {
-    law: &'static str,
-    particles: usize,
-    wall_seconds: f64,
-    contacts_per_particle: f64,
-    floor_contacts: usize,
-    rebuilds: u64,
-    plastic_contact_fraction: f64,
-    state_checksum: String,
-}
-
-/// FNV-1a (64 bit) over the bit patterns of `values`, as `bench bed`'s `state_checksum`.
-fn fnv1a(values: impl Iterator<Item = f64>) -> u64 {
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
-    for v in values {
-        for byte in v.to_bits().to_le_bytes() {
-            hash ^= u64::from(byte);
-            hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
-        }
+/// A bed-bench error as a Python exception: a rejected setting as `ValueError` naming the
+/// keyword argument, an unreadable file as `OSError`, a failed run as `RuntimeError`.
+fn bed_error(e: BedError) -> PyErr {
+    match e {
+        BedError::Coupling(CouplingError::Contact(c)) => contact(false)(c),
+        BedError::Coupling(CouplingError::OutOfRange { name, .. }) => invalid(name, &e),
+        BedError::Io { .. } => PyOSError::new_err(e.to_string()),
+        BedError::Format { .. } | BedError::NotReference { .. } => invalid("data", e),
+        other => PyRuntimeError::new_err(other.to_string()),
     }
-    hash
-}
-
-fn timed<N: NormalModel>(
-    normal: N,
-    law: &'static str,
-    bed: &Bed,
-    s: Settings,
-) -> Result<Figures, String>
-where
-    N::Law: Clone,
-{
-    let (stepper, world) = reference_system(normal, bed).map_err(|e| e.to_string())?;
-    let stepper = stepper
-        .skin(s.skin)
-        .map_err(|e| e.to_string())?
-        .track_orientation(s.orientation);
-    if s.work_books {
-        measure(stepper, world, law, bed, s)
-    } else {
-        measure(stepper.without_work_books(), world, law, bed, s)
-    }
-}
-
-fn measure<N, B>(
-    mut stepper: FastForceStepper<N, Mindlin, HertzianViscous, NoRolling, B>,
-    mut world: PhysicsWorld,
-    law: &'static str,
-    bed: &Bed,
-    s: Settings,
-) -> Result<Figures, String>
-where
-    N: NormalModel,
-    N::Law: Clone,
-    B: WorkBooks,
-{
-    for _ in 0..s.warmup {
-        stepper.step(&mut world).map_err(|e| e.to_string())?;
-    }
-    let rebuilds0 = stepper.rebuilds();
-    let start = Instant::now();
-    for _ in 0..s.steps {
-        stepper.step(&mut world).map_err(|e| e.to_string())?;
-    }
-    let wall_seconds = start.elapsed().as_secs_f64();
-    let report = stepper.last_report();
-    let pairs = stepper.pairs();
-    let (mut touching, mut plastic) = (0usize, 0usize);
-    for q in 0..pairs.len() {
-        if pairs.active[q] {
-            touching += 1;
-            let pair_law = stepper.sphere_law(pairs.i[q] as usize, pairs.j[q] as usize);
-            let state = &pairs.history[q].contact.normal;
-            if pair_law.normal.max_overlap(state) > pair_law.normal.yield_overlap() {
-                plastic += 1;
-            }
-        }
-    }
-    let p = stepper.particles();
-    let vectors = p.position.iter().chain(&p.linvel).chain(&p.angvel);
-    Ok(Figures {
-        law,
-        particles: bed.len(),
-        wall_seconds,
-        contacts_per_particle: 2.0 * report.sphere_contacts as f64 / bed.len() as f64,
-        floor_contacts: report.surface_contacts,
-        rebuilds: stepper.rebuilds() - rebuilds0,
-        plastic_contact_fraction: if touching > 0 {
-            plastic as f64 / touching as f64
-        } else {
-            0.0
-        },
-        state_checksum: format!("{:016x}", fnv1a(vectors.flat_map(|v| [v.x, v.y, v.z]))),
-    })
 }
 
 /// The repository's reference bed `benches/lammps/settled.data`, looked for in the repository
@@ -150,14 +51,22 @@ fn default_data() -> PyResult<PathBuf> {
         })
 }
 
-/// Throughput of the fast force-mode path on a settled bed (as `mdr-dem bench bed`): the LAMMPS
-/// data file `data` (default: the repository's 10,000-sphere reference bed), or, with `count`, a bed of
-/// `count` spheres poured and settled with `settle_steps` steps first (untimed). `law`: "hertz"
-/// or "mdr" (`q_c = qc` in reduced units, Θ = 0.37 E*); `steps` timed steps after `warmup`;
-/// `threads` worker threads; `tile`: repeat the bed tile × tile times. Returns a dict:
-/// particle_steps_per_s, ms_per_step, wall_seconds, contacts_per_particle, floor_contacts,
-/// rebuilds, plastic_contact_fraction, state_checksum, law, particles, steps, threads,
-/// orientation, work_books. The GIL is released during the run.
+/// Throughput of the fast force-mode path on a settled bed, the run of `mdr-dem bench bed`: the
+/// LAMMPS data file `data` (default: the repository's 10,000-sphere reference bed), or, with
+/// `count`, a bed of `count` spheres poured and settled with `settle_steps` steps first
+/// (untimed). `law`: "hertz" or "mdr" (`q_c = qc` in reduced units, Θ = 0.37 E*); `steps` timed
+/// steps after `warmup`; `threads` worker threads; `tile`: repeat the bed tile × tile times;
+/// `skin`: neighbour skin (reduced length).
+///
+/// Returns a dict with the keys of `mdr-dem bench bed --json`: particle_steps_per_s and
+/// particle_steps_per_cpu_s (particle-steps per wall / CPU second; CPU = all threads, NaN where
+/// the process CPU clock is unavailable), ms_per_step (wall ms), wall_seconds and cpu_seconds (s,
+/// timed steps), contacts_per_particle, floor_contacts, rebuilds (neighbour-list builds while
+/// timed), plastic_contact_fraction, peak_rss_mb (peak resident memory of the whole Python
+/// process so far, MB; 0 where unavailable), stepper_bytes_per_particle (bytes), state_checksum,
+/// law, particles, steps, threads, orientation, work_books; and cpu_particle_steps_per_s, the
+/// same number as particle_steps_per_cpu_s under the name `mdr-dem bench scene` uses. The GIL
+/// is released during the run.
 #[pyfunction]
 #[pyo3(signature = (data = None, *, law = "hertz", steps = 10_000, warmup = 2_000, threads = 1,
     tile = 1, qc = 10.0, skin = 0.1, no_orientation = false, no_work_books = false, count = None,
@@ -179,20 +88,9 @@ pub fn bench_bed<'py>(
     settle_steps: usize,
     seed: u64,
 ) -> PyResult<Bound<'py, PyDict>> {
-    for (name, value) in [("steps", steps), ("threads", threads), ("tile", tile)] {
-        if value == 0 {
-            return Err(invalid(name, "0 is outside the allowed range [1, inf)"));
-        }
-    }
-    if count == Some(0) {
-        return Err(invalid("count", "0 is outside the allowed range [1, inf)"));
-    }
-    if !(skin.is_finite() && skin > 0.0) {
-        return Err(invalid("skin", format!("{skin} (must be finite and > 0)")));
-    }
-    let mdr = match law {
-        "hertz" => None,
-        "mdr" => Some(MdrElastoPlastic::new(qc, 0.37).map_err(crate::errors::contact(false))?),
+    let law = match law {
+        "hertz" => BenchLaw::Hertz,
+        "mdr" => BenchLaw::Mdr { qc },
         other => {
             return Err(invalid(
                 "law",
@@ -200,17 +98,20 @@ pub fn bench_bed<'py>(
             ))
         }
     };
-    let settings = Settings {
+    let settings = BenchSettings {
+        law,
         steps,
         warmup,
+        threads,
+        tile,
         skin,
         orientation: !no_orientation,
         work_books: !no_work_books,
     };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    // Before settling a bed: a bad setting is reported at once.
+    settings
+        .validate()
+        .map_err(|e| bed_error(BedError::Coupling(e)))?;
     let bed = match count {
         Some(count) => {
             let spec = BedSpec {
@@ -219,53 +120,33 @@ pub fn bench_bed<'py>(
                 seed,
                 ..BedSpec::default()
             };
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
             py.detach(|| pool.install(|| settled_bed(&spec)))
-                .map_err(|e| PyRuntimeError::new_err(e.to_string()))?
+                .map_err(bed_error)?
         }
         None => {
             let path = match data {
                 Some(p) => p,
                 None => default_data()?,
             };
-            Bed::read_lammps(&path)
-                .map_err(|e| PyOSError::new_err(format!("reading {}: {e}", path.display())))?
+            Bed::read_lammps(&path).map_err(bed_error)?
         }
     };
-    if (0..bed.len())
-        .any(|i| (bed.diameter[i] - 1.0).abs() > 1e-12 || (bed.density[i] - 1.0).abs() > 1e-12)
-    {
-        return Err(invalid(
-            "data",
-            "bench_bed expects the reference bed (every sphere of diameter 1 and density 1)",
-        ));
-    }
-    let bed = if tile > 1 { bed.tiled(tile, tile) } else { bed };
     let figures = py
-        .detach(|| {
-            pool.install(|| match mdr {
-                None => timed(Hertz, "hertz", &bed, settings),
-                Some(model) => timed(model, "mdr", &bed, settings),
-            })
-        })
-        .map_err(PyRuntimeError::new_err)?;
+        .detach(|| run_bench(&bed, &settings))
+        .map_err(bed_error)?;
     let dict = PyDict::new(py);
-    let particle_steps = (figures.particles * steps) as f64;
-    dict.set_item(
-        "particle_steps_per_s",
-        particle_steps / figures.wall_seconds,
-    )?;
-    dict.set_item("ms_per_step", 1e3 * figures.wall_seconds / steps as f64)?;
-    dict.set_item("wall_seconds", figures.wall_seconds)?;
-    dict.set_item("contacts_per_particle", figures.contacts_per_particle)?;
-    dict.set_item("floor_contacts", figures.floor_contacts)?;
-    dict.set_item("rebuilds", figures.rebuilds)?;
-    dict.set_item("plastic_contact_fraction", figures.plastic_contact_fraction)?;
-    dict.set_item("state_checksum", figures.state_checksum)?;
-    dict.set_item("law", figures.law)?;
-    dict.set_item("particles", figures.particles)?;
-    dict.set_item("steps", steps)?;
-    dict.set_item("threads", threads)?;
-    dict.set_item("orientation", settings.orientation)?;
-    dict.set_item("work_books", settings.work_books)?;
+    for (key, value) in figures.fields() {
+        match value {
+            BenchValue::Real(x) => dict.set_item(key, x)?,
+            BenchValue::Count(n) => dict.set_item(key, n)?,
+            BenchValue::Flag(b) => dict.set_item(key, b)?,
+            BenchValue::Text(t) => dict.set_item(key, t)?,
+        }
+    }
+    dict.set_item("cpu_particle_steps_per_s", figures.particle_steps_per_cpu_s)?;
     Ok(dict)
 }

@@ -1,5 +1,9 @@
 """Rings, scenes and the bench bed from Python; the GIL is released during long runs."""
 
+import json
+import math
+import subprocess
+import sys
 import threading
 import time
 from pathlib import Path
@@ -8,6 +12,7 @@ import numpy as np
 import pytest
 
 import mdr_dem
+from test_law import cli_binary
 
 REPO = Path(__file__).resolve().parents[3]
 
@@ -173,6 +178,101 @@ def test_bench_bed_on_a_small_generated_bed():
     assert mdr["law"] == "mdr"
     with pytest.raises(ValueError, match="`threads`"):
         mdr_dem.bench_bed(count=200, threads=0)
+
+
+# The keys of `mdr-dem bench bed --json` (the CLI's contract), in its order.
+CLI_BENCH_BED_KEYS = [
+    "particle_steps_per_s",
+    "ms_per_step",
+    "contacts_per_particle",
+    "peak_rss_mb",
+    "threads",
+    "particle_steps_per_cpu_s",
+    "cpu_seconds",
+    "wall_seconds",
+    "law",
+    "particles",
+    "steps",
+    "rebuilds",
+    "floor_contacts",
+    "plastic_contact_fraction",
+    "stepper_bytes_per_particle",
+    "orientation",
+    "work_books",
+    "state_checksum",
+]
+
+
+def small_bed_file(tmp_path, diameter="1"):
+    """A LAMMPS data file of 4 × 4 spheres on the floor of a 3.96 × 3.96 periodic box, each
+    pressed against its four neighbours (spacing 0.99); sphere 6 of diameter `diameter`."""
+    lines = [
+        "a small bed",
+        "",
+        "16 atoms",
+        "1 atom types",
+        "",
+        "0 3.96 xlo xhi",
+        "0 3.96 ylo yhi",
+        "0 2 zlo zhi",
+        "",
+        "Atoms # sphere",
+        "",
+    ]
+    for k in range(16):
+        d = diameter if k == 5 else "1"
+        lines.append(f"{k + 1} 1 {d} 1 {0.99 * (k % 4) + 0.495} {0.99 * (k // 4) + 0.495} 0.4999")
+    path = tmp_path / "bed.data"
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def test_bench_bed_gives_the_cli_figures_with_cpu_rate_and_peak_memory(tmp_path):
+    out = mdr_dem.bench_bed(small_bed_file(tmp_path), steps=200, warmup=10, threads=2)
+    assert list(out) == CLI_BENCH_BED_KEYS + ["cpu_particle_steps_per_s"]
+    assert out["particles"] == 16 and out["steps"] == 200 and out["threads"] == 2
+    assert out["floor_contacts"] == 16 and out["contacts_per_particle"] == 4.0
+    for key in ("particle_steps_per_s", "ms_per_step", "wall_seconds", "stepper_bytes_per_particle"):
+        assert math.isfinite(out[key]) and out[key] > 0, key
+    assert out["particle_steps_per_s"] * out["ms_per_step"] / 1e3 == pytest.approx(16)
+    assert out["cpu_particle_steps_per_s"] == out["particle_steps_per_cpu_s"]
+    if sys.platform.startswith("linux"):
+        # CPU rate: particle-steps over the CPU seconds of all threads.
+        assert out["cpu_seconds"] > 0
+        assert out["cpu_particle_steps_per_s"] * out["cpu_seconds"] == pytest.approx(16 * 200)
+        # The process's peak resident memory: the interpreter, numpy and the run (MB).
+        assert 1 < out["peak_rss_mb"] < 100_000
+    binary = cli_binary()
+    if binary is not None:
+        cli = json.loads(
+            subprocess.run(
+                [binary, "bench", "bed", "--data", str(tmp_path / "bed.data"), "--steps", "5",
+                 "--warmup", "0", "--json"],
+                check=True,
+                capture_output=True,
+                text=True,
+            ).stdout
+        )
+        assert list(cli) == CLI_BENCH_BED_KEYS
+
+
+def test_bench_bed_names_bad_values(tmp_path):
+    bed = small_bed_file(tmp_path)
+    for kw, name in [
+        (dict(steps=0), "steps"),
+        (dict(tile=0), "tile"),
+        (dict(skin=-0.1), "skin"),
+        (dict(skin=float("nan")), "skin"),
+        (dict(law="mdr", qc=-1.0), "qc"),
+        (dict(law="thornton"), "law"),
+        (dict(count=0), "count"),
+    ]:
+        with pytest.raises(ValueError, match=f"`{name}`"):
+            mdr_dem.bench_bed(bed, steps=kw.pop("steps", 1), warmup=0, **kw)
+    with pytest.raises(ValueError, match="`data`.*diameter 2"):
+        mdr_dem.bench_bed(small_bed_file(tmp_path, diameter="2"), steps=1, warmup=0)
+    with pytest.raises(OSError, match="nonexistent"):
+        mdr_dem.bench_bed(tmp_path / "nonexistent.data", steps=1, warmup=0)
 
 
 def test_bench_bed_defaults_to_the_repository_reference_bed():

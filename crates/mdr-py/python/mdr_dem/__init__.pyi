@@ -335,6 +335,53 @@ def run_scene(
     """Run a scene file; the headline quantities by name, plus text, step, time_s,
     wall_seconds, stopped_early, checkpoint."""
 
+class BenchBedResult(TypedDict):
+    """Figures of one `bench_bed` run: the keys of `mdr-dem bench bed --json`, plus
+    `cpu_particle_steps_per_s`. A particle-step is one particle advanced one step."""
+
+    particle_steps_per_s: float
+    """Particle-steps per wall-clock second of the timed steps."""
+    ms_per_step: float
+    """Wall-clock milliseconds per timed step."""
+    contacts_per_particle: float
+    """Sphere-sphere contacts per particle at the last step (2 × pairs / particles)."""
+    peak_rss_mb: float
+    """Peak resident memory of the whole Python process so far (MB, VmHWM); 0 where
+    unavailable."""
+    threads: int
+    """Worker threads."""
+    particle_steps_per_cpu_s: float
+    """Particle-steps per CPU second (user + system, all threads); NaN where the process CPU
+    clock is unavailable."""
+    cpu_particle_steps_per_s: float
+    """The same number as `particle_steps_per_cpu_s`, under the name `mdr-dem bench scene`
+    uses."""
+    cpu_seconds: float
+    """CPU time of the timed steps (s, all threads)."""
+    wall_seconds: float
+    """Wall-clock time of the timed steps (s)."""
+    law: str
+    """Either "hertz" or "mdr"."""
+    particles: int
+    """Spheres (after tiling)."""
+    steps: int
+    """Timed steps."""
+    rebuilds: int
+    """Neighbour-list builds during the timed steps."""
+    floor_contacts: int
+    """Sphere-floor contacts at the last step."""
+    plastic_contact_fraction: float
+    """Fraction of the touching sphere-sphere pairs that have yielded (d_max > u_c)."""
+    stepper_bytes_per_particle: float
+    """The stepper's buffers per particle (bytes)."""
+    orientation: bool
+    """Whether orientations were integrated."""
+    work_books: bool
+    """Whether the pair histories booked friction and damping work."""
+    state_checksum: str
+    """FNV-1a hash (16 hex digits) of the final positions and velocities: equal iff two runs
+    gave the same trajectories."""
+
 def bench_bed(
     data: Optional[StrPath] = None,
     *,
@@ -350,5 +397,13 @@ def bench_bed(
     count: Optional[int] = None,
     settle_steps: int = 40_000,
     seed: int = 1,
-) -> dict[str, Any]:
-    """Throughput of the fast force-mode path on a settled bed, as `mdr-dem bench bed --json`."""
+) -> BenchBedResult:
+    """Throughput of the fast force-mode path on a settled bed: the run of `mdr-dem bench bed`
+    (reduced units: sphere diameter 1, density 1, dt = 1e-4).
+
+    data: LAMMPS data file of the bed (default: the repository's 10,000-sphere reference bed);
+    count: instead, pour `count` spheres and settle them with `settle_steps` steps (untimed;
+    `seed` jitters the lattice); law: "hertz" or "mdr" (q_c = `qc`, force/length, Θ = 0.37 E*);
+    steps: timed steps after `warmup` untimed ones; threads: worker threads; tile: repeat the
+    bed tile × tile times in x and y; skin: neighbour skin (length); no_orientation,
+    no_work_books: as the CLI's flags. The GIL is released during the run."""

@@ -1,13 +1,16 @@
 //! Granular beds for benchmarks: reading and writing LAMMPS data files (`atom_style sphere`),
-//! tiling a periodic bed, and generating a bed by lattice + settling.
+//! tiling a periodic bed, generating a bed by lattice + settling, and the bed benchmark itself
+//! ([`bench_bed`], what `mdr-dem bench bed` and Python's `mdr_dem.bench_bed` run) with the
+//! process clocks it reads ([`process_cpu_seconds`], [`peak_rss_mb`]).
 
 use super::boundary::Boundary;
 use super::stepper::FastForceStepper;
 use crate::error::{positive, CouplingError, Result};
 use crate::particles::SphereBuilder;
 use mdr_contact::damping::HertzianViscous;
-use mdr_contact::model::ContactModel;
-use mdr_contact::normal::{Hertz, NormalModel};
+use mdr_contact::model::{ContactModel, WorkBooks};
+use mdr_contact::normal::{Hertz, MdrElastoPlastic, NormalLaw, NormalModel};
+use mdr_contact::rolling::NoRolling;
 use mdr_contact::tangential::Mindlin;
 use mdr_contact::Material;
 use nalgebra::Vector3;
@@ -51,9 +54,25 @@ pub enum BedError {
         /// What is wrong.
         message: String,
     },
-    /// A parameter is out of range.
+    /// A parameter is out of range, or the stepper failed.
     #[error(transparent)]
     Coupling(#[from] CouplingError),
+    /// [`bench_bed`] was given a bed that is not the reference one.
+    #[error(
+        "sphere {sphere} has diameter {diameter} and density {density}: the bed benchmark \
+         expects the reference bed (diameter 1, density 1)"
+    )]
+    NotReference {
+        /// The sphere (1-based, file order).
+        sphere: usize,
+        /// Its diameter.
+        diameter: f64,
+        /// Its density.
+        density: f64,
+    },
+    /// The worker-thread pool could not be built.
+    #[error("building the thread pool: {0}")]
+    ThreadPool(String),
 }
 
 impl Bed {
@@ -364,4 +383,496 @@ pub fn settled_bed(spec: &BedSpec) -> Result<Bed, BedError> {
     bed.hi[2] = bed.position.iter().map(|p| p.z).fold(0.0, f64::max) + 1.0;
     bed.sort_spatially(1.0);
     Ok(bed)
+}
+
+/// Normal law of [`bench_bed`]; the tangential law, damping and material are those of
+/// [`reference_system`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum BenchLaw {
+    /// Hertz (`E* = 1.5e5` ⇔ `kn = 2e5`).
+    Hertz,
+    /// The MDR elasto-plastic law with critical line load `q_c = qc` (force/length, reduced
+    /// units) and `Θ = 0.37 E*`.
+    Mdr {
+        /// Critical line load `q_c`.
+        qc: f64,
+    },
+}
+
+impl BenchLaw {
+    /// The law's name in the figures: `"hertz"` or `"mdr"`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            BenchLaw::Hertz => "hertz",
+            BenchLaw::Mdr { .. } => "mdr",
+        }
+    }
+}
+
+/// Settings of [`bench_bed`]; the defaults are those of `mdr-dem bench bed`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BenchSettings {
+    /// Normal law.
+    pub law: BenchLaw,
+    /// Timed steps (at least 1).
+    pub steps: usize,
+    /// Untimed steps before the timed ones (the first neighbour-list build, allocations; as
+    /// `nwarm` of `benches/lammps/in.bench`).
+    pub warmup: usize,
+    /// Worker threads (at least 1); the run builds its own pool of this size.
+    pub threads: usize,
+    /// Repeat the bed `tile × tile` times in x and y (at least 1; scaling runs).
+    pub tile: usize,
+    /// Neighbour skin (length; LAMMPS `neighbor 0.1 bin`).
+    pub skin: f64,
+    /// Integrate particle orientations (LAMMPS `atom_style sphere` keeps none; sphere
+    /// trajectories are the same either way).
+    pub orientation: bool,
+    /// Keep friction and damping work books in the pair histories (LAMMPS keeps none;
+    /// trajectories are the same either way).
+    pub work_books: bool,
+}
+
+impl Default for BenchSettings {
+    fn default() -> Self {
+        Self {
+            law: BenchLaw::Hertz,
+            steps: 10_000,
+            warmup: 2_000,
+            threads: 1,
+            tile: 1,
+            skin: 0.1,
+            orientation: true,
+            work_books: true,
+        }
+    }
+}
+
+impl BenchSettings {
+    /// Check every setting without running anything: `steps`, `threads` and `tile` at least 1,
+    /// `skin` finite and positive, the law's parameters as the law crate accepts them. The
+    /// error names the setting (`steps`, `threads`, `tile`, `skin`, `q_c`).
+    pub fn validate(&self) -> Result<(), CouplingError> {
+        for (name, value) in [
+            ("steps", self.steps),
+            ("threads", self.threads),
+            ("tile", self.tile),
+        ] {
+            if value == 0 {
+                return Err(CouplingError::OutOfRange {
+                    name,
+                    value: 0.0,
+                    range: "[1, inf)",
+                });
+            }
+        }
+        positive("skin", self.skin)?;
+        if let BenchLaw::Mdr { qc } = self.law {
+            MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)?;
+        }
+        Ok(())
+    }
+}
+
+/// `Θ / E*` of [`BenchLaw::Mdr`].
+const BENCH_THETA_RATIO: f64 = 0.37;
+
+/// Figures of one [`bench_bed`] run. Rates count particle-steps: particles × timed steps.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BenchFigures {
+    /// `"hertz"` or `"mdr"`.
+    pub law: &'static str,
+    /// Spheres (after tiling).
+    pub particles: usize,
+    /// Timed steps.
+    pub steps: usize,
+    /// Worker threads.
+    pub threads: usize,
+    /// Wall-clock time of the timed steps (s).
+    pub wall_seconds: f64,
+    /// CPU time (user + system, all threads of the process) during the timed steps (s); NaN
+    /// where the process CPU clock is unavailable ([`process_cpu_seconds`]).
+    pub cpu_seconds: f64,
+    /// Particle-steps per wall-clock second.
+    pub particle_steps_per_s: f64,
+    /// Particle-steps per CPU second (all threads): per-core throughput that does not depend on
+    /// how much of the machine other jobs take; NaN with `cpu_seconds`.
+    pub particle_steps_per_cpu_s: f64,
+    /// Wall-clock milliseconds per timed step.
+    pub ms_per_step: f64,
+    /// Sphere–sphere contacts per particle at the last step (`2 × pairs / particles`, as LAMMPS
+    /// `contact/atom`).
+    pub contacts_per_particle: f64,
+    /// Sphere–floor contacts at the last step.
+    pub floor_contacts: usize,
+    /// Fraction of the touching sphere–sphere pairs that have yielded (`d_max > u_c`; 0 for
+    /// Hertz).
+    pub plastic_contact_fraction: f64,
+    /// Neighbour-list builds during the timed steps.
+    pub rebuilds: u64,
+    /// Peak resident set size of the whole process so far (MB, [`peak_rss_mb`]); 0 where
+    /// unavailable.
+    pub peak_rss_mb: f64,
+    /// The stepper's buffers (particles, neighbour lists, histories) per particle (bytes).
+    pub stepper_bytes_per_particle: f64,
+    /// Whether orientations were integrated.
+    pub orientation: bool,
+    /// Whether the pair histories booked friction and damping work.
+    pub work_books: bool,
+    /// FNV-1a hash (16 hex digits) of the bits of every particle's final position, velocity and
+    /// angular velocity: two builds (or thread counts) gave the same trajectories iff it is the
+    /// same.
+    pub state_checksum: String,
+}
+
+/// One value of [`BenchFigures::fields`].
+#[derive(Debug, Clone, PartialEq)]
+pub enum BenchValue<'a> {
+    /// A real number.
+    Real(f64),
+    /// A count.
+    Count(u64),
+    /// A yes/no.
+    Flag(bool),
+    /// Text.
+    Text(&'a str),
+}
+
+impl BenchFigures {
+    /// The figures by name, in the order and with the keys of `mdr-dem bench bed --json`.
+    pub fn fields(&self) -> [(&'static str, BenchValue<'_>); 18] {
+        use BenchValue::{Count, Flag, Real, Text};
+        [
+            ("particle_steps_per_s", Real(self.particle_steps_per_s)),
+            ("ms_per_step", Real(self.ms_per_step)),
+            ("contacts_per_particle", Real(self.contacts_per_particle)),
+            ("peak_rss_mb", Real(self.peak_rss_mb)),
+            ("threads", Count(self.threads as u64)),
+            (
+                "particle_steps_per_cpu_s",
+                Real(self.particle_steps_per_cpu_s),
+            ),
+            ("cpu_seconds", Real(self.cpu_seconds)),
+            ("wall_seconds", Real(self.wall_seconds)),
+            ("law", Text(self.law)),
+            ("particles", Count(self.particles as u64)),
+            ("steps", Count(self.steps as u64)),
+            ("rebuilds", Count(self.rebuilds)),
+            ("floor_contacts", Count(self.floor_contacts as u64)),
+            (
+                "plastic_contact_fraction",
+                Real(self.plastic_contact_fraction),
+            ),
+            (
+                "stepper_bytes_per_particle",
+                Real(self.stepper_bytes_per_particle),
+            ),
+            ("orientation", Flag(self.orientation)),
+            ("work_books", Flag(self.work_books)),
+            ("state_checksum", Text(&self.state_checksum)),
+        ]
+    }
+}
+
+/// Throughput of the fast force-mode path on `bed` (the program's `mdr-dem bench bed`): the
+/// [`reference_system`] with the settings' law and skin on the bed tiled `tile × tile` times,
+/// `warmup` untimed steps, then `steps` timed ones, in a pool of `threads` worker threads.
+/// The bed must be the reference one (every sphere of diameter 1 and density 1), as the
+/// reference system's material is.
+pub fn bench_bed(bed: &Bed, settings: &BenchSettings) -> Result<BenchFigures, BedError> {
+    settings.validate()?;
+    if let Some(i) = (0..bed.len())
+        .find(|&i| (bed.diameter[i] - 1.0).abs() > 1e-12 || (bed.density[i] - 1.0).abs() > 1e-12)
+    {
+        return Err(BedError::NotReference {
+            sphere: i + 1,
+            diameter: bed.diameter[i],
+            density: bed.density[i],
+        });
+    }
+    let tiled;
+    let bed = if settings.tile > 1 {
+        tiled = bed.tiled(settings.tile, settings.tile);
+        &tiled
+    } else {
+        bed
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(settings.threads)
+        .build()
+        .map_err(|e| BedError::ThreadPool(e.to_string()))?;
+    pool.install(|| match settings.law {
+        BenchLaw::Hertz => bench_law(Hertz, bed, settings),
+        BenchLaw::Mdr { qc } => bench_law(
+            MdrElastoPlastic::new(qc, BENCH_THETA_RATIO).map_err(CouplingError::from)?,
+            bed,
+            settings,
+        ),
+    })
+}
+
+fn bench_law<N>(normal: N, bed: &Bed, s: &BenchSettings) -> Result<BenchFigures, BedError>
+where
+    N: NormalModel,
+    N::Law: Clone,
+{
+    let (stepper, world) = reference_system(normal, bed)?;
+    let stepper = stepper.skin(s.skin)?.track_orientation(s.orientation);
+    if s.work_books {
+        bench_steps(stepper, world, s)
+    } else {
+        bench_steps(stepper.without_work_books(), world, s)
+    }
+}
+
+/// Warm-up, then the timed steps, then the figures.
+fn bench_steps<N, B>(
+    mut stepper: FastForceStepper<N, Mindlin, HertzianViscous, NoRolling, B>,
+    mut world: PhysicsWorld,
+    s: &BenchSettings,
+) -> Result<BenchFigures, BedError>
+where
+    N: NormalModel,
+    N::Law: Clone,
+    B: WorkBooks,
+{
+    for _ in 0..s.warmup {
+        stepper.step(&mut world)?;
+    }
+    let rebuilds0 = stepper.rebuilds();
+    let cpu0 = process_cpu_seconds();
+    let start = std::time::Instant::now();
+    for _ in 0..s.steps {
+        stepper.step(&mut world)?;
+    }
+    let wall_seconds = start.elapsed().as_secs_f64();
+    let cpu_seconds = match (cpu0, process_cpu_seconds()) {
+        (Some(a), Some(b)) => b - a,
+        _ => f64::NAN,
+    };
+    let report = stepper.last_report();
+    let n = stepper.particles().len();
+    let pairs = stepper.pairs();
+    let (mut touching, mut plastic) = (0usize, 0usize);
+    for q in 0..pairs.len() {
+        if pairs.active[q] {
+            touching += 1;
+            let law = stepper.sphere_law(pairs.i[q] as usize, pairs.j[q] as usize);
+            let state = &pairs.history[q].contact.normal;
+            if law.normal.max_overlap(state) > law.normal.yield_overlap() {
+                plastic += 1;
+            }
+        }
+    }
+    let particle_steps = (n * s.steps) as f64;
+    let p = stepper.particles();
+    let vectors = p.position.iter().chain(&p.linvel).chain(&p.angvel);
+    Ok(BenchFigures {
+        law: s.law.name(),
+        particles: n,
+        steps: s.steps,
+        threads: s.threads,
+        wall_seconds,
+        cpu_seconds,
+        particle_steps_per_s: particle_steps / wall_seconds,
+        particle_steps_per_cpu_s: particle_steps / cpu_seconds,
+        ms_per_step: 1e3 * wall_seconds / s.steps as f64,
+        contacts_per_particle: 2.0 * report.sphere_contacts as f64 / n as f64,
+        floor_contacts: report.surface_contacts,
+        plastic_contact_fraction: if touching > 0 {
+            plastic as f64 / touching as f64
+        } else {
+            0.0
+        },
+        rebuilds: stepper.rebuilds() - rebuilds0,
+        peak_rss_mb: peak_rss_mb(),
+        stepper_bytes_per_particle: stepper.memory_bytes() as f64 / n as f64,
+        orientation: s.orientation,
+        work_books: s.work_books,
+        state_checksum: format!("{:016x}", fnv1a(vectors.flat_map(|v| [v.x, v.y, v.z]))),
+    })
+}
+
+/// FNV-1a (64 bit) over the bit patterns of `values`.
+fn fnv1a(values: impl Iterator<Item = f64>) -> u64 {
+    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    for v in values {
+        for byte in v.to_bits().to_le_bytes() {
+            hash ^= u64::from(byte);
+            hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    hash
+}
+
+/// Peak resident set size of this process so far (MB), from `VmHWM` in `/proc/self/status`; 0
+/// where unavailable (systems without `/proc`).
+pub fn peak_rss_mb() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM:"))
+                .and_then(|l| l.split_whitespace().nth(1))
+                .and_then(|kb| kb.parse::<f64>().ok())
+        })
+        .map_or(0.0, |kb| kb / 1024.0)
+}
+
+/// CPU time (user + system, all threads) of this process so far (s), from
+/// `clock_gettime(CLOCK_PROCESS_CPUTIME_ID)` (nanosecond resolution, up to date for running
+/// threads too); `None` where the clock is unavailable (platforms other than 64-bit Linux,
+/// Android and macOS).
+pub fn process_cpu_seconds() -> Option<f64> {
+    cpu_clock::process_seconds()
+}
+
+/// The C library's process CPU clock, declared here for the platforms whose `struct timespec`
+/// is two `long`s (`time_t` is `long` on 64-bit Linux, Android and macOS) and whose clock id is
+/// known (the values of the `libc` crate).
+#[cfg(all(
+    target_pointer_width = "64",
+    any(target_os = "linux", target_os = "android", target_os = "macos")
+))]
+mod cpu_clock {
+    use std::os::raw::c_long;
+
+    #[cfg(any(target_os = "linux", target_os = "android"))]
+    type ClockId = std::os::raw::c_int;
+    #[cfg(target_os = "macos")]
+    type ClockId = std::os::raw::c_uint;
+
+    #[cfg(any(target_os = "linux", target_os = "android"))]
+    const CLOCK_PROCESS_CPUTIME_ID: ClockId = 2;
+    #[cfg(target_os = "macos")]
+    const CLOCK_PROCESS_CPUTIME_ID: ClockId = 12;
+
+    #[repr(C)]
+    struct Timespec {
+        tv_sec: c_long,
+        tv_nsec: c_long,
+    }
+
+    extern "C" {
+        fn clock_gettime(clock: ClockId, time: *mut Timespec) -> std::os::raw::c_int;
+    }
+
+    pub(super) fn process_seconds() -> Option<f64> {
+        let mut time = Timespec {
+            tv_sec: 0,
+            tv_nsec: 0,
+        };
+        // SAFETY: clock_gettime writes one `struct timespec` (laid out as `Timespec` on these
+        // platforms) through the valid pointer it is given, and reads nothing else.
+        let status = unsafe { clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &mut time) };
+        (status == 0).then_some(time.tv_sec as f64 + time.tv_nsec as f64 * 1e-9)
+    }
+}
+
+#[cfg(not(all(
+    target_pointer_width = "64",
+    any(target_os = "linux", target_os = "android", target_os = "macos")
+)))]
+mod cpu_clock {
+    pub(super) fn process_seconds() -> Option<f64> {
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bench_bed_figures_on_a_small_lattice() {
+        let spec = BedSpec {
+            count: 200,
+            ..BedSpec::default()
+        };
+        let bed = lattice_bed(&spec).unwrap();
+        let settings = BenchSettings {
+            law: BenchLaw::Mdr { qc: 10.0 },
+            steps: 50,
+            warmup: 10,
+            ..BenchSettings::default()
+        };
+        let f = bench_bed(&bed, &settings).unwrap();
+        assert_eq!(
+            (f.law, f.particles, f.steps, f.threads),
+            ("mdr", 200, 50, 1)
+        );
+        assert!(f.wall_seconds > 0.0 && f.particle_steps_per_s > 0.0);
+        assert!((f.particle_steps_per_s * f.ms_per_step / 1e3 / 200.0 - 1.0).abs() < 1e-9);
+        if cfg!(target_os = "linux") {
+            assert!(f.cpu_seconds > 0.0 && f.particle_steps_per_cpu_s.is_finite());
+            assert!(f.peak_rss_mb > 0.0);
+        }
+        assert_eq!(f.state_checksum.len(), 16);
+        assert_eq!(f.fields().len(), 18);
+        // The same trajectories on two threads, and without work books.
+        let two = BenchSettings {
+            threads: 2,
+            work_books: false,
+            ..settings
+        };
+        assert_eq!(
+            bench_bed(&bed, &two).unwrap().state_checksum,
+            f.state_checksum
+        );
+        // Tiling multiplies the spheres.
+        let tiled = BenchSettings {
+            tile: 2,
+            steps: 1,
+            warmup: 0,
+            ..settings
+        };
+        assert_eq!(bench_bed(&bed, &tiled).unwrap().particles, 800);
+    }
+
+    #[test]
+    fn bench_bed_refuses_bad_settings_by_name() {
+        let bed = lattice_bed(&BedSpec {
+            count: 200,
+            ..BedSpec::default()
+        })
+        .unwrap();
+        let base = BenchSettings::default();
+        for (name, settings) in [
+            ("steps", BenchSettings { steps: 0, ..base }),
+            ("threads", BenchSettings { threads: 0, ..base }),
+            ("tile", BenchSettings { tile: 0, ..base }),
+            ("skin", BenchSettings { skin: -0.1, ..base }),
+            (
+                "q_c",
+                BenchSettings {
+                    law: BenchLaw::Mdr { qc: -1.0 },
+                    ..base
+                },
+            ),
+        ] {
+            let message = bench_bed(&bed, &settings).unwrap_err().to_string();
+            assert!(message.contains(name), "{name}: {message}");
+        }
+        let mut big = bed.clone();
+        big.diameter[3] = 2.0;
+        let err = bench_bed(&big, &base).unwrap_err();
+        assert!(
+            matches!(err, BedError::NotReference { sphere: 4, .. }),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn process_clocks_advance() {
+        if cfg!(target_os = "linux") {
+            let a = process_cpu_seconds().unwrap();
+            let mut x = 0.0f64;
+            for i in 0..2_000_000 {
+                x += (i as f64).sqrt();
+            }
+            assert!(x > 0.0);
+            assert!(process_cpu_seconds().unwrap() > a);
+            assert!(peak_rss_mb() > 0.0);
+        }
+    }
 }
