@@ -80,7 +80,8 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> ContactModel<N, T, D> 
     }
 }
 
-/// Where a contact books the work its friction and damping dissipate: a type parameter of
+/// Where a contact books the work its friction and damping dissipate, and the energy its
+/// incremental springs gain without work (stiffness changes): a type parameter of
 /// [`ContactState`], so that a state without books ([`NoBooks`]) carries no fields and its update
 /// forms no work term (the trajectory is the same bit for bit; 0–1 % of a settled bed's step
 /// per core, docs/performance.md). Plasticity needs no book: its work follows from the normal
@@ -94,6 +95,18 @@ pub trait WorkBooks: Default + Clone + Copy + std::fmt::Debug + PartialEq + Send
     fn friction_work(&self) -> f64;
     /// Work dissipated by damping so far (J); NaN when not booked.
     fn damping_work(&self) -> f64;
+    /// Add energy the tangential springs gained without work
+    /// ([`crate::tangential::TangentialResponse::stiffness_energy`], J).
+    fn add_tangential_stiffness_energy(&mut self, energy: f64);
+    /// Add energy the rolling spring gained without work
+    /// ([`crate::rolling::RollingResponse::stiffness_energy`], J).
+    fn add_rolling_stiffness_energy(&mut self, energy: f64);
+    /// Energy the tangential springs gained without work so far (J; negative when lost); NaN
+    /// when not booked.
+    fn tangential_stiffness_energy(&self) -> f64;
+    /// Energy the rolling spring gained without work so far (J; negative when lost); NaN when
+    /// not booked.
+    fn rolling_stiffness_energy(&self) -> f64;
 }
 
 /// The work books of one contact (the default of [`ContactState`]).
@@ -104,6 +117,12 @@ pub struct Books {
     pub friction_work: f64,
     /// Work dissipated by damping so far (J).
     pub damping_work: f64,
+    /// Energy the tangential springs gained without work so far (J; negative when lost).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub tangential_stiffness_energy: f64,
+    /// Energy the rolling spring gained without work so far (J; negative when lost).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub rolling_stiffness_energy: f64,
 }
 
 impl WorkBooks for Books {
@@ -122,6 +141,22 @@ impl WorkBooks for Books {
     #[inline(always)]
     fn damping_work(&self) -> f64 {
         self.damping_work
+    }
+    #[inline(always)]
+    fn add_tangential_stiffness_energy(&mut self, energy: f64) {
+        self.tangential_stiffness_energy += energy;
+    }
+    #[inline(always)]
+    fn add_rolling_stiffness_energy(&mut self, energy: f64) {
+        self.rolling_stiffness_energy += energy;
+    }
+    #[inline(always)]
+    fn tangential_stiffness_energy(&self) -> f64 {
+        self.tangential_stiffness_energy
+    }
+    #[inline(always)]
+    fn rolling_stiffness_energy(&self) -> f64 {
+        self.rolling_stiffness_energy
     }
 }
 
@@ -142,6 +177,18 @@ impl WorkBooks for NoBooks {
     }
     #[inline(always)]
     fn damping_work(&self) -> f64 {
+        f64::NAN
+    }
+    #[inline(always)]
+    fn add_tangential_stiffness_energy(&mut self, _: f64) {}
+    #[inline(always)]
+    fn add_rolling_stiffness_energy(&mut self, _: f64) {}
+    #[inline(always)]
+    fn tangential_stiffness_energy(&self) -> f64 {
+        f64::NAN
+    }
+    #[inline(always)]
+    fn rolling_stiffness_energy(&self) -> f64 {
         f64::NAN
     }
 }
@@ -250,7 +297,7 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
         if normal.force <= 0.0 && normal.contact_radius <= 0.0 {
             // Apart (or touching only the residual crater's rim): no force; the tangential
             // springs forget their displacement.
-            let _ = self.tangential.update(
+            let released = self.tangential.update(
                 &mut state.tangential,
                 &TangentialInput {
                     normal: input.normal,
@@ -258,6 +305,9 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
                     normal_response: normal,
                 },
             );
+            state
+                .books
+                .add_tangential_stiffness_energy(released.stiffness_energy);
             return ContactOutput::default();
         }
         let normal_speed = input.relative_velocity.dot(&input.normal);
@@ -282,6 +332,9 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
                 },
             },
         );
+        state
+            .books
+            .add_tangential_stiffness_energy(tangential.stiffness_energy);
         if tangential.dissipated != 0.0 {
             // Most contacts stick and dissipate nothing here: they skip the book.
             state.books.add_friction_work(tangential.dissipated);

@@ -43,6 +43,10 @@ pub struct RollingResponse {
     pub dissipated: f64,
     /// Elastic energy stored in the rolling spring after the update (J).
     pub elastic_energy: f64,
+    /// Energy the spring gained in this update without work on the bodies (J; negative when it
+    /// lost it): `|M|²/(2 k_r)` changing with the stiffness at a fixed torque
+    /// ([`EpsdRollingState::stiffness_energy_change`]).
+    pub stiffness_energy: f64,
 }
 
 /// A rolling-resistance law bound to one pair.
@@ -171,8 +175,8 @@ impl EpsdRollingState {
     /// `|M'−k_rΔθ|²/(2k_r) − |M'|²/(2k_r) = −M'·Δθ + ½k_r|Δθ|²` (docs/theory.md, "Energy books
     /// of the incremental springs"). Pass the stiffness the update stored: 0 when it dropped the
     /// spring (the contact opened), where the law already booked what the spring held as
-    /// dissipated, so this returns 0 then. Not called by [`RollingLaw::update`]: the energy books
-    /// call it with the state before the update, so the hot loop pays nothing for it.
+    /// dissipated, so this returns 0 then. [`RollingLaw::update`] reports it as
+    /// [`RollingResponse::stiffness_energy`].
     pub fn stiffness_energy_change(
         torque_len2: f64,
         previous_stiffness: f64,
@@ -219,11 +223,16 @@ impl RollingLaw for EpsdRollingLaw {
         }
         let rotation = input.rotation_increment - n * n.dot(&input.rotation_increment);
         let stiffness = self.stiffness_ratio * input.normal_stiffness;
+        let stiffness_energy =
+            EpsdRollingState::stiffness_energy_change(old_len2, state.stiffness, stiffness);
         let elastic_increment = -stiffness * rotation;
         torque += elastic_increment;
         let cap = self.arm * input.normal_force;
         let magnitude = torque.norm();
-        let mut response = RollingResponse::default();
+        let mut response = RollingResponse {
+            stiffness_energy,
+            ..RollingResponse::default()
+        };
         if magnitude > cap {
             // At the limit: the excess rotation `Δθ_p = (|M_trial| − cap)/k_r` is plastic and
             // dissipates `cap · Δθ_p`.

@@ -1,7 +1,8 @@
 //! The energy identity of one update of the incremental springs (docs/theory.md, "Energy books
 //! of the incremental springs"): the stored energy after the update equals the stored energy
 //! before it, plus the energy the spring gains without work when its stiffness follows the
-//! contact (`MindlinLaw::stiffness_energy_change`, `EpsdRollingState::stiffness_energy_change`),
+//! contact (`MindlinLaw::stiffness_energy_change`, `EpsdRollingState::stiffness_energy_change`,
+//! and the same term each update reports as `stiffness_energy`),
 //! plus the work of the carried force over the increment, `−F'·Δu + ½k|Δu|²`, minus the
 //! dissipation on a capped step. Checked to 1e-12 per update over load–unload histories of an
 //! MDR contact with a tilting contact plane, for both Mindlin forms and for the rolling spring.
@@ -58,6 +59,12 @@ fn mindlin_update_energy_identity_with_the_stiffness_term() {
                 before.displacement.norm_squared(),
                 before.contact_radius,
                 state.contact_radius,
+            );
+            // The update reports the same term for books kept in the contact's state.
+            assert!(
+                (out.stiffness_energy - change).abs() <= 1e-13 * e_before.max(1e-300),
+                "{form:?} step {k}: reported {} vs {change}",
+                out.stiffness_energy
             );
             if change > 0.0 {
                 gained += change;
@@ -140,6 +147,11 @@ fn rolling_update_energy_identity_with_the_stiffness_term() {
             before.torque.norm_squared(),
             before.stiffness,
             state.stiffness,
+        );
+        assert!(
+            (out.stiffness_energy - change).abs() <= 1e-13 * e_before.max(1e-300),
+            "step {k}: reported {} vs {change}",
+            out.stiffness_energy
         );
         if change > 0.0 {
             gained += change;

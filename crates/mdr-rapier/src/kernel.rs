@@ -132,6 +132,65 @@ pub struct PairHistory<S, RS> {
     pub rolling: RS,
 }
 
+/// What one contact's history has booked since it began: the work its laws dissipated and the
+/// energy its incremental springs gained without work (J). A pair's history ends when the pair
+/// separates; a coupling that keeps energy books adds these once, at that moment, instead of
+/// taking every contact's increments at every step.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ContactWorks {
+    /// Plastic work (`NormalLaw::dissipated_work`).
+    pub plastic: f64,
+    /// Friction work.
+    pub friction: f64,
+    /// Damping work.
+    pub damping: f64,
+    /// Rolling-resistance work.
+    pub rolling: f64,
+    /// Energy the tangential springs gained without work (negative when lost).
+    pub tangential_stiffness: f64,
+    /// Energy the rolling spring gained without work (negative when lost).
+    pub rolling_stiffness: f64,
+}
+
+impl ContactWorks {
+    /// The books of `history` under `law` and `rolling` (NaN parts with
+    /// [`mdr_contact::model::NoBooks`]).
+    #[inline]
+    pub fn of<NL, TL, DL, RL, B>(
+        law: &ContactLaw<NL, TL, DL>,
+        rolling: &RL,
+        history: &PairHistory<StateOf<NL, TL, B>, RL::State>,
+    ) -> Self
+    where
+        B: WorkBooks,
+        NL: NormalLaw,
+        TL: TangentialLaw,
+        DL: DampingLaw,
+        RL: RollingLaw,
+    {
+        let books = &history.contact.books;
+        Self {
+            plastic: law.normal.dissipated_work(&history.contact.normal),
+            friction: books.friction_work(),
+            damping: books.damping_work(),
+            rolling: rolling.dissipated_work(&history.rolling),
+            tangential_stiffness: books.tangential_stiffness_energy(),
+            rolling_stiffness: books.rolling_stiffness_energy(),
+        }
+    }
+
+    /// Add `other` part by part.
+    #[inline]
+    pub fn add(&mut self, other: &ContactWorks) {
+        self.plastic += other.plastic;
+        self.friction += other.friction;
+        self.damping += other.damping;
+        self.rolling += other.rolling;
+        self.tangential_stiffness += other.tangential_stiffness;
+        self.rolling_stiffness += other.rolling_stiffness;
+    }
+}
+
 /// One contact, one step: the law crate's [`ContactLaw::update`] (normal MDR, tangential Mindlin,
 /// damping) and the rolling law, turned into a force and two torques.
 #[inline(always)]
@@ -168,6 +227,10 @@ where
             normal_stiffness: output.normal.stiffness,
         },
     );
+    history
+        .contact
+        .books
+        .add_rolling_stiffness_energy(roll.stiffness_energy);
     let force = output.force;
     let (torque1, torque2) = kinematics.arms.torques(&kinematics.normal, &force);
     PairWrench {

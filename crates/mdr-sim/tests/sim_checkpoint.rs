@@ -186,8 +186,9 @@ fn damaged_and_foreign_checkpoints_are_refused() {
 
     // Checkpoints of the earlier formats (1: before the rolling books and rapier's world; 2:
     // before the springs' stiffness books; 3: before the neighbour-list state; 4: before the
-    // pairs' largest overlaps in the books) are refused with both versions named.
-    for old in [1u8, 2, 3, 4] {
+    // pairs' largest overlaps in the books; 5: before the stiffness energy in each contact's
+    // work books) are refused with both versions named.
+    for old in [1u8, 2, 3, 4, 5] {
         let mut version = bytes.clone();
         version[8] = old;
         std::fs::write(&p, &version).unwrap();
@@ -195,7 +196,7 @@ fn damaged_and_foreign_checkpoints_are_refused() {
         assert!(
             matches!(
                 e,
-                SimError::Checkpoint(CheckpointError::Version { found, expected: 5, .. })
+                SimError::Checkpoint(CheckpointError::Version { found, expected: 6, .. })
                     if found == u32::from(old)
             ),
             "{e}"

@@ -128,11 +128,11 @@ impl MindlinLaw {
     /// where `ξ'` is the displacement the update carries over (rotated into the new contact
     /// plane at its length, times the radius rescale of [`MindlinForm`]). The update then adds
     /// the displacement increment to `ξ'` at the stiffness `k_t(a)`; the work identity of that
-    /// part is `½k|ξ'+Δu|² − ½k|ξ'|² = −F'·Δu + ½k|Δu|²` (`F' = −k ξ'`). Not called by
-    /// [`TangentialLaw::update`] (the hot loop pays nothing for it): the energy books call it with
-    /// the state before the update (docs/theory.md, "Energy books of the incremental springs").
-    /// A contact that opens (`a ≤ 0`) releases the whole `½ k_t(a_prev) |ξ|²`: the update drops
-    /// the spring.
+    /// part is `½k|ξ'+Δu|² − ½k|ξ'|² = −F'·Δu + ½k|Δu|²` (`F' = −k ξ'`). A contact that opens
+    /// (`a ≤ 0`) releases the whole `½ k_t(a_prev) |ξ|²`: the update drops the spring.
+    /// [`TangentialLaw::update`] reports the same quantity as
+    /// [`TangentialResponse::stiffness_energy`] (docs/theory.md, "Energy books of the incremental
+    /// springs"); this form takes the state before an update, for books kept outside the law.
     pub fn stiffness_energy_change(
         &self,
         displacement_len2: f64,
@@ -170,14 +170,24 @@ impl TangentialLaw for MindlinLaw {
         let a = input.normal_response.contact_radius;
         let normal_force = input.normal_response.force;
         if a <= 0.0 || normal_force <= 0.0 {
-            // Out of contact: springs leaving the contact forget their displacement.
+            // Out of contact: springs leaving the contact forget their displacement, and the
+            // energy they held with it.
+            let held =
+                0.5 * self.stiffness(state.contact_radius) * state.displacement.norm_squared();
             *state = MindlinState::default();
-            return TangentialResponse::default();
+            return TangentialResponse {
+                stiffness_energy: -held,
+                ..TangentialResponse::default()
+            };
         }
         // Keep ξ in the current contact plane: drop its normal part, keep its length (the
         // contact frame rotated, the springs did not stretch).
         let mut xi = state.displacement;
         let old_len2 = xi.norm_squared();
+        let k = self.stiffness(a);
+        // Energy the carried-over spring gains without work: ½ k(a) |ξ'|² − ½ k(a_prev) |ξ|²
+        // (`stiffness_energy_change`; |ξ'| = |ξ| r_num/r_den, the frame turn keeps the length).
+        let mut stiffness_energy = 0.0;
         if old_len2 > 0.0 {
             let along_normal = n.dot(&xi);
             xi -= n * along_normal;
@@ -199,18 +209,24 @@ impl TangentialLaw for MindlinLaw {
                 }
             };
             let (r_num, r_den) = self.rescale(state.contact_radius, a);
+            let before = 0.5 * self.stiffness(state.contact_radius) * old_len2;
             if r_num != r_den {
-                xi *= frame * (r_num / r_den);
+                let ratio = r_num / r_den;
+                xi *= frame * ratio;
+                stiffness_energy = 0.5 * k * old_len2 * ratio * ratio - before;
             } else {
                 xi *= frame;
+                stiffness_energy = 0.5 * k * old_len2 - before;
             }
         }
         let du = input.displacement_increment - n * n.dot(&input.displacement_increment);
         xi += du;
-        let k = self.stiffness(a);
         let cap = self.friction_coefficient * normal_force;
         let len2 = xi.norm_squared();
-        let mut response = TangentialResponse::default();
+        let mut response = TangentialResponse {
+            stiffness_energy,
+            ..TangentialResponse::default()
+        };
         let mut stored2 = len2;
         if k * k * len2 > cap * cap {
             // Gross slip: the spring is reset to the Coulomb limit (trial force k|ξ| > μ F_N);

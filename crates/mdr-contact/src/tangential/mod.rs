@@ -36,6 +36,11 @@ pub struct TangentialResponse {
     pub dissipated: f64,
     /// Elastic energy stored in the tangential springs after the update (J).
     pub elastic_energy: f64,
+    /// Energy the springs gained in this update without work on the bodies (J; negative when
+    /// they lost it): the stored energy changing with the stiffness at a fixed displacement,
+    /// the rescale of a shrinking contact, and what the springs held when the contact opened
+    /// (docs/theory.md, "Energy books of the incremental springs").
+    pub stiffness_energy: f64,
 }
 
 /// A tangential law bound to one pair.

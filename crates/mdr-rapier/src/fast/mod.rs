@@ -23,7 +23,9 @@ pub mod stepper;
 pub mod surfaces;
 
 pub use boundary::{Boundary, Image, ImageOffset};
-pub use stepper::{FastForceStepper, FastHistory, FastListState, FastStepReport};
+pub use stepper::{
+    ContactPartner, EndedContact, FastForceStepper, FastHistory, FastListState, FastStepReport,
+};
 
 /// The thread-pool crate of the parallel loops, re-exported so that programs size the pool with
 /// the same version (`rayon::ThreadPoolBuilder::new().num_threads(t).build()?.install(…)`).

@@ -322,6 +322,8 @@ impl NeighbourBuilder {
             if q < old.len() && key(old, q) == k {
                 out.history.push(std::mem::take(&mut old.history[q]));
                 out.active.push(old.active[q]);
+                // Carried over: what stays active in `old` was dropped by this build.
+                old.active[q] = false;
                 if keep_wrenches {
                     out.wrench[p] = old.wrench[q];
                 }

@@ -36,7 +36,9 @@ use super::surfaces::{surface_displacement, FastSurface, SurfacePairs};
 use crate::convert::{to_glam, to_na};
 use crate::error::{positive, CouplingError, Result};
 use crate::geometry::{sphere_sphere, ConvexFaces, SurfaceContact};
-use crate::kernel::{evaluate_pair, Arms, ContactKinematics, PairHistory, PairWrench, SphereArms};
+use crate::kernel::{
+    evaluate_pair, Arms, ContactKinematics, ContactWorks, PairHistory, PairWrench, SphereArms,
+};
 use crate::particles::{MaterialHandle, SphereBuilder};
 use mdr_contact::damping::{DampingModel, NoDamping};
 use mdr_contact::material::{effective_modulus, effective_shear_modulus};
@@ -86,6 +88,27 @@ pub struct FastStepReport {
     pub max_displacement: f64,
 }
 
+/// The other side of a contact whose history ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactPartner {
+    /// Particle `j` (> the first particle, or its periodic image).
+    Sphere(u32),
+    /// Surface `s`: the index in [`FastForceStepper::surfaces`].
+    Surface(u32),
+}
+
+/// A contact whose history ended (the pair separated, or the lists dropped it), with what its
+/// history had booked (see [`FastForceStepper::record_ended_contacts`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EndedContact {
+    /// The particle.
+    pub particle: u32,
+    /// What it touched.
+    pub partner: ContactPartner,
+    /// The contact's works over its whole life.
+    pub works: ContactWorks,
+}
+
 /// The fast force-mode coupling. Owns the particles (structure of arrays), the neighbour lists
 /// with their histories, and the registered rapier surfaces; call
 /// [`FastForceStepper::step`] instead of `PhysicsWorld::step`.
@@ -132,6 +155,9 @@ pub struct FastForceStepper<
     rebuilds: u64,
     /// Set by [`FastForceStepper::compute_forces`], taken by [`FastForceStepper::advance`].
     pending: Option<Pending>,
+    /// Contacts that ended since the last [`FastForceStepper::take_ended_contacts`], when
+    /// recorded.
+    ended: Option<Vec<EndedContact>>,
 }
 
 /// What [`FastForceStepper::compute_forces`] leaves for [`FastForceStepper::advance`].
@@ -204,6 +230,7 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> FastForceStepper<N, T,
             report: FastStepReport::default(),
             rebuilds: 0,
             pending: None,
+            ended: None,
         }
     }
 }
@@ -307,6 +334,26 @@ where
             report: self.report,
             rebuilds: self.rebuilds,
             pending: None,
+            ended: self.ended,
+        }
+    }
+
+    /// Record every contact whose history ends (its pair separated, or a rebuild dropped it)
+    /// with what the history had booked ([`ContactWorks`]), in an order that does not depend on
+    /// the number of threads: per step the rebuild's drops, the surface contacts, then the
+    /// sphere pairs, each in list order. Energy books then need the live contacts' books only when
+    /// they are read, plus these, instead of every contact's increments at every step. Drain
+    /// them with [`FastForceStepper::take_ended_contacts`]. Off by default.
+    pub fn record_ended_contacts(mut self, yes: bool) -> Self {
+        self.ended = yes.then(Vec::new);
+        self
+    }
+
+    /// Move the contacts that ended since the last call (see
+    /// [`FastForceStepper::record_ended_contacts`]) to the end of `into`.
+    pub fn take_ended_contacts(&mut self, into: &mut Vec<EndedContact>) {
+        if let Some(ended) = &mut self.ended {
+            into.append(ended);
         }
     }
 

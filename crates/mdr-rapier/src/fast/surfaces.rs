@@ -141,6 +141,8 @@ impl<H: Default> SurfacePairs<H> {
             if q < old.len() && (old.particle[q], old.surface[q]) == (i, s) {
                 self.history.push(std::mem::take(&mut old.history[q]));
                 self.active.push(old.active[q]);
+                // Carried over: what stays active in `old` was dropped by this rebuild.
+                old.active[q] = false;
                 self.wrench.push(old.wrench[q]);
                 self.contact.push(old.contact[q]);
                 q += 1;

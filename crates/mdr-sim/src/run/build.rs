@@ -235,7 +235,10 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
             // prediction distance as the plain path.
             world.integration_parameters.normalized_prediction_distance =
                 prediction_distance(scene) / world.integration_parameters.length_unit;
-            Coupling::Fast(Box::new((*s).skin(skin(scene))?))
+            // The energy books take each contact's works once, when its history ends.
+            Coupling::Fast(Box::new(
+                (*s).skin(skin(scene))?.record_ended_contacts(true),
+            ))
         }
         Inserter::Restitution(mut h) => {
             world.integration_parameters.dt = scene.dt;

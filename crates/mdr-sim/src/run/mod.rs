@@ -36,6 +36,7 @@ use mdr_contact::normal::NormalLaw;
 use mdr_contact::rolling::RollingLaw;
 use mdr_rapier::convert::to_na;
 use mdr_rapier::geometry::sphere_sphere;
+use mdr_rapier::kernel::ContactWorks;
 use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;

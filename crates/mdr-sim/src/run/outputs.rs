@@ -71,12 +71,17 @@ impl Sim<'_> {
                 add(stepper.sphere_pair_laws(i, j), &pairs.history[q], overlap);
             }
         }
-        row.plastic_j = self.books.plastic;
-        row.friction_j = self.books.friction;
-        row.damping_j = self.books.damping;
-        row.rolling_j = self.books.rolling;
-        row.stiffness_tangential_j = self.books.stiffness_tangential;
-        row.stiffness_rolling_j = self.books.stiffness_rolling;
+        // The neighbour-list path's totals hold the contacts that ended; add the live ones.
+        let live = match &self.built.coupling {
+            Coupling::Fast(stepper) => Books::live_fast(stepper, None),
+            _ => ContactWorks::default(),
+        };
+        row.plastic_j = self.books.plastic + live.plastic;
+        row.friction_j = self.books.friction + live.friction;
+        row.damping_j = self.books.damping + live.damping;
+        row.rolling_j = self.books.rolling + live.rolling;
+        row.stiffness_tangential_j = self.books.stiffness_tangential - live.tangential_stiffness;
+        row.stiffness_rolling_j = self.books.stiffness_rolling - live.rolling_stiffness;
         row.wall_work_j = self.books.wall_work;
         row.removed_j = self.books.removed;
         row.with_balance()
@@ -90,13 +95,15 @@ impl Sim<'_> {
         let mut frame = ParticleFrame::default();
         if let Coupling::Fast(stepper) = &self.built.coupling {
             let p = stepper.particles();
-            for i in 0..p.len() {
+            let mut plastic = self.books.particle_plastic.clone();
+            Books::live_fast(stepper, Some(&mut plastic));
+            for (i, &plastic_work) in plastic.iter().enumerate().take(p.len()) {
                 frame.position.push(p.position[i].into());
                 frame.radius.push(p.radius[i]);
                 frame.velocity.push(p.linvel[i].into());
                 frame.angular_velocity.push(p.angvel[i].into());
                 frame.contacts.push(self.view.contacts[i]);
-                frame.plastic_work.push(self.books.particle_plastic[i]);
+                frame.plastic_work.push(plastic_work);
                 frame.id.push(i as u32);
             }
         }

@@ -4,7 +4,7 @@
 use super::build::{Coupling, FastSceneStepper, SceneStepper};
 use super::Sim;
 use crate::headline::{HeadlineSample, Tracker};
-use crate::laws::{AnyDamping, AnyNormal, AnyNormalState, AnyRollingLaw};
+use crate::laws::{AnyDamping, AnyNormal, AnyNormalState};
 use crate::output::energy::EnergyRow;
 use crate::output::vtk::CollectionEntry;
 use crate::scene::Scene;
@@ -15,17 +15,25 @@ use mdr_contact::rolling::{EpsdRollingState, RollingLaw};
 use mdr_contact::tangential::{Mindlin, MindlinState, TangentialModel};
 use mdr_rapier::convert::{to_glam, to_na};
 use mdr_rapier::fast::particles::FastParticles;
-use mdr_rapier::fast::FastListState;
+use mdr_rapier::fast::{ContactPartner, EndedContact, FastListState};
+use mdr_rapier::kernel::ContactWorks;
 use nalgebra::Vector3;
 use rand_chacha::ChaCha8Rng;
 use rapier3d_f64::prelude::*;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-/// Running totals of the dissipated work and of the work of moving walls. A pair's history (and
-/// its work books) is dropped when the pair separates, so the totals take each contact's
-/// increments step by step.
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+/// Running totals of the dissipated work and of the work of moving walls.
+///
+/// On the rapier path a pair's history (and its work books) is dropped when the pair
+/// separates, so the totals take each contact's increments step by step. On the neighbour-list
+/// path every contact's history books its own works as it goes (friction, damping and the
+/// springs' stiffness energy in its work books; plastic and rolling work in the laws' states),
+/// and the stepper hands over each contact whose history ends with what it booked
+/// ([`mdr_rapier::fast::EndedContact`]): the totals here then hold the contacts that ended, and
+/// the live contacts' books are added when the books are read ([`Books::live_fast`]), so a step
+/// costs nothing per contact.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Books {
     /// Plastic work since the start (J).
     pub plastic: f64,
@@ -46,39 +54,17 @@ pub struct Books {
     pub stiffness_rolling: f64,
     /// Kinetic and gravitational energy removed spheres took out of the run (J).
     pub removed: f64,
-    /// Every touching pair at the last update, sorted by key: its work books and the spring
-    /// states the next update starts from. The neighbour-list path keeps them per block of
-    /// particles between its updates instead (`blocks`, empty here); a checkpoint holds them
-    /// here ([`Books::for_checkpoint`]).
+    /// Rapier path: every touching pair at the last update, sorted by key, with its books then.
     pub last: Vec<PairBooks>,
-    /// Plastic work per particle (J).
+    /// Plastic work per particle (J; on the neighbour-list path, of the contacts that ended).
     pub particle_plastic: Vec<f64>,
-    /// Neighbour-list path: the pair books of each block of particles at the last update.
+    /// Buffer of the contacts that ended in a step (empty between steps).
     #[serde(skip)]
-    blocks: Vec<Vec<PairBooks>>,
-    /// Buffers for the next update's blocks (reused, so steady updates do not allocate).
-    #[serde(skip)]
-    spare: Vec<Vec<PairBooks>>,
+    ended: Vec<EndedContact>,
 }
 
-/// Equal totals and equal pair books, however each keeps its pairs between updates.
-impl PartialEq for Books {
-    fn eq(&self, other: &Self) -> bool {
-        let (a, b) = (self.for_checkpoint(), other.for_checkpoint());
-        a.plastic == b.plastic
-            && a.friction == b.friction
-            && a.damping == b.damping
-            && a.rolling == b.rolling
-            && a.wall_work == b.wall_work
-            && a.stiffness_tangential == b.stiffness_tangential
-            && a.stiffness_rolling == b.stiffness_rolling
-            && a.removed == b.removed
-            && a.last == b.last
-            && a.particle_plastic == b.particle_plastic
-    }
-}
-
-/// What the books keep of one touching pair between updates.
+/// What the rapier path's books keep of one touching pair between updates: the pair's books
+/// at the last update.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct PairBooks {
     /// Pair key.
@@ -93,13 +79,9 @@ pub struct PairBooks {
     pub damping: f64,
     /// Rolling work (J).
     pub rolling: f64,
-    /// `|ξ|²` of the Mindlin spring after the update (m²).
-    pub displacement_len2: f64,
-    /// Contact radius the Mindlin spring was stored at (m; 0 when it holds nothing).
-    pub contact_radius: f64,
-    /// `|M_r|²` of the rolling spring after the update ((N·m)²).
-    pub torque_len2: f64,
-    /// Stiffness of the rolling spring after the update (N·m/rad; 0 when it holds nothing).
+    /// Energy the tangential springs gained without work (J).
+    pub tangential_stiffness: f64,
+    /// Energy the rolling spring gained without work (J).
     pub rolling_stiffness: f64,
 }
 
@@ -121,10 +103,8 @@ impl Books {
         dt: f64,
     ) {
         let entries = stepper.contacts().entries();
-        let mut block = BlockBooks {
-            next: Vec::with_capacity(entries.len()),
-            ..BlockBooks::default()
-        };
+        let mut next = Vec::with_capacity(entries.len());
+        let mut j = 0;
         let particle = |c: ColliderHandle| {
             particle_of_collider
                 .get(c.into_raw_parts().0 as usize)
@@ -132,16 +112,52 @@ impl Books {
                 .filter(|&i| i != usize::MAX)
         };
         for e in entries {
-            let owners = (particle(e.collider1), particle(e.collider2));
-            block.book_pair(
-                &self.last,
-                e.key.0,
-                &e.law,
-                &e.rolling,
-                &e.history.contact,
-                &e.history.rolling,
-                owners,
-            );
+            let key = e.key.0;
+            while j < self.last.len() && self.last[j].key < key {
+                j += 1;
+            }
+            let prev = match self.last.get(j) {
+                Some(l) if l.key == key => *l,
+                _ => PairBooks::default(),
+            };
+            let h = &e.history;
+            // The plastic work is a function of the largest overlap
+            // (`NormalLaw::dissipated_work`): the same as at the last update unless that grew.
+            let max_overlap = e.law.normal.max_overlap(&h.contact.normal);
+            let plastic = if max_overlap == prev.max_overlap && prev.key == key {
+                prev.plastic
+            } else {
+                e.law.normal.dissipated_work(&h.contact.normal)
+            };
+            let books = &h.contact.books;
+            let now = PairBooks {
+                key,
+                plastic,
+                max_overlap,
+                friction: books.friction_work(),
+                damping: books.damping_work(),
+                rolling: e.rolling.dissipated_work(&h.rolling),
+                tangential_stiffness: books.tangential_stiffness_energy(),
+                rolling_stiffness: books.rolling_stiffness_energy(),
+            };
+            let dp = now.plastic - prev.plastic;
+            self.plastic += dp;
+            self.friction += now.friction - prev.friction;
+            self.damping += now.damping - prev.damping;
+            self.rolling += now.rolling - prev.rolling;
+            self.stiffness_tangential -= now.tangential_stiffness - prev.tangential_stiffness;
+            self.stiffness_rolling -= now.rolling_stiffness - prev.rolling_stiffness;
+            if dp != 0.0 {
+                match (particle(e.collider1), particle(e.collider2)) {
+                    (Some(a), Some(b)) => {
+                        self.particle_plastic[a] += 0.5 * dp;
+                        self.particle_plastic[b] += 0.5 * dp;
+                    }
+                    (Some(a), None) | (None, Some(a)) => self.particle_plastic[a] += dp,
+                    (None, None) => {}
+                }
+            }
+            next.push(now);
             // Work of a moving wall on the sphere: F · v_wall(contact point) dt.
             let on_wall = wall_of_collider
                 .get(e.collider2.into_raw_parts().0 as usize)
@@ -149,237 +165,120 @@ impl Books {
             if on_wall {
                 if let Some(b2) = e.body2.and_then(|h| bodies.get(h)) {
                     if b2.is_kinematic() {
-                        block.totals.wall_work +=
-                            wall_power(b2, &e.contact.point, &e.wrench.force) * dt;
+                        self.wall_work += wall_power(b2, &e.contact.point, &e.wrench.force) * dt;
                     }
                 }
             }
         }
-        self.add(&block.totals, &block.plastic_by_particle);
-        self.last = block.next;
-        self.blocks.clear();
+        self.last = next;
     }
 
-    /// [`Books::take`] on the neighbour-list path. Pairs are visited per particle `i` in the
-    /// stepper's order, its surfaces first (key `i · 2³² + s`), then its partners `j > i` (key
-    /// `i · 2³² + 2³¹ + j`), so the keys increase as the books' merge needs (scenes are not
-    /// periodic: one image per pair).
-    ///
-    /// The particles are booked in parallel in blocks of a fixed size: each block merges with
-    /// its own pair books of the last update, keeps its own totals, and lists its per-particle
-    /// plastic increments in visit order. The blocks are then joined in order, so the books do
-    /// not depend on the number of threads, and each particle's plastic work takes its
-    /// increments in the same order as a one-block pass.
-    pub(crate) fn take_fast(&mut self, stepper: &FastSceneStepper, bodies: &RigidBodySet, dt: f64) {
+    /// The step whose forces were just computed, on the neighbour-list path: the contacts that
+    /// ended (their whole books, once), and the work of kinematic walls (`F · v_wall dt` per
+    /// touching sphere, in the stepper's surface-pair order).
+    pub(crate) fn take_fast(
+        &mut self,
+        stepper: &mut FastSceneStepper,
+        bodies: &RigidBodySet,
+        dt: f64,
+    ) {
+        stepper.take_ended_contacts(&mut self.ended);
+        for e in self.ended.drain(..) {
+            let w = &e.works;
+            self.plastic += w.plastic;
+            self.friction += w.friction;
+            self.damping += w.damping;
+            self.rolling += w.rolling;
+            self.stiffness_tangential -= w.tangential_stiffness;
+            self.stiffness_rolling -= w.rolling_stiffness;
+            let i = e.particle as usize;
+            match e.partner {
+                ContactPartner::Sphere(j) => {
+                    self.particle_plastic[i] += 0.5 * w.plastic;
+                    self.particle_plastic[j as usize] += 0.5 * w.plastic;
+                }
+                ContactPartner::Surface(_) => self.particle_plastic[i] += w.plastic,
+            }
+        }
+        let surfaces = stepper.surfaces();
+        let kinematic: Vec<Option<&RigidBody>> = surfaces
+            .iter()
+            .map(|s| {
+                s.body
+                    .and_then(|h| bodies.get(h))
+                    .filter(|b| b.is_kinematic())
+            })
+            .collect();
+        if kinematic.iter().all(Option::is_none) {
+            return;
+        }
+        let sp = stepper.surface_pairs();
+        for q in (0..sp.len()).filter(|&q| sp.active[q]) {
+            if let Some(b2) = kinematic[sp.surface[q] as usize] {
+                self.wall_work += wall_power(b2, &sp.contact[q].point, &sp.wrench[q].force) * dt;
+            }
+        }
+    }
+
+    /// The books of the contacts alive on the neighbour-list path, to add to the totals
+    /// ([`Books`]); with `particle_plastic`, their plastic work is added to it per particle
+    /// (half to each sphere of a pair). Taken in parallel over fixed blocks of particles and
+    /// joined in block order, so the sums do not depend on the number of threads.
+    pub(crate) fn live_fast(
+        stepper: &FastSceneStepper,
+        particle_plastic: Option<&mut [f64]>,
+    ) -> ContactWorks {
         /// Particles per block.
         const BLOCK: usize = 2048;
+        let per_particle = particle_plastic.is_some();
         let p = stepper.particles();
         let pairs = stepper.pairs();
         let sp = stepper.surface_pairs();
-        let surfaces = stepper.surfaces();
         let n = p.len();
-        let nblocks = n.div_ceil(BLOCK);
-        // The last update's books of each block: kept per block, or (after a restart or a
-        // rapier-path update) found by key in the flat list.
-        let last = &self.last;
-        let previous: Vec<&[PairBooks]> = if last.is_empty() && self.blocks.len() == nblocks {
-            self.blocks.iter().map(Vec::as_slice).collect()
-        } else {
-            let at = |b: usize| last.partition_point(|l| l.key < ((b * BLOCK) as u64) << 32);
-            (0..nblocks).map(|b| &last[at(b)..at(b + 1)]).collect()
-        };
-        let mut spare = std::mem::take(&mut self.spare);
-        spare.resize_with(nblocks, Vec::new);
-        let blocks: Vec<BlockBooks> = spare
-            .par_drain(..nblocks)
-            .zip(previous.into_par_iter())
-            .enumerate()
-            .map(|(b, (mut next, last))| {
-                next.clear();
-                let mut block = BlockBooks {
-                    next,
-                    ..BlockBooks::default()
-                };
+        let blocks: Vec<(ContactWorks, Vec<(u32, f64)>)> = (0..n.div_ceil(BLOCK))
+            .into_par_iter()
+            .map(|b| {
+                let mut total = ContactWorks::default();
+                let mut plastic = Vec::new();
                 for i in b * BLOCK..((b + 1) * BLOCK).min(n) {
                     for q in sp.start[i] as usize..sp.start[i + 1] as usize {
-                        if !sp.active[q] {
-                            continue;
-                        }
-                        let s = sp.surface[q] as usize;
-                        let (law, rolling) = stepper.surface_pair_laws(i, s);
-                        let h = &sp.history[q];
-                        let key = ((i as u64) << 32) | s as u64;
-                        block.book_pair(
-                            last,
-                            key,
-                            law,
-                            rolling,
-                            &h.contact,
-                            &h.rolling,
-                            (Some(i), None),
-                        );
-                        if let Some(b2) = surfaces[s].body.and_then(|h| bodies.get(h)) {
-                            if b2.is_kinematic() {
-                                block.totals.wall_work +=
-                                    wall_power(b2, &sp.contact[q].point, &sp.wrench[q].force) * dt;
+                        if sp.active[q] {
+                            let (law, rolling) =
+                                stepper.surface_pair_laws(i, sp.surface[q] as usize);
+                            let w = ContactWorks::of(law, rolling, &sp.history[q]);
+                            total.add(&w);
+                            if per_particle {
+                                plastic.push((i as u32, w.plastic));
                             }
                         }
                     }
                     for q in pairs.first[i] as usize..pairs.first[i + 1] as usize {
-                        if !pairs.active[q] {
-                            continue;
+                        if pairs.active[q] {
+                            let j = pairs.j[q] as usize;
+                            let (law, rolling) = stepper.sphere_pair_laws(i, j);
+                            let w = ContactWorks::of(law, rolling, &pairs.history[q]);
+                            total.add(&w);
+                            if per_particle {
+                                plastic.push((i as u32, 0.5 * w.plastic));
+                                plastic.push((j as u32, 0.5 * w.plastic));
+                            }
                         }
-                        let pj = pairs.j[q] as usize;
-                        let (law, rolling) = stepper.sphere_pair_laws(i, pj);
-                        let h = &pairs.history[q];
-                        let key = ((i as u64) << 32) | (1 << 31) | pj as u64;
-                        block.book_pair(
-                            last,
-                            key,
-                            law,
-                            rolling,
-                            &h.contact,
-                            &h.rolling,
-                            (Some(i), Some(pj)),
-                        );
                     }
                 }
-                block
+                (total, plastic)
             })
             .collect();
-        // The last update's block buffers become the next update's spares.
-        self.spare = std::mem::take(&mut self.blocks);
-        self.last.clear();
-        for mut block in blocks {
-            self.add(&block.totals, &block.plastic_by_particle);
-            self.blocks.push(std::mem::take(&mut block.next));
-        }
-    }
-
-    /// A copy for a checkpoint: every pair's books in the flat list `last`.
-    pub(crate) fn for_checkpoint(&self) -> Self {
-        let mut books = self.clone();
-        if !self.blocks.is_empty() {
-            books.last = self.blocks.concat();
-            books.blocks.clear();
-        }
-        books.spare.clear();
-        books
-    }
-
-    /// Add a block's increments to the running totals.
-    fn add(&mut self, t: &Totals, plastic_by_particle: &[(u32, f64)]) {
-        self.plastic += t.plastic;
-        self.friction += t.friction;
-        self.damping += t.damping;
-        self.rolling += t.rolling;
-        self.wall_work += t.wall_work;
-        self.stiffness_tangential += t.stiffness_tangential;
-        self.stiffness_rolling += t.stiffness_rolling;
-        for &(i, dp) in plastic_by_particle {
-            self.particle_plastic[i as usize] += dp;
-        }
-    }
-}
-
-/// Increments of the running totals of [`Books`] over some pairs.
-#[derive(Debug, Clone, Copy, Default)]
-struct Totals {
-    plastic: f64,
-    friction: f64,
-    damping: f64,
-    rolling: f64,
-    wall_work: f64,
-    stiffness_tangential: f64,
-    stiffness_rolling: f64,
-}
-
-/// The books of one block of particles, or of one pair on the rapier path.
-#[derive(Debug, Default)]
-struct BlockBooks {
-    /// Position in the previous update's pair books from which the next key is looked for.
-    j: usize,
-    totals: Totals,
-    /// The block's pairs, in key order.
-    next: Vec<PairBooks>,
-    /// Plastic-work increments per particle, in visit order.
-    plastic_by_particle: Vec<(u32, f64)>,
-}
-
-impl BlockBooks {
-    /// Book one touching pair: its work increments since the last update (found by key in
-    /// `last` from position `self.j` on) and the energy its springs lost without work.
-    #[allow(clippy::too_many_arguments)]
-    fn book_pair(
-        &mut self,
-        last: &[PairBooks],
-        key: u64,
-        law: &SceneLaw,
-        rolling_law: &AnyRollingLaw,
-        contact: &ContactState<AnyNormalState, MindlinState>,
-        rolling: &EpsdRollingState,
-        owners: (Option<usize>, Option<usize>),
-    ) {
-        while self.j < last.len() && last[self.j].key < key {
-            self.j += 1;
-        }
-        let prev = match last.get(self.j) {
-            Some(l) if l.key == key => *l,
-            _ => PairBooks::default(),
-        };
-        // The plastic work is a function of the largest overlap (`NormalLaw::dissipated_work`):
-        // the same as at the last update unless that grew.
-        let max_overlap = law.normal.max_overlap(&contact.normal);
-        let plastic_work = if max_overlap == prev.max_overlap && prev.key == key {
-            prev.plastic
-        } else {
-            law.normal.dissipated_work(&contact.normal)
-        };
-        let friction_work = contact.books.friction_work();
-        let damping_work = contact.books.damping_work();
-        let rolling_work = rolling_law.dissipated_work(rolling);
-        let dp = plastic_work - prev.plastic;
-        let t = &mut self.totals;
-        t.plastic += dp;
-        t.friction += friction_work - prev.friction;
-        t.damping += damping_work - prev.damping;
-        t.rolling += rolling_work - prev.rolling;
-        // The springs' energy change without work in this update, from the state the update
-        // started from (docs/theory.md, "Energy books of the incremental springs").
-        let tangential = &contact.tangential;
-        t.stiffness_tangential -= law.tangential.stiffness_energy_change(
-            prev.displacement_len2,
-            prev.contact_radius,
-            tangential.contact_radius,
-        );
-        t.stiffness_rolling -= EpsdRollingState::stiffness_energy_change(
-            prev.torque_len2,
-            prev.rolling_stiffness,
-            rolling.stiffness,
-        );
-        if dp != 0.0 {
-            let plastic = &mut self.plastic_by_particle;
-            match owners {
-                (Some(a), Some(b)) => {
-                    plastic.push((a as u32, 0.5 * dp));
-                    plastic.push((b as u32, 0.5 * dp));
+        let mut total = ContactWorks::default();
+        let mut particle_plastic = particle_plastic;
+        for (block, plastic) in &blocks {
+            total.add(block);
+            if let Some(pp) = particle_plastic.as_deref_mut() {
+                for &(i, w) in plastic {
+                    pp[i as usize] += w;
                 }
-                (Some(a), None) | (None, Some(a)) => plastic.push((a as u32, dp)),
-                (None, None) => {}
             }
         }
-        self.next.push(PairBooks {
-            key,
-            plastic: plastic_work,
-            max_overlap,
-            friction: friction_work,
-            damping: damping_work,
-            rolling: rolling_work,
-            displacement_len2: tangential.displacement.norm_squared(),
-            contact_radius: tangential.contact_radius,
-            torque_len2: rolling.torque.norm_squared(),
-            rolling_stiffness: rolling.stiffness,
-        });
+        total
     }
 }
 
@@ -708,7 +607,7 @@ impl CheckpointData {
             fast,
             impacts,
             world,
-            books: sim.books.for_checkpoint(),
+            books: sim.books.clone(),
             rng: RngRecord::of(&sim.rng),
             tracker: sim.tracker.clone(),
             collection: sim.collection.clone(),

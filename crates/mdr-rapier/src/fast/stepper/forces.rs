@@ -40,6 +40,7 @@ where
         let p = &self.particles;
         let laws = &self.sphere_laws;
         let ns = self.laws_species;
+        let record = self.ended.is_some();
         let PairList {
             i: pi,
             j: pj,
@@ -55,7 +56,8 @@ where
                      wrench: &mut [PairWrench],
                      active: &mut [bool],
                      mut sums: Option<&mut [(Vector3<f64>, Vector3<f64>)]>|
-         -> usize {
+         -> (usize, Vec<EndedContact>) {
+            let mut ended = Vec::new();
             let base = c * CHUNK;
             let len = history.len();
             let (pi, pj, image) = (
@@ -81,6 +83,15 @@ where
                     // Separated: the plain path drops the entry, so does this one. The
                     // wrench of an inactive pair is kept at zero, so that the per-particle
                     // gather need not test `active`.
+                    if record {
+                        let (law, rolling) =
+                            &laws[p.species[i] as usize * ns + p.species[j] as usize];
+                        ended.push(EndedContact {
+                            particle: i as u32,
+                            partner: ContactPartner::Sphere(j as u32),
+                            works: ContactWorks::of(law, rolling, &history[k]),
+                        });
+                    }
                     active[k] = false;
                     history[k] = Default::default();
                     if let Some(w) = wrench.get_mut(k) {
@@ -131,9 +142,9 @@ where
                     }
                 }
             }
-            touching
+            (touching, ended)
         };
-        if serial {
+        let results: Vec<(usize, Vec<EndedContact>)> = if serial {
             // The wrenches go straight into the sums: none is stored (72 bytes per touching
             // pair and step less to write; the list's `wrench` stays empty).
             wrench.clear();
@@ -143,7 +154,7 @@ where
                 .zip(active.chunks_mut(CHUNK))
                 .enumerate()
                 .map(|(c, (history, active))| chunk(c, history, &mut [], active, Some(&mut *sums)))
-                .sum()
+                .collect()
         } else {
             if wrench.len() != history.len() {
                 // First parallel step after one-thread steps: every pair starts at zero; the
@@ -157,8 +168,21 @@ where
                 .zip(active.par_chunks_mut(CHUNK))
                 .enumerate()
                 .map(|(c, ((history, wrench), active))| chunk(c, history, wrench, active, None))
-                .sum()
+                .collect()
+        };
+        self.collect_ended(results)
+    }
+
+    /// Sum the chunks' touching counts and append their ended contacts in chunk order.
+    fn collect_ended(&mut self, results: Vec<(usize, Vec<EndedContact>)>) -> usize {
+        let mut touching = 0;
+        for (count, mut ended) in results {
+            touching += count;
+            if let Some(all) = &mut self.ended {
+                all.append(&mut ended);
+            }
         }
+        touching
     }
 
     /// Step 2: particle–surface pairs. Returns the number of touching pairs.
@@ -172,6 +196,7 @@ where
         let laws = &self.surface_laws;
         let surfaces = &self.surfaces;
         let nsurf = surfaces.len();
+        let record = self.ended.is_some();
         let SurfacePairs {
             particle,
             surface,
@@ -182,7 +207,7 @@ where
             ..
         } = &mut self.surface_pairs;
         let (particle, surface) = (&*particle, &*surface);
-        history
+        let results: Vec<(usize, Vec<EndedContact>)> = history
             .par_chunks_mut(CHUNK)
             .zip(wrench.par_chunks_mut(CHUNK))
             .zip(active.par_chunks_mut(CHUNK))
@@ -191,6 +216,7 @@ where
             .map(|(c, (((history, wrench), active), contacts))| {
                 let base = c * CHUNK;
                 let mut touching = 0;
+                let mut ended = Vec::new();
                 for k in 0..history.len() {
                     let q = base + k;
                     let (i, s) = (particle[q] as usize, surface[q] as usize);
@@ -200,6 +226,14 @@ where
                         .and_then(|co| surf.sphere_contact(co, &p.position[i], p.radius[i]));
                     let Some(contact) = contact else {
                         if active[k] {
+                            if record {
+                                let (law, rolling) = &laws[p.species[i] as usize * nsurf + s];
+                                ended.push(EndedContact {
+                                    particle: i as u32,
+                                    partner: ContactPartner::Surface(s as u32),
+                                    works: ContactWorks::of(law, rolling, &history[k]),
+                                });
+                            }
                             active[k] = false;
                             history[k] = Default::default();
                             wrench[k] = PairWrench::default();
@@ -232,9 +266,10 @@ where
                     wrench[k] = evaluate_pair(law, rolling, &mut history[k], &kinematics, dt);
                     contacts[k] = contact;
                 }
-                touching
+                (touching, ended)
             })
-            .sum()
+            .collect();
+        self.collect_ended(results)
     }
 }
 

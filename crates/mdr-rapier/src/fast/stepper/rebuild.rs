@@ -74,6 +74,39 @@ where
         Ok(())
     }
 
+    /// Record the touching pairs the last build dropped (still active in the old lists; none
+    /// while every particle moved less than half the skin, but a particle moved by hand may
+    /// leave its contacts behind).
+    fn record_dropped(&mut self) {
+        let Some(ended) = &mut self.ended else {
+            return;
+        };
+        let species = &self.particles.species;
+        let (ns, nsurf) = (self.laws_species, self.surfaces.len());
+        let old = &self.old_surface_pairs;
+        for q in (0..old.len()).filter(|&q| old.active[q]) {
+            let (i, s) = (old.particle[q], old.surface[q]);
+            let (law, rolling) =
+                &self.surface_laws[species[i as usize] as usize * nsurf + s as usize];
+            ended.push(EndedContact {
+                particle: i,
+                partner: ContactPartner::Surface(s),
+                works: ContactWorks::of(law, rolling, &old.history[q]),
+            });
+        }
+        let old = &self.old_pairs;
+        for q in (0..old.len()).filter(|&q| old.active[q]) {
+            let (i, j) = (old.i[q], old.j[q]);
+            let (law, rolling) =
+                &self.sphere_laws[species[i as usize] as usize * ns + species[j as usize] as usize];
+            ended.push(EndedContact {
+                particle: i,
+                partner: ContactPartner::Sphere(j),
+                works: ContactWorks::of(law, rolling, &old.history[q]),
+            });
+        }
+    }
+
     pub(super) fn surfaces_moved(&self, colliders: &ColliderSet) -> f64 {
         self.surfaces
             .iter()
@@ -154,6 +187,7 @@ where
         std::mem::swap(&mut self.surface_pairs, &mut self.old_surface_pairs);
         self.surface_pairs
             .rebuild_from(&self.surface_candidates, n, &mut self.old_surface_pairs);
+        self.record_dropped();
         self.max_displacement = 0.0;
         self.needs_build = false;
         self.rebuilds += 1;
