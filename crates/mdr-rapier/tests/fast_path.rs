@@ -4,7 +4,8 @@
 
 use mdr_rapier::fast::bed::{lattice_bed, Bed, BedSpec};
 use mdr_rapier::fast::rayon::ThreadPoolBuilder;
-use mdr_rapier::fast::{Boundary, FastForceStepper};
+use mdr_rapier::fast::{Boundary, ContactPartner, FastForceStepper};
+use mdr_rapier::kernel::ContactWorks;
 use mdr_rapier::prelude::*;
 use mdr_rapier::rapier::prelude::*;
 
@@ -594,4 +595,61 @@ fn rolling_resistance_can_be_added_to_a_filled_stepper() {
         .count();
     assert!(loaded > 50, "{loaded} loaded rolling springs");
     assert_ne!(resisted.particles().angvel, plain.particles().angvel);
+}
+
+#[test]
+fn ended_contacts_carry_their_whole_books_once() {
+    // Two spheres in an oblique, damped, frictional collision in zero gravity, then apart: the
+    // stepper hands over the pair once, when it separates, with the works its history had
+    // booked at its last update (friction and damping dissipated, and the spring's stiffness
+    // energy, released when the contact opened: all non-zero here).
+    let run = |record: bool| {
+        let mut fast = FastForceStepper::new(model(), Boundary::Open)
+            .skin(0.1)
+            .unwrap()
+            .record_ended_contacts(record);
+        let m = fast.insert_material(grain());
+        let mut world = PhysicsWorld {
+            gravity: Vector::ZERO,
+            ..PhysicsWorld::default()
+        };
+        fast.configure(&mut world.integration_parameters, 1e-4)
+            .unwrap();
+        fast.insert_sphere(SphereBuilder::new(0.5, m)).unwrap();
+        fast.insert_sphere(
+            SphereBuilder::new(0.5, m)
+                .translation(Vector::new(1.005, 0.3, 0.0))
+                .linvel(Vector::new(-1.0, 0.4, 0.0)),
+        )
+        .unwrap();
+        let mut live = None;
+        let mut ended = Vec::new();
+        let mut steps_in_contact = 0;
+        for _ in 0..4000 {
+            fast.step(&mut world).unwrap();
+            fast.take_ended_contacts(&mut ended);
+            let pairs = fast.pairs();
+            if let Some(q) = (0..pairs.len()).find(|&q| pairs.active[q]) {
+                let (law, rolling) = fast.sphere_pair_laws(0, 1);
+                live = Some(ContactWorks::of(law, rolling, &pairs.history[q]));
+                steps_in_contact += 1;
+            }
+        }
+        (live, ended, steps_in_contact)
+    };
+    let (live, ended, steps_in_contact) = run(true);
+    let live = live.expect("the spheres touched");
+    assert!(steps_in_contact > 20, "{steps_in_contact} steps in contact");
+    assert_eq!(ended.len(), 1, "{ended:?}");
+    let e = ended[0];
+    assert_eq!((e.particle, e.partner), (0, ContactPartner::Sphere(1)));
+    assert_eq!(e.works, live);
+    assert!(
+        e.works.friction > 0.0 && e.works.damping > 0.0,
+        "{:?}",
+        e.works
+    );
+    assert!(e.works.tangential_stiffness != 0.0, "{:?}", e.works);
+    // Not recorded unless asked.
+    assert!(run(false).1.is_empty());
 }
