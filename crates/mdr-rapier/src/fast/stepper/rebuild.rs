@@ -156,6 +156,12 @@ where
             .iter()
             .map(|s| colliders.get(s.collider).map(|co| (co, co.compute_aabb())))
             .collect();
+        // A coarse grid over the particles: each surface is listed in the cells its AABB,
+        // loosened by the largest reach, overlaps, so a particle tests only the surfaces of its
+        // own cell (a hopper wall of a hundred convex pieces costs a particle two or three
+        // tests, not a hundred). Cells are listed in increasing surface index, so the
+        // candidates come out sorted.
+        let grid = SurfaceGrid::new(&p.position, r_max + skin, &aabbs);
         // In parallel over fixed blocks of particles, joined in block order: the candidates
         // come out in particle order whatever the number of threads.
         const SEARCH_BLOCK: usize = 1024;
@@ -167,8 +173,9 @@ where
                 for i in b * SEARCH_BLOCK..((b + 1) * SEARCH_BLOCK).min(n) {
                     let x = to_glam(&position[i]);
                     let reach = radius[i] + skin;
-                    for (k, entry) in aabbs.iter().enumerate() {
-                        let Some((co, aabb)) = entry else {
+                    for &k in grid.surfaces_near(&position[i]) {
+                        let k = k as usize;
+                        let Some((co, aabb)) = &aabbs[k] else {
                             continue;
                         };
                         let inside = (0..3)
@@ -192,5 +199,109 @@ where
         self.needs_build = false;
         self.rebuilds += 1;
         Ok(())
+    }
+}
+
+/// Surfaces listed per cell of a uniform grid over the particles' bounding box (see
+/// [`FastForceStepper::rebuild`]).
+struct SurfaceGrid {
+    lo: Vector3<f64>,
+    inv_cell: f64,
+    dims: [usize; 3],
+    /// Surfaces of cell `c`: `items[start[c]..start[c + 1]]`, in increasing index.
+    start: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl SurfaceGrid {
+    /// The grid over `points` with cells of side at least `reach` (and at most about as many
+    /// cells as points), each surface listed in every cell its AABB grown by `reach` overlaps.
+    fn new(
+        points: &[Vector3<f64>],
+        reach: f64,
+        aabbs: &[Option<(&Collider, rapier3d_f64::parry::bounding_volume::Aabb)>],
+    ) -> Self {
+        let mut lo = Vector3::repeat(f64::INFINITY);
+        let mut hi = Vector3::repeat(f64::NEG_INFINITY);
+        for p in points {
+            lo = lo.inf(p);
+            hi = hi.sup(p);
+        }
+        if points.is_empty() {
+            lo = Vector3::zeros();
+            hi = Vector3::zeros();
+        }
+        let mut cell = reach.max(1e-300);
+        let dims_of = |cell: f64| -> [usize; 3] {
+            std::array::from_fn(|k| (((hi[k] - lo[k]) / cell).floor() as usize + 1).max(1))
+        };
+        let mut dims = dims_of(cell);
+        while (dims[0] * dims[1] * dims[2]) as f64 > points.len() as f64 + 27.0 {
+            cell *= 1.26;
+            dims = dims_of(cell);
+        }
+        let inv_cell = 1.0 / cell;
+        // The cell range a surface's grown AABB covers, clamped to the grid (a plane's infinite
+        // AABB covers every cell; one wholly outside the grid none).
+        let range =
+            |aabb: &rapier3d_f64::parry::bounding_volume::Aabb| -> Option<[(usize, usize); 3]> {
+                let mut r = [(0, 0); 3];
+                for k in 0..3 {
+                    let a = ((aabb.mins[k] - reach - lo[k]) * inv_cell).floor();
+                    let b = ((aabb.maxs[k] + reach - lo[k]) * inv_cell).floor();
+                    if b < 0.0 || a > (dims[k] - 1) as f64 || a.is_nan() || b.is_nan() {
+                        return None;
+                    }
+                    r[k] = (a.max(0.0) as usize, (b.min((dims[k] - 1) as f64)) as usize);
+                }
+                Some(r)
+            };
+        let ncells = dims[0] * dims[1] * dims[2];
+        let mut start = vec![0u32; ncells + 1];
+        let cells = |r: [(usize, usize); 3]| {
+            (r[2].0..=r[2].1).flat_map(move |z| {
+                (r[1].0..=r[1].1).flat_map(move |y| {
+                    (r[0].0..=r[0].1).map(move |x| (z * dims[1] + y) * dims[0] + x)
+                })
+            })
+        };
+        let ranges: Vec<Option<[(usize, usize); 3]>> = aabbs
+            .iter()
+            .map(|e| e.as_ref().and_then(|(_, aabb)| range(aabb)))
+            .collect();
+        for r in ranges.iter().flatten() {
+            for c in cells(*r) {
+                start[c + 1] += 1;
+            }
+        }
+        for c in 0..ncells {
+            start[c + 1] += start[c];
+        }
+        let mut fill: Vec<u32> = start[..ncells].to_vec();
+        let mut items = vec![0u32; start[ncells] as usize];
+        for (k, r) in ranges.iter().enumerate() {
+            if let Some(r) = r {
+                for c in cells(*r) {
+                    items[fill[c] as usize] = k as u32;
+                    fill[c] += 1;
+                }
+            }
+        }
+        Self {
+            lo,
+            inv_cell,
+            dims,
+            start,
+            items,
+        }
+    }
+
+    /// The surfaces listed in the cell of `x` (a point inside the grid's box).
+    fn surfaces_near(&self, x: &Vector3<f64>) -> &[u32] {
+        let c: [usize; 3] = std::array::from_fn(|k| {
+            (((x[k] - self.lo[k]) * self.inv_cell).max(0.0) as usize).min(self.dims[k] - 1)
+        });
+        let cell = (c[2] * self.dims[1] + c[1]) * self.dims[0] + c[0];
+        &self.items[self.start[cell] as usize..self.start[cell + 1] as usize]
     }
 }
