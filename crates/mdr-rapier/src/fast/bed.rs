@@ -721,60 +721,21 @@ pub fn peak_rss_mb() -> f64 {
 
 /// CPU time (user + system, all threads) of this process so far (s), from
 /// `clock_gettime(CLOCK_PROCESS_CPUTIME_ID)` (nanosecond resolution, up to date for running
-/// threads too); `None` where the clock is unavailable (platforms other than 64-bit Linux,
-/// Android and macOS).
+/// threads too); `None` where the clock is unavailable (systems other than Unix).
 pub fn process_cpu_seconds() -> Option<f64> {
-    cpu_clock::process_seconds()
-}
-
-/// The C library's process CPU clock, declared here for the platforms whose `struct timespec`
-/// is two `long`s (`time_t` is `long` on 64-bit Linux, Android and macOS) and whose clock id is
-/// known (the values of the `libc` crate).
-#[cfg(all(
-    target_pointer_width = "64",
-    any(target_os = "linux", target_os = "android", target_os = "macos")
-))]
-mod cpu_clock {
-    use std::os::raw::c_long;
-
-    #[cfg(any(target_os = "linux", target_os = "android"))]
-    type ClockId = std::os::raw::c_int;
-    #[cfg(target_os = "macos")]
-    type ClockId = std::os::raw::c_uint;
-
-    #[cfg(any(target_os = "linux", target_os = "android"))]
-    const CLOCK_PROCESS_CPUTIME_ID: ClockId = 2;
-    #[cfg(target_os = "macos")]
-    const CLOCK_PROCESS_CPUTIME_ID: ClockId = 12;
-
-    #[repr(C)]
-    struct Timespec {
-        tv_sec: c_long,
-        tv_nsec: c_long,
-    }
-
-    extern "C" {
-        fn clock_gettime(clock: ClockId, time: *mut Timespec) -> std::os::raw::c_int;
-    }
-
-    pub(super) fn process_seconds() -> Option<f64> {
-        let mut time = Timespec {
+    #[cfg(unix)]
+    {
+        let mut time = libc::timespec {
             tv_sec: 0,
             tv_nsec: 0,
         };
-        // SAFETY: clock_gettime writes one `struct timespec` (laid out as `Timespec` on these
-        // platforms) through the valid pointer it is given, and reads nothing else.
-        let status = unsafe { clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &mut time) };
+        // SAFETY: clock_gettime writes one `timespec` through the valid pointer it is given and
+        // reads nothing else.
+        let status = unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut time) };
         (status == 0).then_some(time.tv_sec as f64 + time.tv_nsec as f64 * 1e-9)
     }
-}
-
-#[cfg(not(all(
-    target_pointer_width = "64",
-    any(target_os = "linux", target_os = "android", target_os = "macos")
-)))]
-mod cpu_clock {
-    pub(super) fn process_seconds() -> Option<f64> {
+    #[cfg(not(unix))]
+    {
         None
     }
 }

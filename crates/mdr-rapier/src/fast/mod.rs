@@ -13,7 +13,8 @@
 //! - [`neighbours`]: binned half neighbour lists with histories carried across rebuilds;
 //! - [`surfaces`]: particles against rapier colliders;
 //! - [`stepper`]: the step;
-//! - [`bed`]: LAMMPS data files and a settled-bed generator for benchmarks.
+//! - [`bed`]: LAMMPS data files, a settled-bed generator and the settled-bed benchmark's timing
+//!   loop ([`bed::bench_bed`], shared by `mdr-dem bench bed` and the Python package).
 
 pub mod bed;
 pub mod boundary;
