@@ -11,34 +11,49 @@
 #include "memory.h"
 #include "neigh_list.h"
 #include "pair.h"
+#include "update.h"
 #include "utils.h"
 
 #include "mdrdem.h"
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
 enum { NPARTNER, PERPARTNER };
 
+// Per-atom record of the step a run ended on: v, omega as its force call saw them (0-5), v, omega
+// at its end (6-11).
+static constexpr int RECORD = 12;
+// Per atom in the setup call's forward communication: the replayed v and omega, and the owner's
+// current v (a ghost's velocity may carry a box-deformation offset, which is added back).
+static constexpr int REPLAY_COMM = 9;
+static const double NOT_KNOWN = std::numeric_limits<double>::quiet_NaN();
+
 FixMdrdemHistory::FixMdrdemHistory(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), pair(nullptr), drop_history(false), partners_current(true),
+    Fix(lmp, narg, arg), pair(nullptr), drop_history(false), setup_update(false),
+    partners_current(true),
     npartner(nullptr), poffset(nullptr), maxpartner(0), nlocal_neigh(0), nall_neigh(0),
-    have_neigh(false), commflag(NPARTNER)
+    have_neigh(false), commflag(NPARTNER), saved_step(-1), record_step(-1), step_values_step(-1),
+    record(nullptr)
 {
   if (narg != 4) error->all(FLERR, "Illegal fix MDRDEM/HISTORY command: ID group MDRDEM/HISTORY dnum");
   dnum = utils::inumeric(FLERR, arg[3], false, lmp);
   if (dnum < 1 || dnum > 10) error->all(FLERR, "fix MDRDEM/HISTORY: dnum must be in 1..10");
   mdrdem_partner_signs(signs);
+  width = dnum;
 
   restart_peratom = 1;
   restart_global = 1;    // so that write_restart() syncs the partner lists first
   create_attribute = 1;
   maxexchange_dynamic = 1;
+  maxexchange = 1 + RECORD;    // until the first partner lists are collected
   newton_pair = force->newton_pair;
   if (newton_pair) comm_reverse = 1;    // partner counts of ghost atoms
+  comm_forward = REPLAY_COMM;
 
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
@@ -53,6 +68,7 @@ FixMdrdemHistory::~FixMdrdemHistory()
   atom->delete_callback(id, Atom::RESTART);
   memory->destroy(npartner);
   memory->sfree(poffset);
+  memory->destroy(record);
 }
 
 int FixMdrdemHistory::setmask()
@@ -80,6 +96,14 @@ int FixMdrdemHistory::modify_param(int narg, char **arg)
     drop_history = utils::logical(FLERR, arg[1], false, lmp) == 1;
     return 2;
   }
+  // Test hook: the setup call of a run advances every history by one more step (with the
+  // current velocities), as a style that ignores update->setupflag would. The restart test uses
+  // it to show that its comparison detects such a setup call.
+  if (strcmp(arg[0], "setup_update") == 0) {
+    if (narg < 2) error->all(FLERR, "fix_modify setup_update needs yes or no");
+    setup_update = utils::logical(FLERR, arg[1], false, lmp) == 1;
+    return 2;
+  }
   return 0;
 }
 
@@ -93,13 +117,14 @@ int64_t FixMdrdemHistory::reserve(int i, int n)
   auto start = (int64_t) partner_tag.size();
   poffset[i] = start;
   partner_tag.resize(start + n);
-  partner_values.resize((start + n) * dnum);
+  partner_values.resize((start + n) * width);
   return start;
 }
 
 /* Copy the histories of the current neighbour list into per-atom partner lists (both atoms of
    a pair get an entry, the partner's seen with the partner signs). With newton on, entries of
-   ghost atoms are sent to their owners (reverse communication). */
+   ghost atoms are sent to their owners (reverse communication). At the end of the step whose
+   force call saved the histories before it (save_step), each entry carries those too. */
 void FixMdrdemHistory::collect_partners()
 {
   if (!have_neigh || pair == nullptr || pair->list == nullptr) return;
@@ -110,6 +135,8 @@ void FixMdrdemHistory::collect_partners()
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
   const int counted = newton_pair ? nall_neigh : nlocal_neigh;
+  const bool with_step = saved_step == update->ntimestep && step_values_step == saved_step;
+  width = with_step ? 2 * dnum : dnum;
 
   // Test hook (fix_modify MDRDEM_HISTORY drop_history yes): every exchange forgets every
   // contact's history, as a style without a history fix would. Tests use it to show that
@@ -143,14 +170,19 @@ void FixMdrdemHistory::collect_partners()
     for (int jj = 0; jj < numneigh[i]; jj++) {
       if (!touch[base + jj]) continue;
       const double *one = &values[(base + jj) * dnum];
+      const double *before = with_step ? &step_values[(base + jj) * dnum] : nullptr;
       const int j = jlist[jj] & NEIGHMASK;
       int64_t m = poffset[i] + npartner[i]++;
       partner_tag[m] = tag[j];
-      std::memcpy(&partner_values[m * dnum], one, dnum * sizeof(double));
+      std::memcpy(&partner_values[m * width], one, dnum * sizeof(double));
+      if (before) std::memcpy(&partner_values[m * width + dnum], before, dnum * sizeof(double));
       if (j < counted) {
         m = poffset[j] + npartner[j]++;
         partner_tag[m] = tag[i];
-        for (int n = 0; n < dnum; n++) partner_values[m * dnum + n] = signs[n] * one[n];
+        for (int n = 0; n < dnum; n++) partner_values[m * width + n] = signs[n] * one[n];
+        if (before)
+          for (int n = 0; n < dnum; n++)
+            partner_values[m * width + dnum + n] = signs[n] * before[n];
       }
     }
   }
@@ -160,7 +192,7 @@ void FixMdrdemHistory::collect_partners()
   }
   maxpartner = 0;
   for (int i = 0; i < nlocal_neigh; i++) maxpartner = std::max(maxpartner, npartner[i]);
-  maxexchange = (dnum + 1) * maxpartner + 1;
+  maxexchange = (width + 1) * maxpartner + 1 + RECORD;
   for (int i = nlocal_neigh; i < atom->nlocal; i++) npartner[i] = 0;
   partners_current = true;
 }
@@ -171,7 +203,8 @@ void FixMdrdemHistory::pre_exchange()
 }
 
 /* After a neighbour list is built: each neighbour gets the history found in its atom's partner
-   list (by partner tag), or zeroes. */
+   list (by partner tag), or zeroes; so do the histories before the saved step when the partner
+   lists carry them. */
 void FixMdrdemHistory::post_neighbor()
 {
   const int nlocal = atom->nlocal;
@@ -183,6 +216,7 @@ void FixMdrdemHistory::post_neighbor()
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
+  const bool with_step = width == 2 * dnum;
 
   if ((int) neigh_offset.size() < nall_neigh) neigh_offset.resize(nall_neigh);
   int64_t total = 0;
@@ -193,6 +227,7 @@ void FixMdrdemHistory::post_neighbor()
   }
   touch.assign(total, 0);
   values.assign(total * dnum, 0.0);
+  if (with_step) step_values.assign(total * dnum, 0.0);
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     int *jlist = firstneigh[i];
@@ -207,15 +242,134 @@ void FixMdrdemHistory::post_neighbor()
       for (int m = 0; m < np; m++) {
         if (ptag[m] == jtag) {
           touch[base + jj] = 1;
-          std::memcpy(&values[(base + jj) * dnum], &partner_values[(poffset[i] + m) * dnum],
-                      dnum * sizeof(double));
+          const double *found = &partner_values[(poffset[i] + m) * width];
+          std::memcpy(&values[(base + jj) * dnum], found, dnum * sizeof(double));
+          if (with_step)
+            std::memcpy(&step_values[(base + jj) * dnum], found + dnum, dnum * sizeof(double));
           break;
         }
       }
     }
   }
+  step_values_step = with_step ? saved_step : -1;
   have_neigh = true;
   partners_current = false;
+}
+
+/* ----------------------------------------------------------------------
+   Continuing a run as if it had not been split.
+
+   LAMMPS's velocity Verlet (Verlet::run) evaluates the forces of step n after the first
+   half-kick and the drift, with the half-step velocities v(n-1/2), and the first half-kick of
+   step n+1 uses those forces. A new `run` (also after read_restart) recomputes the forces in its
+   setup call (Verlet::setup) instead. Evaluating the stored histories there (as LAMMPS's own
+   history styles do) gives other forces than step n gave: the dashpots see v(n) instead of
+   v(n-1/2), and the Mindlin law's tangential dashpot acts only while its spring sticks, so a
+   contact that slipped in step n sits exactly at the Coulomb limit and its zero-increment
+   re-evaluation may count it as sticking.
+
+   So the force call of a step that ends a run (or writes a restart file) saves the histories
+   before it and the velocities it sees (save_step); the end of the run records the velocities
+   the step ended with (post_run). The setup call of the next run at that same step repeats that
+   force call (the same histories, velocities and dt, on copies: nothing is written; the
+   positions are the same) when every atom still has the velocities the step ended with
+   (replay_step). Otherwise (the first run, a command changed velocities, a minimisation) it
+   evaluates the stored histories with the current velocities. Histories and records travel with
+   their atoms and go to and come from restart files.
+------------------------------------------------------------------------- */
+
+void FixMdrdemHistory::save_step()
+{
+  step_values = values;
+  double **v = atom->v, **omega = atom->omega;
+  for (int i = 0; i < atom->nlocal; i++)
+    for (int c = 0; c < 3; c++) {
+      record[i][c] = v[i][c];
+      record[i][3 + c] = omega[i][c];
+    }
+  saved_step = step_values_step = update->ntimestep;
+}
+
+void FixMdrdemHistory::post_run()
+{
+  pre_exchange();
+  if (saved_step == update->ntimestep) {
+    double **v = atom->v, **omega = atom->omega;
+    for (int i = 0; i < atom->nlocal; i++)
+      for (int c = 0; c < 3; c++) {
+        record[i][6 + c] = v[i][c];
+        record[i][9 + c] = omega[i][c];
+      }
+    record_step = saved_step;
+  } else {
+    record_step = -1;
+  }
+}
+
+bool FixMdrdemHistory::replay_step(const double *&v_out, const double *&omega_out,
+                                   double *&step_values_out)
+{
+  const bigint now = update->ntimestep;
+  int local = update->whichflag == 1 && record_step == now && step_values_step == now &&
+      step_values.size() == values.size();
+  double **v = atom->v, **omega = atom->omega;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal && local; i++)
+    for (int c = 0; c < 3; c++)
+      if (v[i][c] != record[i][6 + c] || omega[i][c] != record[i][9 + c]) local = 0;
+  int all = 0;
+  MPI_Allreduce(&local, &all, 1, MPI_INT, MPI_MIN, world);
+  if (!all) return false;
+
+  const int nall = nlocal + atom->nghost;
+  setup_v.resize(3 * (size_t) nall);
+  setup_omega.resize(3 * (size_t) nall);
+  for (int i = 0; i < nlocal; i++)
+    for (int c = 0; c < 3; c++) {
+      setup_v[3 * i + c] = record[i][c];
+      setup_omega[3 * i + c] = record[i][3 + c];
+    }
+  comm->forward_comm(this);
+  v_out = setup_v.data();
+  omega_out = setup_omega.data();
+  step_values_out = step_values.data();
+  return true;
+}
+
+int FixMdrdemHistory::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
+                                        int * /*pbc*/)
+{
+  double **v = atom->v;
+  int m = 0;
+  for (int k = 0; k < n; k++) {
+    const int j = list[k];
+    for (int c = 0; c < 3; c++) buf[m++] = setup_v[3 * j + c];
+    for (int c = 0; c < 3; c++) buf[m++] = setup_omega[3 * j + c];
+    for (int c = 0; c < 3; c++) buf[m++] = v[j][c];
+  }
+  return m;
+}
+
+void FixMdrdemHistory::unpack_forward_comm(int n, int first, double *buf)
+{
+  double **v = atom->v;
+  int m = 0;
+  for (int i = first; i < first + n; i++) {
+    // the owner's replayed velocity plus what LAMMPS's own ghost communication added to the
+    // owner's current one (zero unless a deforming box remaps velocities)
+    for (int c = 0; c < 3; c++) setup_v[3 * i + c] = buf[m + c] + (v[i][c] - buf[m + 6 + c]);
+    for (int c = 0; c < 3; c++) setup_omega[3 * i + c] = buf[m + 3 + c];
+    m += REPLAY_COMM;
+  }
+}
+
+/* A restart file carries the record of the saved step when it is written at its end: between
+   runs (write_restart) the record post_run() completed, during a run (restart output) the saved
+   velocities and the current ones. */
+bool FixMdrdemHistory::record_written() const
+{
+  if (update->whichflag == 1) return saved_step == update->ntimestep;
+  return record_step == update->ntimestep;
 }
 
 void FixMdrdemHistory::write_restart(FILE *fp)
@@ -225,27 +379,44 @@ void FixMdrdemHistory::write_restart(FILE *fp)
   // exchanged since, so the neighbour list must not be read again).
   if (!partners_current) collect_partners();
   if (comm->me == 0) {
-    int size = 0;
+    const double state[2] = {record_written() ? (double) update->ntimestep : -1.0,
+                             (double) width};
+    int size = sizeof(state);
     fwrite(&size, sizeof(int), 1, fp);
+    fwrite(state, sizeof(double), 2, fp);
   }
+}
+
+void FixMdrdemHistory::restart(char *buf)
+{
+  double state[2];
+  std::memcpy(state, buf, sizeof(state));
+  saved_step = record_step = (bigint) state[0];
+  width = static_cast<int>(state[1]);
+  if (width != dnum && width != 2 * dnum)
+    error->all(FLERR, "fix {}: the restart file holds {} history values per contact, not {} or {}",
+               id, width, dnum, 2 * dnum);
 }
 
 void FixMdrdemHistory::grow_arrays(int nmax)
 {
   memory->grow(npartner, nmax, "mdrdem/history:npartner");
   poffset = (int64_t *) memory->srealloc(poffset, nmax * sizeof(int64_t), "mdrdem/history:poffset");
+  memory->grow(record, nmax, RECORD, "mdrdem/history:record");
 }
 
 void FixMdrdemHistory::copy_arrays(int i, int j, int /*delflag*/)
 {
   npartner[j] = npartner[i];
   poffset[j] = poffset[i];
+  std::memcpy(record[j], record[i], RECORD * sizeof(double));
 }
 
 void FixMdrdemHistory::set_arrays(int i)
 {
   npartner[i] = 0;
   poffset[i] = 0;
+  for (int c = 0; c < RECORD; c++) record[i][c] = NOT_KNOWN;
 }
 
 int FixMdrdemHistory::pack_exchange(int i, double *buf)
@@ -254,10 +425,11 @@ int FixMdrdemHistory::pack_exchange(int i, double *buf)
   buf[m++] = npartner[i];
   for (int n = 0; n < npartner[i]; n++) {
     buf[m++] = ubuf(partner_tag[poffset[i] + n]).d;
-    std::memcpy(&buf[m], &partner_values[(poffset[i] + n) * dnum], dnum * sizeof(double));
-    m += dnum;
+    std::memcpy(&buf[m], &partner_values[(poffset[i] + n) * width], width * sizeof(double));
+    m += width;
   }
-  return m;
+  std::memcpy(&buf[m], record[i], RECORD * sizeof(double));
+  return m + RECORD;
 }
 
 int FixMdrdemHistory::unpack_exchange(int nlocal, double *buf)
@@ -268,10 +440,11 @@ int FixMdrdemHistory::unpack_exchange(int nlocal, double *buf)
   int64_t start = reserve(nlocal, npartner[nlocal]);
   for (int n = 0; n < npartner[nlocal]; n++) {
     partner_tag[start + n] = (tagint) ubuf(buf[m++]).i;
-    std::memcpy(&partner_values[(start + n) * dnum], &buf[m], dnum * sizeof(double));
-    m += dnum;
+    std::memcpy(&partner_values[(start + n) * width], &buf[m], width * sizeof(double));
+    m += width;
   }
-  return m;
+  std::memcpy(record[nlocal], &buf[m], RECORD * sizeof(double));
+  return m + RECORD;
 }
 
 int FixMdrdemHistory::pack_restart(int i, double *buf)
@@ -280,9 +453,16 @@ int FixMdrdemHistory::pack_restart(int i, double *buf)
   buf[m++] = npartner[i];
   for (int n = 0; n < npartner[i]; n++) {
     buf[m++] = ubuf(partner_tag[poffset[i] + n]).d;
-    std::memcpy(&buf[m], &partner_values[(poffset[i] + n) * dnum], dnum * sizeof(double));
-    m += dnum;
+    std::memcpy(&buf[m], &partner_values[(poffset[i] + n) * width], width * sizeof(double));
+    m += width;
   }
+  const bool written = record_written();
+  const bool in_run = update->whichflag == 1;
+  for (int c = 0; c < 6; c++) buf[m++] = written ? record[i][c] : NOT_KNOWN;
+  for (int c = 0; c < 3; c++)
+    buf[m++] = !written ? NOT_KNOWN : in_run ? atom->v[i][c] : record[i][6 + c];
+  for (int c = 0; c < 3; c++)
+    buf[m++] = !written ? NOT_KNOWN : in_run ? atom->omega[i][c] : record[i][9 + c];
   buf[0] = m;    // first value: this fix's count, as every per-atom restart fix writes it
   return m;
 }
@@ -292,33 +472,36 @@ void FixMdrdemHistory::unpack_restart(int nlocal, int nth)
   double **extra = atom->extra;
   int m = 0;
   for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
-  m++;
+  const int count = static_cast<int>(extra[nlocal][m++]);
   npartner[nlocal] = static_cast<int>(extra[nlocal][m++]);
+  if (count != size_restart(nlocal))
+    error->one(FLERR, "fix {}: restart file not written by this version of pair_style mdrdem", id);
   maxpartner = std::max(maxpartner, npartner[nlocal]);
   int64_t start = reserve(nlocal, npartner[nlocal]);
   for (int n = 0; n < npartner[nlocal]; n++) {
     partner_tag[start + n] = (tagint) ubuf(extra[nlocal][m++]).i;
-    std::memcpy(&partner_values[(start + n) * dnum], &extra[nlocal][m], dnum * sizeof(double));
-    m += dnum;
+    std::memcpy(&partner_values[(start + n) * width], &extra[nlocal][m], width * sizeof(double));
+    m += width;
   }
+  std::memcpy(record[nlocal], &extra[nlocal][m], RECORD * sizeof(double));
 }
 
 int FixMdrdemHistory::size_restart(int nlocal)
 {
-  return (dnum + 1) * npartner[nlocal] + 2;
+  return (width + 1) * npartner[nlocal] + 2 + RECORD;
 }
 
 int FixMdrdemHistory::maxsize_restart()
 {
   int all = 0;
   MPI_Allreduce(&maxpartner, &all, 1, MPI_INT, MPI_MAX, world);
-  return (dnum + 1) * all + 2;
+  return (width + 1) * all + 2 + RECORD;
 }
 
 int FixMdrdemHistory::pack_reverse_comm_size(int n, int first)
 {
   int m = 0;
-  for (int i = first; i < first + n; i++) m += 1 + (dnum + 1) * npartner[i];
+  for (int i = first; i < first + n; i++) m += 1 + (width + 1) * npartner[i];
   return m;
 }
 
@@ -330,8 +513,8 @@ int FixMdrdemHistory::pack_reverse_comm(int n, int first, double *buf)
     if (commflag == PERPARTNER) {
       for (int k = 0; k < npartner[i]; k++) {
         buf[m++] = ubuf(partner_tag[poffset[i] + k]).d;
-        std::memcpy(&buf[m], &partner_values[(poffset[i] + k) * dnum], dnum * sizeof(double));
-        m += dnum;
+        std::memcpy(&buf[m], &partner_values[(poffset[i] + k) * width], width * sizeof(double));
+        m += width;
       }
     }
   }
@@ -351,18 +534,20 @@ void FixMdrdemHistory::unpack_reverse_comm(int n, int *list, double *buf)
     for (int k = 0; k < count; k++) {
       const int64_t kk = poffset[j] + npartner[j]++;
       partner_tag[kk] = (tagint) ubuf(buf[m++]).i;
-      std::memcpy(&partner_values[kk * dnum], &buf[m], dnum * sizeof(double));
-      m += dnum;
+      std::memcpy(&partner_values[kk * width], &buf[m], width * sizeof(double));
+      m += width;
     }
   }
 }
 
 double FixMdrdemHistory::memory_usage()
 {
-  double bytes = (double) atom->nmax * (sizeof(int) + sizeof(int64_t));
+  double bytes = (double) atom->nmax * (sizeof(int) + sizeof(int64_t) + RECORD * sizeof(double));
   bytes += (double) partner_tag.capacity() * sizeof(tagint);
   bytes += (double) partner_values.capacity() * sizeof(double);
   bytes += (double) neigh_offset.capacity() * sizeof(int64_t);
   bytes += (double) touch.capacity() * sizeof(int) + (double) values.capacity() * sizeof(double);
+  bytes += (double) step_values.capacity() * sizeof(double);
+  bytes += (double) (setup_v.capacity() + setup_omega.capacity()) * sizeof(double);
   return bytes;
 }

@@ -26,6 +26,7 @@ typedef struct {
   int *touch;
   double *history;
   int dnum;
+  int history_update; /* 0 in LAMMPS's setup call: forces only, nothing written */
 } MdrdemNeighbours;
 
 typedef struct {
@@ -45,7 +46,7 @@ int mdrdem_compute(const void *handle, const MdrdemAtoms *atoms, const MdrdemNei
                    const MdrdemTally *tally, double dt, char *err, size_t errlen);
 int mdrdem_single(const void *handle, int itype, int jtype, const double *radius_mass /* ri rj mi mj */,
                   const double *delta, const double *relative_velocity, const double *omega_i,
-                  const double *omega_j, const double *history, double dt, double *out /* 5 */,
+                  const double *omega_j, const double *history, double *out /* 5 */,
                   char *err, size_t errlen);
 
 #ifdef __cplusplus

@@ -10,6 +10,7 @@
 #include "modify.h"
 #include "neigh_list.h"
 #include "neighbor.h"
+#include "output.h"
 #include "update.h"
 #include "utils.h"
 
@@ -150,6 +151,23 @@ void PairMdrdem::compute(int eflag, int vflag)
   atoms.nlocal = atom->nlocal;
   atoms.nall = atom->nlocal + atom->nghost;
 
+  // The setup call at the start of every run (and of a minimisation) changes no history, as in
+  // LAMMPS's own history styles (shearupdate = 0 in pair gran/*/history, history_update = 0 in
+  // pair granular, when update->setupflag): its positions are those of the last step, whose
+  // increments the histories already hold. It repeats the force call of the step the last run
+  // ended on when nothing changed since (the histories before that step, its velocities and dt;
+  // fix_mdrdem_history.cpp says why), else it evaluates the stored histories with no increment.
+  const bool setup = update->setupflag != 0 && !history->setup_update;
+  double *values = history->values.data();
+  double dt = update->dt;
+  if (setup) {
+    if (!history->replay_step(atoms.v, atoms.omega, values)) dt = 0.0;
+  } else if (update->whichflag == 1 &&
+             (update->ntimestep == update->laststep || update->ntimestep == output->next_restart)) {
+    // A step that ends a run or writes a restart file: keep what its force call sees.
+    history->save_step();
+  }
+
   MdrdemNeighbours nl;
   nl.inum = list->inum;
   nl.ilist = list->ilist;
@@ -158,8 +176,9 @@ void PairMdrdem::compute(int eflag, int vflag)
   nl.neighmask = NEIGHMASK;
   nl.offset = history->neigh_offset.data();
   nl.touch = history->touch.data();
-  nl.history = history->values.data();
+  nl.history = values;
   nl.dnum = history->dnum;
+  nl.history_update = setup ? 0 : 1;
 
   MdrdemTally tally;
   tally.newton_pair = force->newton_pair;
@@ -171,7 +190,7 @@ void PairMdrdem::compute(int eflag, int vflag)
   tally.vatom = vflag_atom ? vatom[0] : nullptr;
 
   char err[512];
-  if (mdrdem_compute(handle, &atoms, &nl, &tally, update->dt, err, sizeof(err)) != 0)
+  if (mdrdem_compute(handle, &atoms, &nl, &tally, dt, err, sizeof(err)) != 0)
     error->one(FLERR, "pair_style mdrdem: {}", err);
   history->partners_current = false;
 }
@@ -205,7 +224,7 @@ double PairMdrdem::single(int i, int j, int itype, int jtype, double rsq, double
   const double vr[3] = {v[a][0] - v[b][0], v[a][1] - v[b][1], v[a][2] - v[b][2]};
   double out[5];
   char err[512];
-  if (mdrdem_single(handle, ta, tb, rm, del, vr, omega[a], omega[b], values, update->dt, out, err,
+  if (mdrdem_single(handle, ta, tb, rm, del, vr, omega[a], omega[b], values, out, err,
                     sizeof(err)) != 0)
     error->one(FLERR, "pair_style mdrdem: {}", err);
   const double sign = (a == i) ? 1.0 : -1.0;

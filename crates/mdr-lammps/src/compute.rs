@@ -69,6 +69,10 @@ pub struct MdrdemNeighbours {
     pub history: *mut f64,
     /// Values per contact (must equal the layout's size).
     pub dnum: i32,
+    /// 1: advance every contact's history by this call (a step); 0: forces only, leaving
+    /// `touch` and `history` untouched (LAMMPS's setup call at the start of every `run`, see
+    /// [`compute`]).
+    pub history_update: i32,
 }
 
 /// Energy and virial tallies (LAMMPS `Pair::ev_tally_xyz` conventions).
@@ -132,6 +136,20 @@ unsafe fn add3(p: *mut f64, i: usize, v: &Vector3<f64>) {
 
 /// One call for a whole neighbour list.
 ///
+/// With `list.history_update == 0` the law updates a copy of each contact's state and neither
+/// `touch` nor `history` is written: the shim passes it in LAMMPS's setup call
+/// (`Verlet::setup`, `update->setupflag = 1`), made at the start of every `run` at the
+/// positions the last step left, whose increments the histories already hold. Otherwise every
+/// extra `run` command would add one more increment to every contact's history, and a run split
+/// into two `run` commands (or continued from a restart file) would leave the uninterrupted
+/// run's trajectory. LAMMPS's own history styles do not update either (`shearupdate = 0` in
+/// `pair gran/hooke/history` and `gran/hertz/history`, `history_update = 0` in
+/// `pair granular`). The shim gives either the stored histories with `dt = 0` (no tangential
+/// displacement or rolling rotation increment: the forces of the stored histories, as those
+/// styles compute them), or the histories before the step the last run ended on with that
+/// step's velocities and `dt`, which repeats that step's force call
+/// (`shim/fix_mdrdem_history.cpp`).
+///
 /// # Safety
 /// Every pointer must be valid for the sizes documented on the structs (LAMMPS's own arrays),
 /// `offset[i] + numneigh[i] ≤ len(touch)` for every listed `i`, and `history` must hold
@@ -147,14 +165,16 @@ pub unsafe fn compute(
     if list.dnum as usize != layout.size() {
         return Err(PluginError::Abi("dnum differs from the history layout"));
     }
-    if layout.rolling {
-        compute_with::<true>(table, atoms, list, tally, dt)
-    } else {
-        compute_with::<false>(table, atoms, list, tally, dt)
+    match (layout.rolling, list.history_update != 0) {
+        (true, true) => compute_with::<true, true>(table, atoms, list, tally, dt),
+        (false, true) => compute_with::<false, true>(table, atoms, list, tally, dt),
+        (true, false) => compute_with::<true, false>(table, atoms, list, tally, dt),
+        (false, false) => compute_with::<false, false>(table, atoms, list, tally, dt),
     }
 }
 
-unsafe fn compute_with<const ROLLING: bool>(
+/// The loop; `UPDATE = false` writes neither `touch` nor `history`.
+unsafe fn compute_with<const ROLLING: bool, const UPDATE: bool>(
     table: &CoeffTable,
     atoms: &MdrdemAtoms,
     list: &MdrdemNeighbours,
@@ -187,7 +207,9 @@ unsafe fn compute_with<const ROLLING: bool>(
             let radsum = ri + rj;
             let touching = rsq < radsum * radsum;
             let touched = *list.touch.add(k) != 0;
-            if !touching && !touched {
+            if !touching && (!touched || !UPDATE) {
+                // Apart and without a history; or apart in a setup call, which has no force to
+                // add and no history to write.
                 continue;
             }
             let jtype = *atoms.atom_type.add(j);
@@ -214,8 +236,9 @@ unsafe fn compute_with<const ROLLING: bool>(
                 cache = Some(BoundCache { key, law, rolling });
             }
             let bound = cache.as_ref().expect("bound above");
-            let values = std::slice::from_raw_parts_mut(list.history.add(k * dnum), dnum);
-            let (mut state, mut roll_state) = load::<ROLLING>(values);
+            let values = list.history.add(k * dnum);
+            let (mut state, mut roll_state) =
+                load::<ROLLING>(std::slice::from_raw_parts(values, dnum));
             let r = rsq.sqrt();
             let overlap = radsum - r;
             if !touching {
@@ -241,10 +264,16 @@ unsafe fn compute_with<const ROLLING: bool>(
                         },
                     );
                 }
-                store::<ROLLING>(values, &state, &roll_state);
+                store::<ROLLING>(
+                    std::slice::from_raw_parts_mut(values, dnum),
+                    &state,
+                    &roll_state,
+                );
                 continue;
             }
-            *list.touch.add(k) = 1;
+            if UPDATE {
+                *list.touch.add(k) = 1;
+            }
             let normal = delta * (1.0 / r);
             let lever_i = ri - 0.5 * overlap;
             let lever_j = rj - 0.5 * overlap;
@@ -278,7 +307,13 @@ unsafe fn compute_with<const ROLLING: bool>(
                 torque_i += roll.torque;
                 torque_j -= roll.torque;
             }
-            store::<ROLLING>(values, &state, &roll_state);
+            if UPDATE {
+                store::<ROLLING>(
+                    std::slice::from_raw_parts_mut(values, dnum),
+                    &state,
+                    &roll_state,
+                );
+            }
             add3(atoms.f, i, &force);
             add3(atoms.torque, i, &torque_i);
             let j_owned = newton || j < nlocal;
@@ -334,8 +369,11 @@ unsafe fn compute_with<const ROLLING: bool>(
     Ok(())
 }
 
-/// Force and torques of one contact from one history, without advancing the history (for
-/// LAMMPS `single()`, i.e. `compute pair/local`). Returns `(force on i, normal force, overlap)`.
+/// Force of one contact from its stored history, without advancing the history (for LAMMPS
+/// `single()`, i.e. `compute pair/local`): the law sees `dt = 0` on a copy of the state (no
+/// tangential displacement increment), as LAMMPS's `pair granular` `single()` sets
+/// `history_update = 0` and `pair gran/hooke/history` reads the stored shear without adding to it.
+/// Returns `(force on i, normal force, overlap)`.
 pub fn evaluate_one(
     model: &PairModel,
     sphere_i: (f64, f64),
@@ -343,7 +381,6 @@ pub fn evaluate_one(
     kinematics: (&Vector3<f64>, &Vector3<f64>, &Vector3<f64>, &Vector3<f64>),
     values: &[f64],
     rolling: bool,
-    dt: f64,
 ) -> Result<(Vector3<f64>, f64, f64), PluginError> {
     let (ri, mi) = sphere_i;
     let (rj, mj) = sphere_j;
@@ -372,7 +409,7 @@ pub fn evaluate_one(
             overlap,
             normal,
             relative_velocity,
-            dt,
+            dt: 0.0,
         },
     );
     Ok((out.force, out.normal_force, overlap))

@@ -186,8 +186,9 @@ pub unsafe extern "C" fn mdrdem_compute(
     })
 }
 
-/// One contact without advancing its history (LAMMPS `single()`): writes the force on `i`
-/// (3 values), the normal force and the overlap to `out` (5 values). 0, or −1 with a message.
+/// One contact from its stored history, without advancing it (LAMMPS `single()`, see
+/// [`evaluate_one`]): writes the force on `i` (3 values), the normal force and the overlap to
+/// `out` (5 values). 0, or −1 with a message.
 ///
 /// # Safety
 /// Vector arguments hold 3 doubles, `history` the layout's size, `out` 5 doubles.
@@ -202,7 +203,6 @@ pub unsafe extern "C" fn mdrdem_single(
     omega_i: *const f64,
     omega_j: *const f64,
     history: *const f64,
-    dt: f64,
     out: *mut f64,
     err: *mut c_char,
     errlen: usize,
@@ -231,7 +231,6 @@ pub unsafe extern "C" fn mdrdem_single(
             ),
             values,
             layout.rolling,
-            dt,
         )?;
         let o = std::slice::from_raw_parts_mut(out, 5);
         o.copy_from_slice(&[force.x, force.y, force.z, fn_, overlap]);

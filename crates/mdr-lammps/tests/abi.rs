@@ -81,6 +81,20 @@ fn run(
     newton: i32,
     dt: f64,
 ) -> Outcome {
+    run_with(handle, s, history, (touch, 1), nlocal, newton, dt)
+}
+
+/// As [`run`], with the history flag `(touch, history_update)`: `history_update = 0` is LAMMPS's
+/// setup call.
+fn run_with(
+    handle: *mut c_void,
+    s: &TwoSpheres,
+    history: &[f64],
+    (touch, history_update): (i32, i32),
+    nlocal: i32,
+    newton: i32,
+    dt: f64,
+) -> Outcome {
     let mut f = [0.0; 6];
     let mut torque = [0.0; 6];
     let mut hist = history.to_vec();
@@ -114,6 +128,7 @@ fn run(
         touch: touch.as_mut_ptr(),
         history: hist.as_mut_ptr(),
         dnum: history.len() as i32,
+        history_update,
     };
     let tally = MdrdemTally {
         newton_pair: newton,
@@ -543,5 +558,100 @@ fn rolling_resistance_widens_the_history_to_ten_values() {
         2.0 * out.history[7],
         out.history[7].abs()
     ));
+    unsafe { mdrdem_free(handle) };
+}
+
+/// LAMMPS's setup call (`history_update = 0`): with `dt = 0` the forces of the stored histories,
+/// with the histories before a step and its `dt` the forces of that step; never a write.
+#[test]
+fn the_setup_call_writes_no_history() {
+    let handle = mdrdem_new(1);
+    coeff(handle, (1, 1), &format!("{STEEL_LINE} rolling 0.1")).unwrap();
+    init(handle, 1, 1).unwrap();
+    let (r, m) = (0.5e-2, Material::paper_steel().sphere_mass(0.5e-2));
+    let n = Vector3::new(0.36, 0.48, 0.8);
+    let dist = 2.0 * r - 7e-6;
+    // a plastically loaded, sliding and rolling contact: every slot of the history in use
+    let s = TwoSpheres {
+        x: [n.x * dist, n.y * dist, n.z * dist, 0.0, 0.0, 0.0],
+        v: [0.1, -0.2, 0.05, 0.0, 0.0, 0.0],
+        omega: [1.0, 2.0, 3.0, -1.0, 0.5, 0.0],
+        radius: [r, r],
+        rmass: [m, m],
+        types: [1, 1],
+    };
+    // ξ and the rolling torque in the contact plane (n·ξ = 0.36·3 − 0.48·1 − 0.8·0.75 = 0)
+    let history = [
+        8e-6, 3e-8, -1e-8, -7.5e-9, 1.2e-4, 2e-3, 1e-3, -1.5e-3, 5e3, 1e-7,
+    ];
+    let dt = 1e-6;
+    // the stored histories (dt = 0): the forces of a step with no increment, nothing written
+    let setup = run_with(handle, &s, &history, (1, 0), 2, 1, 0.0);
+    assert_eq!(
+        setup.history,
+        history.to_vec(),
+        "the setup call wrote a history"
+    );
+    assert_eq!(setup.touch, 1);
+    let still = run_with(handle, &s, &history, (1, 1), 2, 1, 0.0);
+    assert_eq!((setup.f, setup.torque), (still.f, still.torque));
+    assert!(setup.f.iter().any(|f| *f != 0.0) && setup.torque.iter().any(|t| *t != 0.0));
+    // a step's increment moves ξ and the rolling spring, and the forces
+    let step = run_with(handle, &s, &history, (1, 1), 2, 1, dt);
+    assert_ne!(step.history, history.to_vec());
+    assert!((0..3).any(|c| step.f[c] != setup.f[c]));
+    assert!((0..3).any(|c| step.torque[c] != setup.torque[c]));
+    // the histories before that step with its dt: that step's forces, bit for bit, nothing written
+    let replay = run_with(handle, &s, &history, (1, 0), 2, 1, dt);
+    assert_eq!((replay.f, replay.torque), (step.f, step.torque));
+    assert_eq!(replay.history, history.to_vec());
+    // a setup call followed by a step is that step alone: nothing of the setup call remains
+    for before in [&setup, &replay] {
+        let after = run_with(handle, &s, &before.history, (before.touch, 1), 2, 1, dt);
+        assert_eq!((after.f, &after.history), (step.f, &step.history));
+    }
+
+    // a new contact (touch 0) gets its normal force but no history and no touch flag
+    let fresh = run_with(handle, &s, &[0.0; 10], (0, 0), 2, 1, 0.0);
+    assert_eq!((fresh.touch, fresh.history), (0, vec![0.0; 10]));
+    assert!(fresh.f[0] != 0.0);
+    // an opened contact keeps its history (not released as a step would) and has no force
+    let apart = TwoSpheres {
+        x: [n.x * 2.1 * r, n.y * 2.1 * r, n.z * 2.1 * r, 0.0, 0.0, 0.0],
+        ..s
+    };
+    let opened = run_with(handle, &apart, &history, (1, 0), 2, 1, dt);
+    assert_eq!((opened.touch, opened.f), (1, [0.0; 6]));
+    assert_eq!(opened.history, history.to_vec());
+    let released = run_with(handle, &apart, &history, (1, 1), 2, 1, dt);
+    assert_ne!(released.history, history.to_vec());
+
+    // single() (compute pair/local) reports the force of the stored history
+    let del = [s.x[0], s.x[1], s.x[2]];
+    let (ri_rj_mi_mj, vrel) = ([r, r, m, m], [s.v[0], s.v[1], s.v[2]]);
+    let mut out = [0.0; 5];
+    let mut err = [0i8; 512];
+    let rc = unsafe {
+        mdrdem_single(
+            handle,
+            1,
+            1,
+            ri_rj_mi_mj.as_ptr(),
+            del.as_ptr(),
+            vrel.as_ptr(),
+            s.omega.as_ptr(),
+            s.omega[3..].as_ptr(),
+            history.as_ptr(),
+            out.as_mut_ptr(),
+            err.as_mut_ptr(),
+            err.len(),
+        )
+    };
+    assert_eq!(rc, 0);
+    let scale = setup.f[0].abs() + setup.f[1].abs() + setup.f[2].abs();
+    for c in 0..3 {
+        assert!(close(out[c], setup.f[c], scale), "{out:?} {:?}", setup.f);
+    }
+    assert!(close(out[4], 7e-6, 7e-6));
     unsafe { mdrdem_free(handle) };
 }
