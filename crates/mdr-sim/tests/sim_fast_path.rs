@@ -440,3 +440,191 @@ fn scene_results_do_not_depend_on_the_number_of_threads() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Two 2 mm spheres in zero gravity in a box periodic over [0, 0.1] m in x and y: A at
+/// x = 98.5 mm moving +x at 0.5 m/s, B at rest at x = 6.5 mm, 8 mm apart across the boundary
+/// (`extra_run` goes into `[run]`).
+fn periodic_pair(extra_run: &str) -> String {
+    format!(
+        r#"
+[run]
+name = "periodic"
+duration_s = 0.03
+dt_s = "auto"
+max_speed_m_per_s = 0.5
+output_interval_s = 0.01
+{extra_run}
+
+[[material]]
+name = "grain"
+youngs_pa = 1.0e7
+poisson_ratio = 0.3
+density_kg_per_m3 = 2500.0
+
+[contact]
+normal = "hertz"
+tangential = "mindlin"
+friction = 0.5
+
+[[particles]]
+material = "grain"
+placement = "csv"
+file = "pair.csv"
+"#
+    )
+}
+
+#[test]
+fn periodic_box_collides_across_the_boundary_and_wraps() {
+    let dir = common::temp_dir("periodic_box");
+    common::write(
+        &dir,
+        "pair.csv",
+        "x_m,y_m,z_m,radius_m,vx_m_per_s,vy_m_per_s,vz_m_per_s\n\
+         0.0985,0.05,0.05,0.002,0.5,0,0\n\
+         0.0065,0.05,0.05,0.002,0,0,0\n",
+    );
+    let periodic = "periodic_x_m = [0.0, 0.1]\nperiodic_y_m = [0.0, 0.1]";
+    let summary = run(&dir, "periodic", &periodic_pair(periodic));
+    let (a, b) = (&summary.particles[0], &summary.particles[1]);
+    // An elastic head-on collision of equal spheres exchanges their velocities (Hertz, no
+    // damping: to the integration's error, 1.6e-5 of the speed at 50 steps per contact time),
+    // through the boundary.
+    assert!(a.linvel[0].abs() < 1e-4 * 0.5, "A: {:?}", a.linvel);
+    assert!((b.linvel[0] - 0.5).abs() < 1e-4 * 0.5, "B: {:?}", b.linvel);
+    // A crossed the boundary and was wrapped into the box (it stops about 2.5 mm past it, in
+    // contact with B's image); B left at 0.5 m/s from about 8 ms on.
+    for p in [a, b] {
+        let [x, y, _] = p.translation;
+        assert!((0.0..0.1).contains(&x) && (0.0..0.1).contains(&y), "{p:?}");
+    }
+    assert!(a.translation[0] < 0.005, "A at {:?}", a.translation);
+    assert!(
+        (b.translation[0] - 0.0175).abs() < 1e-3,
+        "B at {:?}",
+        b.translation
+    );
+    let row = summary.energy.iter().max_by_key(|r| r.contacts).unwrap();
+    assert_eq!(row.contacts, 1, "the pair touched across the boundary");
+    // In open space they fly apart and never touch.
+    let open = run(&dir, "open", &periodic_pair(""));
+    assert!(open.energy.iter().all(|r| r.contacts == 0));
+    assert_eq!(open.particles[0].linvel[0], 0.5);
+}
+
+#[test]
+fn bad_periodic_boxes_are_refused_with_file_line_and_key() {
+    let dir = common::temp_dir("periodic_bad");
+    common::write(
+        &dir,
+        "pair.csv",
+        "x_m,y_m,z_m,radius_m\n0.003,0.05,0.05,0.002\n",
+    );
+    for (extra, key, says) in [
+        (
+            "periodic_x_m = [0.0, 0.1]",
+            "periodic_x_m",
+            "needs periodic_y_m",
+        ),
+        (
+            "periodic_y_m = [0.0, 0.1]",
+            "periodic_y_m",
+            "needs periodic_x_m",
+        ),
+        (
+            "periodic_x_m = [0.1, 0.0]\nperiodic_y_m = [0.0, 0.1]",
+            "periodic_x_m",
+            "lo < hi",
+        ),
+        (
+            "periodic_x_m = [0.0, 0.1]\nperiodic_y_m = [0.0, 0.1]\nforce_path = \"rapier\"",
+            "periodic_x_m",
+            "neighbour-list path only",
+        ),
+        (
+            "periodic_x_m = [0.0, 0.1]\nperiodic_y_m = [0.0, 0.1]\ndelete_below_m = -1.0",
+            "periodic_x_m",
+            "delete_below_m",
+        ),
+    ] {
+        let text = periodic_pair(extra);
+        let path = common::write(&dir, "bad.toml", &text);
+        let problems = parse_scene(&path, &text).expect_err(extra).to_string();
+        assert!(
+            problems.contains(key) && problems.contains(says) && problems.contains("bad.toml:"),
+            "{extra}: {problems}"
+        );
+    }
+    // The overlap allowance of a group is checked too.
+    let text = periodic_pair("").replace(
+        "file = \"pair.csv\"",
+        "file = \"pair.csv\"\nmax_initial_overlap_fraction = 0.7",
+    );
+    let path = common::write(&dir, "bad.toml", &text);
+    let problems = parse_scene(&path, &text).unwrap_err().to_string();
+    assert!(
+        problems.contains("max_initial_overlap_fraction") && problems.contains("[0, 0.5]"),
+        "{problems}"
+    );
+    // A box narrower than twice the neighbour cut-off is refused before the run.
+    let text = periodic_pair("periodic_x_m = [0.0, 0.006]\nperiodic_y_m = [0.0, 0.1]");
+    let path = common::write(&dir, "narrow.toml", &text);
+    let scene = parse_scene(&path, &text).unwrap();
+    let e = run_scene(&scene, &RunOptions::new(dir.join("narrow")).quiet(true))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("periodic box length"), "{e}");
+}
+
+/// The built-in bed scene (the settled bed of `bench bed`, periodic over 22 × 22), shortened to
+/// 100 steps: every sphere stays in the box and above the floor, the bed keeps its contact
+/// network (5.09 contacts per sphere in the benchmark), and pairs across the periodic
+/// boundary are found (a bed without them loses the contacts of its 4 × 22 boundary columns).
+#[test]
+fn bed_scene_holds_its_spheres_in_the_periodic_box() {
+    let dir = common::temp_dir("bed_scene");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/bed.toml");
+    let text = std::fs::read_to_string(&path)
+        .unwrap()
+        .replace("duration_s = 1.2", "duration_s = 0.01")
+        .replace("output_interval_s = 0.2", "output_interval_s = 0.01");
+    let run = |name: &str, text: &str| {
+        let scene = parse_scene(&path, text).unwrap_or_else(|p| panic!("{p}"));
+        run_scene(
+            &scene,
+            &RunOptions::new(dir.join(name)).quiet(true).no_frames(true),
+        )
+        .unwrap()
+    };
+    let summary = run("bed", &text);
+    assert_eq!(summary.particles.len(), 10_000);
+    for p in &summary.particles {
+        let [x, y, z] = p.translation;
+        assert!(
+            (0.0..22.0).contains(&x) && (0.0..22.0).contains(&y),
+            "{p:?}"
+        );
+        assert!(z > 0.4, "{p:?}");
+    }
+    let last = summary.energy.last().unwrap();
+    // Sphere pairs plus the floor contacts of the bottom layer (about 400).
+    let per_sphere = 2.0 * (last.contacts as f64 - 400.0) / 10_000.0;
+    assert!(
+        (per_sphere - 5.09).abs() < 0.25,
+        "{} contacts: {per_sphere} per sphere",
+        last.contacts
+    );
+    // The same bed in open space lacks the pairs across the sides.
+    let open = run(
+        "open",
+        &text
+            .replace("periodic_x_m = [0.0, 22.0]", "")
+            .replace("periodic_y_m = [0.0, 22.0]", ""),
+    );
+    let open_contacts = open.energy.last().unwrap().contacts;
+    assert!(
+        (open_contacts as f64) < last.contacts as f64 - 1000.0,
+        "open {open_contacts} vs periodic {}",
+        last.contacts
+    );
+}

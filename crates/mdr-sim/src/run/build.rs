@@ -128,8 +128,18 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
         }
         CouplingMode::Force => {
             let (model, rolling) = scene_model(&scene.contact)?;
+            let boundary = match scene.periodic {
+                Some([x, y]) => {
+                    let boundary = Boundary::periodic_xy(x, y)?;
+                    // No sphere may see two images of another: refused here, before the run.
+                    let r_max = scene.particles.iter().map(|p| p.radius).fold(0.0, f64::max);
+                    boundary.check_cutoff(2.0 * r_max + skin(scene))?;
+                    boundary
+                }
+                None => Boundary::Open,
+            };
             Inserter::Fast(Box::new(
-                FastForceStepper::new(model, Boundary::Open).with_rolling(rolling),
+                FastForceStepper::new(model, boundary).with_rolling(rolling),
             ))
         }
         CouplingMode::Restitution => {

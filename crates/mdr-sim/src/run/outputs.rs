@@ -63,11 +63,13 @@ impl Sim<'_> {
                 );
             }
             let pairs = stepper.pairs();
+            let offsets = stepper.boundary().offsets();
             for q in (0..pairs.len()).filter(|&q| pairs.active[q]) {
                 let (i, j) = (pairs.i[q] as usize, pairs.j[q] as usize);
-                let overlap =
-                    sphere_sphere(&p.position[i], p.radius[i], &p.position[j], p.radius[j])
-                        .map_or(0.0, |c| c.overlap);
+                // Partner `j` as the pair sees it (its periodic image in a periodic box).
+                let xj = p.position[j] + offsets[pairs.image[q] as usize].position;
+                let overlap = sphere_sphere(&p.position[i], p.radius[i], &xj, p.radius[j])
+                    .map_or(0.0, |c| c.overlap);
                 add(stepper.sphere_pair_laws(i, j), &pairs.history[q], overlap);
             }
         }
@@ -142,18 +144,20 @@ impl Sim<'_> {
                         .push(law.normal.residual_overlap(&sp.history[q].contact.normal));
                 }
                 let pairs = stepper.pairs();
+                let offsets = stepper.boundary().offsets();
                 for q in (0..pairs.len()).filter(|&q| pairs.active[q]) {
                     let (i, j) = (pairs.i[q] as usize, pairs.j[q] as usize);
                     let (law, _) = stepper.sphere_pair_laws(i, j);
-                    let Some(c) =
-                        sphere_sphere(&p.position[i], p.radius[i], &p.position[j], p.radius[j])
+                    // In a periodic box the line goes to the partner's image next to `i`.
+                    let xj = p.position[j] + offsets[pairs.image[q] as usize].position;
+                    let Some(c) = sphere_sphere(&p.position[i], p.radius[i], &xj, p.radius[j])
                     else {
                         continue;
                     };
                     // Stored for every pair when a network frame is due (`compute_forces`).
                     let force = pairs.wrench.get(q).map_or(Vector3::zeros(), |w| w.force);
                     net.from.push(p.position[i].into());
-                    net.to.push(p.position[j].into());
+                    net.to.push(xj.into());
                     net.force.push(force.into());
                     net.normal_force.push(force.dot(&c.normal));
                     net.overlap.push(c.overlap);

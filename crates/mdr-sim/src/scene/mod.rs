@@ -98,6 +98,9 @@ pub struct Scene {
     pub contact_network: bool,
     /// Hopper: discharge height (m).
     pub discharge_height: Option<f64>,
+    /// The x and y ranges (m) of a box periodic in x and y (neighbour-list path); open space
+    /// when `None`.
+    pub periodic: Option<[(f64, f64); 2]>,
     /// Gravity (m/s²).
     pub gravity: Vector3<f64>,
     /// Materials, by name.

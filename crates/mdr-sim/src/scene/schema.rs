@@ -141,6 +141,13 @@ pub struct RunSection {
     /// and fit Beverloo's `C` and `k` to the measured flow rates.
     #[serde(default)]
     pub orifice_sweep_m: Option<Vec<f64>>,
+    /// Neighbour-list path: the box is periodic in x over `[lo, hi]` (m), together with
+    /// `periodic_y_m`. Left out of the serialisation when absent, as `force_path`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub periodic_x_m: Option<[f64; 2]>,
+    /// Neighbour-list path: the box is periodic in y over `[lo, hi]` (m), with `periodic_x_m`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub periodic_y_m: Option<[f64; 2]>,
 }
 
 /// `[gravity]`.
@@ -319,6 +326,11 @@ pub struct ParticleGroup {
     /// `lammps`: metres per LAMMPS length unit (default 1).
     #[serde(default)]
     pub length_scale_m: Option<f64>,
+    /// Largest initial overlap of this group's spheres with any sphere or wall, as a fraction
+    /// of the smaller radius (default 0.01): raise it to start from a settled packing, whose
+    /// contacts overlap. Left out of the serialisation when absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_initial_overlap_fraction: Option<f64>,
     /// Initial velocity of every particle of the group (m/s).
     #[serde(default)]
     pub velocity_m_per_s: Option<[f64; 3]>,

@@ -179,6 +179,56 @@ impl Checker<'_, '_> {
         }
     }
 
+    /// `[run] periodic_x_m` and `periodic_y_m`: both or neither, each `[lo, hi]` with
+    /// `lo < hi` finite, on the neighbour-list path only, and without `delete_below_m` (parked
+    /// spheres would sit outside the box).
+    fn periodic_box(&mut self, r: &RunSection, run: &KeyPath) -> Option<[(f64, f64); 2]> {
+        let (x, y) = match (r.periodic_x_m, r.periodic_y_m) {
+            (None, None) => return None,
+            (Some(x), Some(y)) => (x, y),
+            (Some(_), None) => {
+                self.error(
+                    &run.key("periodic_x_m"),
+                    "needs periodic_y_m too: the box is periodic in x and y together",
+                );
+                return None;
+            }
+            (None, Some(_)) => {
+                self.error(
+                    &run.key("periodic_y_m"),
+                    "needs periodic_x_m too: the box is periodic in x and y together",
+                );
+                return None;
+            }
+        };
+        let mut ok = true;
+        for (name, [lo, hi]) in [("periodic_x_m", x), ("periodic_y_m", y)] {
+            if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+                self.error(
+                    &run.key(name),
+                    format!("= [{lo}, {hi}] m: needs finite lo < hi (the box's range, m)"),
+                );
+                ok = false;
+            }
+        }
+        let key = run.key("periodic_x_m");
+        if r.coupling == CouplingMode::Restitution || r.force_path == Some(ForcePath::Rapier) {
+            self.error(
+                &key,
+                "applies to the neighbour-list path only (coupling = \"force\", force_path = \"neighbour_list\")",
+            );
+            ok = false;
+        }
+        if r.delete_below_m.is_some() {
+            self.error(
+                &key,
+                "cannot be combined with delete_below_m (removed spheres are parked outside the box)",
+            );
+            ok = false;
+        }
+        ok.then_some([(x[0], x[1]), (y[0], y[1])])
+    }
+
     fn positive(&mut self, path: &KeyPath, v: f64) -> Option<f64> {
         let v = self.finite(path, v)?;
         if v > 0.0 {
@@ -399,6 +449,7 @@ impl Checker<'_, '_> {
         let discharge = r
             .discharge_height_m
             .and_then(|h| self.finite(&run.key("discharge_height_m"), h));
+        let periodic = self.periodic_box(r, &run);
 
         let gravity = match &file.gravity {
             Some(g) => self.vector(
@@ -493,9 +544,28 @@ impl Checker<'_, '_> {
             }
         }
 
-        // Placement against placement and walls.
+        // Placement against placement and walls, within each group's allowance.
+        let allowance: Vec<f64> = file
+            .particles
+            .iter()
+            .enumerate()
+            .map(|(g, group)| match group.max_initial_overlap_fraction {
+                Some(f) if (0.0..=0.5).contains(&f) => f,
+                Some(f) => {
+                    self.error(
+                        &root
+                            .key("particles")
+                            .index(g)
+                            .key("max_initial_overlap_fraction"),
+                        format!("= {f} is outside the allowed range [0, 0.5]"),
+                    );
+                    OVERLAP_TOLERANCE
+                }
+                None => OVERLAP_TOLERANCE,
+            })
+            .collect();
         if !particles.is_empty() && self.problems.iter().all(|p| p.severity != Severity::Error) {
-            self.check_overlaps(&root, &particles, &walls_out);
+            self.check_overlaps(&root, &particles, &walls_out, &allowance);
         }
 
         // Time step.
@@ -605,6 +675,7 @@ impl Checker<'_, '_> {
             headline: r.headline,
             contact_network: r.contact_network,
             discharge_height: discharge,
+            periodic,
             gravity,
             materials,
             contact,

@@ -235,27 +235,47 @@ impl Checker<'_, '_> {
         })
     }
 
+    /// Refuse initial overlaps beyond each group's allowance (`max_initial_overlap_fraction`
+    /// of the smaller radius, default [`OVERLAP_TOLERANCE`]; a pair of two groups gets the
+    /// larger of their allowances).
     pub(super) fn check_overlaps(
         &mut self,
         root: &KeyPath,
         particles: &[ParticleInit],
         walls: &[Wall],
+        allowance: &[f64],
     ) {
         let spheres: Vec<(Vector3<f64>, f64)> =
             particles.iter().map(|p| (p.position, p.radius)).collect();
-        let pairs = placement::overlapping_pairs(&spheres, OVERLAP_TOLERANCE, 6);
+        let tolerance =
+            |p: &ParticleInit| allowance.get(p.group).copied().unwrap_or(OVERLAP_TOLERANCE);
+        let smallest = particles
+            .iter()
+            .map(tolerance)
+            .fold(f64::INFINITY, f64::min);
+        let pairs = placement::overlapping_pairs(&spheres, smallest, usize::MAX);
+        let mut reported = 0;
         for (i, j, overlap) in &pairs {
             let (a, b) = (&particles[*i], &particles[*j]);
+            let allowed = tolerance(a).max(tolerance(b));
+            if *overlap <= allowed * a.radius.min(b.radius) {
+                continue;
+            }
             self.error(
                 &root.key("particles").index(b.group),
                 format!(
                     "initial placement overlaps: particle {i} (group {}) and particle {j} (group {}) \
-                     overlap by {overlap:.3e} m, more than {}% of the smaller radius",
+                     overlap by {overlap:.3e} m, more than {}% of the smaller radius \
+                     (max_initial_overlap_fraction)",
                     a.group,
                     b.group,
-                    OVERLAP_TOLERANCE * 100.0
+                    allowed * 100.0
                 ),
             );
+            reported += 1;
+            if reported >= 6 {
+                break;
+            }
         }
         let mut reported = 0;
         'walls: for wall in walls {
@@ -263,7 +283,7 @@ impl Checker<'_, '_> {
                 let distance = piece.distance_fn();
                 for (k, p) in particles.iter().enumerate() {
                     let d = distance(&(p.position - wall.origin));
-                    if d < p.radius * (1.0 - OVERLAP_TOLERANCE) {
+                    if d < p.radius * (1.0 - tolerance(p)) {
                         self.error(
                             &root.key("walls").index(wall.index),
                             format!(
