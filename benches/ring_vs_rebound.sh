@@ -4,7 +4,7 @@
 # --grav MODE) and `mdr-dem sim ring --gravity MODE` one after the other on the same setup (Bridges
 # law, 200 m box, Σ = 400 kg/m², 20 orbits), then the MDR ice law and a constant ε = 0.5 on the
 # first seed, and prints the table of docs/rings.md §7 and the wall/CPU time ratios of
-# docs/performance.md ("Planetary ring", "Ring shearing box").
+# docs/performance.md ("Planetary ring vs REBOUND").
 #
 # Usage: benches/ring_vs_rebound.sh [SEEDS (default "1 2 3 4 5")] [ORBITS (default 20)]
 #        [MODES (default "none tree"; none = no self-gravity, tree = tree gravity in both codes)]

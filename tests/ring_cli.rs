@@ -8,7 +8,7 @@ fn mdr_dem() -> Command {
 }
 
 #[test]
-fn sim_ring_json_has_the_issue_keys_and_writes_outputs() {
+fn sim_ring_json_has_the_documented_keys_and_writes_outputs() {
     let out = std::env::temp_dir().join(format!("mdr_ring_cli_{}", std::process::id()));
     let output = mdr_dem()
         .args([

@@ -83,8 +83,8 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> ContactModel<N, T, D> 
 /// Where a contact books the work its friction and damping dissipate, and the energy its
 /// incremental springs gain without work (stiffness changes): a type parameter of
 /// [`ContactState`], so that a state without books ([`NoBooks`]) carries no fields and its update
-/// forms no work term (the trajectory is the same bit for bit; 0–1 % of a settled bed's step
-/// per core, docs/performance.md). Plasticity needs no book: its work follows from the normal
+/// forms no work term (the trajectory is the same bit for bit; about 5 % of a settled bed's
+/// step per core, docs/performance.md). Plasticity needs no book: its work follows from the normal
 /// law's state ([`NormalLaw::dissipated_work`]).
 pub trait WorkBooks: Default + Clone + Copy + std::fmt::Debug + PartialEq + Send + Sync {
     /// Add work dissipated by friction (J).
