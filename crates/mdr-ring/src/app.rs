@@ -7,6 +7,7 @@
 
 use crate::diagnostics::{Sample, Summary};
 use crate::error::Result;
+use crate::gravity::GRAVITATIONAL_CONSTANT;
 use crate::law::{BridgesLaw, ConstantRestitution, ImpactPair, MdrRestitution, RestitutionLaw};
 use crate::output::{
     write_equilibration_svg, write_json, write_panels_svg, write_samples_csv,
@@ -14,7 +15,7 @@ use crate::output::{
 };
 use crate::particles::Population;
 use crate::run::{RingConfig, RingSimulation};
-use crate::wakes::{Autocorrelation, SurfaceDensity};
+use crate::wakes::{critical_wavelength, Autocorrelation, SurfaceDensity};
 use plotters::style::{BLACK, BLUE, GREEN, RED};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -152,12 +153,15 @@ pub const WAKE_LEVEL: f64 = 0.5;
 /// (uniform random particles give about 1): no pitch angle or wavelength is reported.
 pub const WAKE_MIN_ANISOTROPY: f64 = 1.5;
 
-/// Cell of the surface-density grid for a box of side `side` (m): 5 m (a few particles per cell;
-/// wakes are tens of metres apart, 2.5 m cells left one large particle per cell and no correlation
-/// between neighbouring cells), at most 128 cells per side so that the direct autocorrelation stays
-/// cheap.
-pub fn wake_cell(side: f64) -> f64 {
-    (side / 128.0).max(5.0)
+/// Cell of the surface-density grid (m) for a box of side `side` whose critical wavelength is
+/// `critical_wavelength` (`λ_cr = 4π² G Σ / Ω²`, the scale of the wakes: Salo et al. 2004 find
+/// wavelengths of 0.5–1 λ_cr): a sixth of `λ_cr`, so that a wake spans several cells while each
+/// cell holds a few particles, whose Poisson noise would otherwise hide the correlation between
+/// neighbouring cells; at least 5 m, and at most 128 cells per side so that the direct
+/// autocorrelation stays cheap. REBOUND's 200 m sheet (λ_cr = 61 m) gets 10 m cells, about four
+/// particles each.
+pub fn wake_cell(side: f64, critical_wavelength: f64) -> f64 {
+    (critical_wavelength / 6.0).max(5.0).max(side / 128.0)
 }
 
 /// Run and write the outputs.
@@ -186,7 +190,11 @@ fn run_with<L: RestitutionLaw>(options: &RunOptions, law: L) -> Result<RunReport
     }
     let domain = *ring.domain();
     let period = domain.frame().period();
-    let cell = wake_cell(domain.lx().max(domain.ly()));
+    let sigma = ring.particles().total_mass() / domain.area();
+    let cell = wake_cell(
+        domain.lx().max(domain.ly()),
+        critical_wavelength(domain.frame().omega(), GRAVITATIONAL_CONSTANT, sigma),
+    );
     if let (Some(dir), Some(_)) = (&frames_dir, frame_every) {
         let grid = SurfaceDensity::of(&domain, ring.particles(), 0.0, cell);
         write_surface_density_png(&dir.join("sigma_0000.png"), &grid, "t = 0 orbits")?;

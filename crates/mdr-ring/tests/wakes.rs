@@ -155,18 +155,16 @@ fn wake_anisotropy(
     let domain = *ring.domain();
     let period = domain.frame().period();
     let mut acfs = Vec::new();
+    let g = mdr_ring::gravity::GRAVITATIONAL_CONSTANT;
+    let sigma = ring.particles().total_mass() / domain.area();
+    let cell =
+        mdr_ring::app::wake_cell(200.0, critical_wavelength(domain.frame().omega(), g, sigma));
     let result = ring
         .run(orbits, |s, p| {
             let k = (s.t_orbits * 10.0).round() as u64;
             if s.t_orbits >= 0.5 * orbits && k % 5 == 0 {
                 acfs.push(
-                    SurfaceDensity::of(
-                        &domain,
-                        p,
-                        s.t_orbits * period,
-                        mdr_ring::app::wake_cell(200.0),
-                    )
-                    .autocorrelation(),
+                    SurfaceDensity::of(&domain, p, s.t_orbits * period, cell).autocorrelation(),
                 );
             }
         })
