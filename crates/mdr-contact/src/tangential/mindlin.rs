@@ -133,6 +133,7 @@ impl MindlinLaw {
     /// [`TangentialLaw::update`] reports the same quantity as
     /// [`TangentialResponse::stiffness_energy`] (docs/theory.md, "Energy books of the incremental
     /// springs"); this form takes the state before an update, for books kept outside the law.
+    #[inline]
     pub fn stiffness_energy_change(
         &self,
         displacement_len2: f64,
@@ -147,8 +148,27 @@ impl MindlinLaw {
             return 0.0;
         }
         let (r_num, r_den) = self.rescale(previous_radius, contact_radius);
-        let ratio = r_num / r_den;
-        0.5 * self.stiffness(contact_radius) * displacement_len2 * ratio * ratio - before
+        self.carried_energy_change(
+            displacement_len2,
+            previous_radius,
+            self.stiffness(contact_radius),
+            r_num / r_den,
+        )
+    }
+
+    /// `½ k |ξ|² ratio² − ½ k_t(a_prev) |ξ|²`: [`MindlinLaw::stiffness_energy_change`] of a spring
+    /// in contact, with the new stiffness `k` and the radius rescale `ratio` already at hand
+    /// (the update has both).
+    #[inline(always)]
+    fn carried_energy_change(
+        &self,
+        displacement_len2: f64,
+        previous_radius: f64,
+        k: f64,
+        ratio: f64,
+    ) -> f64 {
+        let before = 0.5 * self.stiffness(previous_radius) * displacement_len2;
+        0.5 * k * displacement_len2 * ratio * ratio - before
     }
 }
 
@@ -172,11 +192,14 @@ impl TangentialLaw for MindlinLaw {
         if a <= 0.0 || normal_force <= 0.0 {
             // Out of contact: springs leaving the contact forget their displacement, and the
             // energy they held with it.
-            let held =
-                0.5 * self.stiffness(state.contact_radius) * state.displacement.norm_squared();
+            let released = self.stiffness_energy_change(
+                state.displacement.norm_squared(),
+                state.contact_radius,
+                0.0,
+            );
             *state = MindlinState::default();
             return TangentialResponse {
-                stiffness_energy: -held,
+                stiffness_energy: released,
                 ..TangentialResponse::default()
             };
         }
@@ -185,8 +208,7 @@ impl TangentialLaw for MindlinLaw {
         let mut xi = state.displacement;
         let old_len2 = xi.norm_squared();
         let k = self.stiffness(a);
-        // Energy the carried-over spring gains without work: ½ k(a) |ξ'|² − ½ k(a_prev) |ξ|²
-        // (`stiffness_energy_change`; |ξ'| = |ξ| r_num/r_den, the frame turn keeps the length).
+        // Energy the carried-over spring gains without work (the frame turn keeps |ξ|).
         let mut stiffness_energy = 0.0;
         if old_len2 > 0.0 {
             let along_normal = n.dot(&xi);
@@ -209,15 +231,10 @@ impl TangentialLaw for MindlinLaw {
                 }
             };
             let (r_num, r_den) = self.rescale(state.contact_radius, a);
-            let before = 0.5 * self.stiffness(state.contact_radius) * old_len2;
-            if r_num != r_den {
-                let ratio = r_num / r_den;
-                xi *= frame * ratio;
-                stiffness_energy = 0.5 * k * old_len2 * ratio * ratio - before;
-            } else {
-                xi *= frame;
-                stiffness_energy = 0.5 * k * old_len2 - before;
-            }
+            // `frame * 1.0` is `frame` exactly: no division unless the radius rescales.
+            let ratio = if r_num != r_den { r_num / r_den } else { 1.0 };
+            xi *= frame * ratio;
+            stiffness_energy = self.carried_energy_change(old_len2, state.contact_radius, k, ratio);
         }
         let du = input.displacement_increment - n * n.dot(&input.displacement_increment);
         xi += du;
