@@ -109,6 +109,30 @@ pub struct EndedContact {
     pub works: ContactWorks,
 }
 
+impl EndedContact {
+    /// `particle`'s contact with `partner`, whose `history` ends, under its bound laws.
+    #[inline]
+    fn of<NL, TL, DL, RL, B>(
+        particle: u32,
+        partner: ContactPartner,
+        (law, rolling): &(ContactLaw<NL, TL, DL>, RL),
+        history: &PairHistory<StateOf<NL, TL, B>, RL::State>,
+    ) -> Self
+    where
+        NL: mdr_contact::normal::NormalLaw,
+        TL: mdr_contact::tangential::TangentialLaw,
+        DL: mdr_contact::damping::DampingLaw,
+        RL: RollingLaw,
+        B: WorkBooks,
+    {
+        Self {
+            particle,
+            partner,
+            works: ContactWorks::of(law, rolling, history),
+        }
+    }
+}
+
 /// The fast force-mode coupling. Owns the particles (structure of arrays), the neighbour lists
 /// with their histories, and the registered rapier surfaces; call
 /// [`FastForceStepper::step`] instead of `PhysicsWorld::step`.

@@ -84,13 +84,12 @@ where
                     // wrench of an inactive pair is kept at zero, so that the per-particle
                     // gather need not test `active`.
                     if record {
-                        let (law, rolling) =
-                            &laws[p.species[i] as usize * ns + p.species[j] as usize];
-                        ended.push(EndedContact {
-                            particle: i as u32,
-                            partner: ContactPartner::Sphere(j as u32),
-                            works: ContactWorks::of(law, rolling, &history[k]),
-                        });
+                        ended.push(EndedContact::of(
+                            i as u32,
+                            ContactPartner::Sphere(j as u32),
+                            &laws[p.species[i] as usize * ns + p.species[j] as usize],
+                            &history[k],
+                        ));
                     }
                     active[k] = false;
                     history[k] = Default::default();
@@ -227,12 +226,12 @@ where
                     let Some(contact) = contact else {
                         if active[k] {
                             if record {
-                                let (law, rolling) = &laws[p.species[i] as usize * nsurf + s];
-                                ended.push(EndedContact {
-                                    particle: i as u32,
-                                    partner: ContactPartner::Surface(s as u32),
-                                    works: ContactWorks::of(law, rolling, &history[k]),
-                                });
+                                ended.push(EndedContact::of(
+                                    i as u32,
+                                    ContactPartner::Surface(s as u32),
+                                    &laws[p.species[i] as usize * nsurf + s],
+                                    &history[k],
+                                ));
                             }
                             active[k] = false;
                             history[k] = Default::default();

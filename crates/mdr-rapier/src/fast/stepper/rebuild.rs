@@ -78,33 +78,32 @@ where
     /// while every particle moved less than half the skin, but a particle moved by hand may
     /// leave its contacts behind).
     fn record_dropped(&mut self) {
-        let Some(ended) = &mut self.ended else {
+        let Some(mut ended) = self.ended.take() else {
             return;
         };
-        let species = &self.particles.species;
-        let (ns, nsurf) = (self.laws_species, self.surfaces.len());
         let old = &self.old_surface_pairs;
         for q in (0..old.len()).filter(|&q| old.active[q]) {
             let (i, s) = (old.particle[q], old.surface[q]);
-            let (law, rolling) =
-                &self.surface_laws[species[i as usize] as usize * nsurf + s as usize];
-            ended.push(EndedContact {
-                particle: i,
-                partner: ContactPartner::Surface(s),
-                works: ContactWorks::of(law, rolling, &old.history[q]),
-            });
+            let laws = self.surface_pair_laws(i as usize, s as usize);
+            ended.push(EndedContact::of(
+                i,
+                ContactPartner::Surface(s),
+                laws,
+                &old.history[q],
+            ));
         }
         let old = &self.old_pairs;
         for q in (0..old.len()).filter(|&q| old.active[q]) {
             let (i, j) = (old.i[q], old.j[q]);
-            let (law, rolling) =
-                &self.sphere_laws[species[i as usize] as usize * ns + species[j as usize] as usize];
-            ended.push(EndedContact {
-                particle: i,
-                partner: ContactPartner::Sphere(j),
-                works: ContactWorks::of(law, rolling, &old.history[q]),
-            });
+            let laws = self.sphere_pair_laws(i as usize, j as usize);
+            ended.push(EndedContact::of(
+                i,
+                ContactPartner::Sphere(j),
+                laws,
+                &old.history[q],
+            ));
         }
+        self.ended = Some(ended);
     }
 
     pub(super) fn surfaces_moved(&self, colliders: &ColliderSet) -> f64 {
