@@ -20,6 +20,16 @@ pub struct ImageLabel {
     pub azimuthal: i64,
 }
 
+impl ImageLabel {
+    /// Whether the image lies on the lower side of a boundary: shifted by `−L_x` (left of the
+    /// box, any azimuthal offset) or, in the same radial column, by `−L_y` (below the box). Of the
+    /// two images through which a pair can touch across a boundary, exactly one is on the lower
+    /// side, so ghosts for these images alone see every such contact once.
+    pub fn is_lower_side(&self) -> bool {
+        self.radial == -1 || (self.radial == 0 && self.azimuthal == -1)
+    }
+}
+
 /// One periodic image: its label, position and velocity.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Image {

@@ -1,5 +1,4 @@
-//! The ring's rapier hooks: contact-pair filtering for the ghost images of the shear-periodic
-//! boundaries, and restitution mode — each manifold's restitution set from a
+//! The ring's rapier hook: restitution mode — each manifold's restitution set from a
 //! [`RestitutionLaw`] at the pair's approach speed, with the per-contact history in a
 //! thread-safe store.
 
@@ -29,9 +28,9 @@ type HistoryKey = (u32, u32);
 
 /// The hooks of a ring run (see the module documentation).
 ///
-/// **Ghost filtering.** A contact across the boundary is seen twice: particle `a` against the ghost
-/// of `b`, and `b` against the ghost of `a`. Only the first, with `a < b`, is kept; ghost–ghost
-/// pairs and a particle against its own image are dropped.
+/// **Ghosts.** A contact across the boundary reaches the hook once, as a particle against the
+/// other's ghost: ghosts exist on one side of each boundary only and do not collide with each
+/// other ([`crate::world`]).
 ///
 /// **Restitution.** An approaching pair (`u = (v₁ − v₂)·n > 0`) whose gap closes within the step
 /// (`gap ≤ u Δt`, rapier's speculative contact) collides in this step: the law is evaluated at `u`
@@ -101,19 +100,6 @@ fn ball_radius(colliders: &ColliderSet, handle: ColliderHandle) -> Option<f64> {
 }
 
 impl<L: RestitutionLaw> PhysicsHooks for RingHooks<L> {
-    fn filter_contact_pair(&self, context: &PairFilterContext) -> Option<SolverFlags> {
-        let ((ia, ga), (ib, gb)) =
-            pair_identities(context.colliders, context.collider1, context.collider2)?;
-        let keep = match (ga, gb) {
-            (true, true) => false,
-            _ if ia == ib => false,
-            (false, false) => true,
-            (false, true) => ia < ib,
-            (true, false) => ib < ia,
-        };
-        keep.then_some(SolverFlags::COMPUTE_RIGID_IMPULSES)
-    }
-
     fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {
         let (Some(rb1), Some(rb2)) = (context.rigid_body1, context.rigid_body2) else {
             return;
@@ -150,22 +136,40 @@ impl<L: RestitutionLaw> PhysicsHooks for RingHooks<L> {
             .iter()
             .map(|c| c.dist)
             .fold(f64::INFINITY, f64::min);
-        let key = (i1.min(i2), i1.max(i2));
-        let Ok(mut histories) = self.histories.lock() else {
-            return;
-        };
-        let entry = histories.entry(key).or_default();
-        entry.1 = self.step;
-        if approach <= 0.0 || !gap.is_finite() || gap > approach * self.dt {
+        let impact = approach > 0.0 && gap.is_finite() && gap <= approach * self.dt;
+        if !impact {
             // No impact in this step: defer the contacts (solved with zero impulse). Left alone,
             // rapier's relax pass would brake the approach (an inelastic pre-contact loss hard
             // spheres do not have); dropped, they would keep the impulse of the pair's last impact
             // and rapier would then take its next impact as a resting contact, with no bounce
             // (docs/rings.md §4, docs/coupling.md "Speculative contacts").
             defer_speculative_contacts(manifold.solver_contacts, approach, self.dt);
+        }
+        // A law without history (Bridges, constant ε) needs no store: no lock, no lookup.
+        let stateless = std::mem::size_of::<L::History>() == 0;
+        if stateless && !impact {
             return;
         }
-        *manifold.restitution = self.law.restitution(&pair, &mut entry.0, approach);
-        self.collisions.fetch_add(1, Ordering::Relaxed);
+        let mut none = L::History::default();
+        let mut histories = if stateless {
+            None
+        } else {
+            let Ok(histories) = self.histories.lock() else {
+                return;
+            };
+            Some(histories)
+        };
+        let history = match histories.as_mut() {
+            Some(histories) => {
+                let entry = histories.entry((i1.min(i2), i1.max(i2))).or_default();
+                entry.1 = self.step;
+                &mut entry.0
+            }
+            None => &mut none,
+        };
+        if impact {
+            *manifold.restitution = self.law.restitution(&pair, history, approach);
+            self.collisions.fetch_add(1, Ordering::Relaxed);
+        }
     }
 }

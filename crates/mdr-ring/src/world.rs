@@ -6,13 +6,25 @@
 //! is discarded: before each step the bodies are placed at the particles' positions and
 //! velocities, after it only the velocities are read back (docs/rings.md §4). A ghost's velocity
 //! change is added to the particle it images.
+//!
+//! Ghosts exist on the lower side of each boundary only: the images from the radially outer
+//! neighbour box (`i = −1`, left of the box, any azimuthal shift) and from the azimuthally upper
+//! one (`i = 0, n = −1`, below the box) ([`ImageLabel::is_lower_side`]). A pair that touches
+//! across a boundary then meets exactly once, as one particle against the other's ghost: of the
+//! two images that could carry the contact, the one shifted by `+L_x` (or by `+L_y`) has no ghost.
+//! Ghosts do not collide with ghosts (collision groups).
 
 use crate::boundary::{Image, ImageLabel, ShearingBox};
-use crate::hooks::{identity, RingHooks};
+use crate::hooks::{decode, identity, RingHooks};
 use crate::particles::Particles;
 use mdr_rapier::restitution_law::RestitutionLaw;
 use rapier3d_f64::prelude::*;
 use std::collections::BTreeMap;
+
+/// Collision group of the particles' colliders.
+const PARTICLES: Group = Group::GROUP_1;
+/// Collision group of the ghosts' colliders.
+const GHOSTS: Group = Group::GROUP_2;
 
 /// A ghost ball: the rapier body of one periodic image of a particle.
 #[derive(Debug, Clone, Copy)]
@@ -102,12 +114,20 @@ impl<L: RestitutionLaw> CollisionWorld<L> {
             .lock_rotations()
             .can_sleep(false)
             .build();
+        // Ghosts meet particles only: two ghosts image a pair that meets elsewhere, as particles
+        // or as a particle and a ghost (module documentation).
+        let groups = if decode(user_data).1 {
+            InteractionGroups::new(GHOSTS, PARTICLES, InteractionTestMode::And)
+        } else {
+            InteractionGroups::new(PARTICLES, PARTICLES | GHOSTS, InteractionTestMode::And)
+        };
         let collider = ColliderBuilder::ball(radius)
             .mass(mass)
             .friction(0.0)
             .restitution(0.0)
             .user_data(user_data)
-            .active_hooks(ActiveHooks::FILTER_CONTACT_PAIRS | ActiveHooks::MODIFY_SOLVER_CONTACTS)
+            .collision_groups(groups)
+            .active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS)
             .build();
         self.world.insert(body, collider).0
     }
@@ -166,6 +186,9 @@ impl<L: RestitutionLaw> CollisionWorld<L> {
             );
             for k in 0..self.images.len() {
                 let image = self.images[k];
+                if !image.label.is_lower_side() {
+                    continue;
+                }
                 let key = (i, image.label);
                 if let Some(ghost) = self.ghosts.get_mut(&key) {
                     let body = &mut self.world.bodies[ghost.body];

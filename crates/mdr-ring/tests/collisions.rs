@@ -100,6 +100,63 @@ fn collision_across_the_radial_boundary_is_resolved_once() {
     assert!((momentum(&particles) - p0).length() < 1e-9 * p0.length());
 }
 
+/// Pairs that meet across the azimuthal boundary and across a corner of the box (through both
+/// boundaries at once), with either particle on the lower side: one impact each, `e` as set,
+/// momentum conserved. Ghosts exist on the lower side of each boundary only, so each such contact
+/// is carried by exactly one particle–ghost pair.
+#[test]
+fn collisions_across_the_azimuthal_boundary_and_a_corner_are_resolved_once() {
+    let frame = HillFrame::new(OMEGA).unwrap();
+    let domain = ShearingBox::new(frame, 100.0, 100.0).unwrap();
+    let (dt, u, e) = (47.8, 1e-3, 0.5);
+    // (direction from the lower particle towards the boundary it crosses, whether it crosses
+    // the radial boundary too).
+    let cases = [
+        (Vector::new(0.0, -1.0, 0.0), false),
+        (Vector::new(-1.0, -1.0, 0.0).normalize(), true),
+    ];
+    for (towards, radial) in cases {
+        for swap in [false, true] {
+            // Gap 0.5 m between the surfaces (radii 1 and 2 m).
+            let lower = Vector::new(
+                if radial { -48.6 } else { 10.0 },
+                if radial { -48.6 } else { -48.0 },
+                0.0,
+            );
+            let upper = Vector::new(
+                if radial { 48.9 } else { 10.0 },
+                if radial { 48.9 } else { 48.5 },
+                0.0,
+            );
+            // The upper particle's image below (and left of) the box must move towards the lower
+            // one: across the radial boundary the image gains the shear speed.
+            let v_upper = -towards * (0.5 * u)
+                - Vector::new(0.0, if radial { domain.shear_speed() } else { 0.0 }, 0.0);
+            let v_lower = towards * (0.5 * u);
+            let mut particles = if swap {
+                two_particles(upper, v_upper, lower, v_lower)
+            } else {
+                two_particles(lower, v_lower, upper, v_upper)
+            };
+            let p0 = momentum(&particles);
+            let law = ConstantRestitution::new(e).unwrap();
+            let count = collide_linear(&mut particles, &domain, law, dt, 30);
+            assert_eq!(count, 1, "radial {radial}, swapped {swap}");
+            let (lo, up) = if swap { (1, 0) } else { (0, 1) };
+            let shear = if radial { domain.shear_speed() } else { 0.0 };
+            let relative =
+                particles.velocity[up] + Vector::new(0.0, shear, 0.0) - particles.velocity[lo];
+            // Before: the image approached at speed u along −towards; after: it recedes at e u.
+            let out = relative.dot(towards);
+            assert!(
+                (out - e * u).abs() < 1e-3 * u,
+                "radial {radial}, swapped {swap}: outgoing {out}"
+            );
+            assert!((momentum(&particles) - p0).length() < 1e-9 * p0.length());
+        }
+    }
+}
+
 /// The same pair collides again while rapier still holds its manifold (here: velocities reversed
 /// by hand three steps after the first impact, gap ≈ 7 cm, inside the 0.5 m prediction
 /// distance): the second impact bounces with the law's `e` too. When the hook dropped the
