@@ -113,6 +113,32 @@ impl ShearingBox {
         moved
     }
 
+    /// The images of [`Self::images_near_box`] that lie on the lower side of a boundary
+    /// ([`ImageLabel::is_lower_side`]). Only a particle within `margin` of the outer (`+x`) or
+    /// upper (`+y`) edge has one, so the others return at once.
+    pub fn lower_side_images_near_box(
+        &self,
+        position: Vector,
+        velocity: Vector,
+        time: f64,
+        margin: f64,
+        out: &mut Vec<Image>,
+    ) {
+        if position.x < 0.5 * self.lx - margin && position.y < 0.5 * self.ly - margin {
+            return;
+        }
+        let start = out.len();
+        self.images_near_box(position, velocity, time, margin, out);
+        let mut kept = start;
+        for k in start..out.len() {
+            if out[k].label.is_lower_side() {
+                out[kept] = out[k];
+                kept += 1;
+            }
+        }
+        out.truncate(kept);
+    }
+
     /// Every image of a particle at `position` with `velocity` (inside the box), other than the
     /// particle itself, that lies within `margin` (m) of the box, at `time`.
     pub fn images_near_box(

@@ -177,7 +177,7 @@ impl<L: RestitutionLaw> CollisionWorld<L> {
         }
         for i in 0..particles.len() {
             self.images.clear();
-            domain.images_near_box(
+            domain.lower_side_images_near_box(
                 particles.position[i],
                 particles.velocity[i],
                 time,
@@ -186,9 +186,6 @@ impl<L: RestitutionLaw> CollisionWorld<L> {
             );
             for k in 0..self.images.len() {
                 let image = self.images[k];
-                if !image.label.is_lower_side() {
-                    continue;
-                }
                 let key = (i, image.label);
                 if let Some(ghost) = self.ghosts.get_mut(&key) {
                     let body = &mut self.world.bodies[ghost.body];

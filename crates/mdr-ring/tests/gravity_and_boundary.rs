@@ -62,3 +62,28 @@ fn wrapping_keeps_the_epicycle_of_a_free_particle() {
     assert!((f.guiding_centre_x(pos, vel) - (xg - d.lx())).abs() < 1e-9);
     assert!((f.epicycle_amplitude(pos, vel) - rho).abs() < 1e-9);
 }
+
+/// The ghosts' images: exactly the boundary images on the lower side, for particles anywhere in
+/// the box (the early return for particles away from the outer and upper edges loses none), and
+/// every image on the lower side lies left of or below the box.
+#[test]
+fn lower_side_images_are_the_lower_side_boundary_images() {
+    let d = domain();
+    let margin = 9.0;
+    let mut found = 0;
+    for k in 0..400 {
+        let f = |m: u64| ((k * m) % 397) as f64 / 397.0 - 0.5;
+        let p = Vector::new(f(131) * 99.9, f(277) * 79.9, f(53));
+        let t = 1.3e3 * k as f64;
+        let (mut all, mut lower) = (Vec::new(), Vec::new());
+        d.images_near_box(p, Vector::ZERO, t, margin, &mut all);
+        d.lower_side_images_near_box(p, Vector::ZERO, t, margin, &mut lower);
+        all.retain(|im| im.label.is_lower_side());
+        assert_eq!(all, lower, "particle {p:?} at t = {t}");
+        for im in &lower {
+            assert!(im.position.x < -50.0 || im.position.y < -40.0, "{im:?}");
+        }
+        found += lower.len();
+    }
+    assert!(found > 20, "{found}");
+}
