@@ -7,6 +7,8 @@
 #        particles)] [ORBITS per size (default "1 0.2 0.02")] [THREADS for mdr-dem (default 1)]
 # Both codes start from their cold initial conditions and run the same number of orbits, one after
 # the other, at nice 10; REBOUND is serial. Prints a markdown table (seconds of wall time per orbit).
+# REUSE_REBOUND=DIR takes REBOUND's rebound_<mode>_<box>.json from an earlier run's output
+# directory instead of running REBOUND again (its results do not depend on mdr-dem).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 roots=(${1:-2 5 16})
@@ -23,8 +25,12 @@ for k in "${!roots[@]}"; do
   n=${roots[$k]}; o=${orbits[$k]}; box=$((100 * n))
   for mode in none tree; do
     tag=${mode}_$box
-    nice -n 10 "$rebound" --grav "$mode" --orbits "$o" --root 100 --nroot "$n" \
-      --json "$out/rebound_$tag.json" > "$out/rebound_$tag.log"
+    if [ -n "${REUSE_REBOUND:-}" ]; then
+      [ "$REUSE_REBOUND" -ef "$out" ] || cp "$REUSE_REBOUND/rebound_$tag.json" "$out/rebound_$tag.json"
+    else
+      nice -n 10 "$rebound" --grav "$mode" --orbits "$o" --root 100 --nroot "$n" \
+        --json "$out/rebound_$tag.json" > "$out/rebound_$tag.log"
+    fi
     RAYON_NUM_THREADS=$threads nice -n 10 "$bin" sim ring --box "$box" --gravity "$mode" \
       --orbits "$o" --quiet --json > "$out/ours_$tag.json"
     python3 - "$out/ours_$tag.json" "$out/rebound_$tag.json" "$box" "$mode" "$o" <<'PY'

@@ -47,6 +47,15 @@ fn sim_ring_json_has_the_documented_keys_and_writes_outputs() {
     }
     assert!(out.join("frames/ring_0000.vtk").is_file());
     assert!(out.join("frames/ring_0002.vtk").is_file());
+    for image in [
+        "sigma_0000.png",
+        "top_0000.png",
+        "sigma_0002.png",
+        "top_0002.png",
+    ] {
+        let bytes = std::fs::read(out.join("frames").join(image)).expect(image);
+        assert!(bytes.starts_with(b"\x89PNG"), "{image} is not a PNG");
+    }
     let csv = std::fs::read_to_string(out.join("timeseries.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 4, "header + 4 samples");
     let _ = std::fs::remove_dir_all(&out);

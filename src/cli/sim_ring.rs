@@ -92,10 +92,11 @@ pub struct RingArgs {
     #[arg(long)]
     pub json: bool,
     /// Output directory: timeseries.csv, summary.json, equilibration.svg, restitution.svg,
-    /// frames/ring_*.vtk and frames/sigma_*.png (surface density).
+    /// frames/ring_*.vtk, frames/sigma_*.png (surface density) and frames/top_*.png (the patch
+    /// seen from above).
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Interval between frames (VTK and surface-density PNG, orbits); needs --out.
+    /// Interval between frames (VTK and the two PNG images, orbits); needs --out.
     #[arg(long, default_value_t = 1.0)]
     pub frame_orbits: f64,
     /// No progress lines on stderr.

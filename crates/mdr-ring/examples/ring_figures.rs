@@ -1,8 +1,9 @@
 //! Figures of docs/rings.md from finished runs:
-//! `cargo run --release -p mdr-ring --example ring_figures -- OUT_DIR LABEL=PATH ...`
+//! `cargo run --release -p mdr-ring --example ring_figures -- OUT_DIR [--name STEM] LABEL=PATH ...`
 //! where PATH is either an mdr-dem `timeseries.csv` or a REBOUND `ring.py --json` file. Writes
-//! `OUT_DIR/ring_equilibration.svg` (c, z_rms and FF(z=0) against time for every run) and
-//! `OUT_DIR/ring_restitution.svg` (the MDR ice law's e(v) next to Bridges').
+//! `OUT_DIR/STEM.svg` (c, z_rms and FF(z=0) against time for every run; STEM defaults to
+//! `ring_equilibration`) and, without `--name`, `OUT_DIR/ring_restitution.svg` (the MDR ice law's
+//! e(v) next to Bridges').
 
 use mdr_ring::app::{write_restitution_svg, LawChoice};
 use mdr_ring::diagnostics::Sample;
@@ -40,8 +41,15 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
         args.first()
             .ok_or("usage: ring_figures OUT_DIR LABEL=PATH ...")?,
     );
+    let (name, specs) = match args.get(1).map(String::as_str) {
+        Some("--name") => (
+            Some(args.get(2).ok_or("--name needs a file stem")?.as_str()),
+            &args[3..],
+        ),
+        _ => (None, &args[1..]),
+    };
     let mut runs = Vec::new();
-    for spec in &args[1..] {
+    for spec in specs {
         let (label, path) = spec.split_once('=').ok_or("runs are given as LABEL=PATH")?;
         runs.push((label.to_string(), read_samples(Path::new(path))?));
     }
@@ -49,7 +57,11 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
         .iter()
         .map(|(l, s)| (l.clone(), s.as_slice()))
         .collect();
-    write_equilibration_svg(&out.join("ring_equilibration.svg"), &borrowed)?;
+    let stem = name.unwrap_or("ring_equilibration");
+    write_equilibration_svg(&out.join(format!("{stem}.svg")), &borrowed)?;
+    if name.is_some() {
+        return Ok(());
+    }
     write_restitution_svg(
         &out.join("ring_restitution.svg"),
         &LawChoice::Mdr(MdrRestitution::ice()),

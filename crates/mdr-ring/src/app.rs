@@ -11,7 +11,7 @@ use crate::gravity::GRAVITATIONAL_CONSTANT;
 use crate::law::{BridgesLaw, ConstantRestitution, ImpactPair, MdrRestitution, RestitutionLaw};
 use crate::output::{
     write_equilibration_svg, write_json, write_panels_svg, write_samples_csv,
-    write_surface_density_png, write_vtk_frame, Curve, Panel,
+    write_surface_density_png, write_top_view_png, write_vtk_frame, Curve, Panel,
 };
 use crate::particles::Population;
 use crate::run::{RingConfig, RingSimulation};
@@ -198,6 +198,12 @@ fn run_with<L: RestitutionLaw>(options: &RunOptions, law: L) -> Result<RunReport
     if let (Some(dir), Some(_)) = (&frames_dir, frame_every) {
         let grid = SurfaceDensity::of(&domain, ring.particles(), 0.0, cell);
         write_surface_density_png(&dir.join("sigma_0000.png"), &grid, "t = 0 orbits")?;
+        write_top_view_png(
+            &dir.join("top_0000.png"),
+            &domain,
+            ring.particles(),
+            "t = 0 orbits",
+        )?;
     }
     let mut correlations = Vec::new();
     let samples_per_orbit = (1.0 / options.config.sample_orbits).round().max(1.0) as u64;
@@ -228,13 +234,11 @@ fn run_with<L: RestitutionLaw>(options: &RunOptions, law: L) -> Result<RunReport
                 let title = format!("ring t = {:.2} orbits", sample.t_orbits);
                 let grid = SurfaceDensity::of(&domain, particles, sample.t_orbits * period, cell);
                 let png = dir.join(format!("sigma_{:04}.png", index / every));
-                let written = write_vtk_frame(&path, particles, &title).and_then(|_| {
-                    write_surface_density_png(
-                        &png,
-                        &grid,
-                        &format!("t = {:.2} orbits", sample.t_orbits),
-                    )
-                });
+                let top = dir.join(format!("top_{:04}.png", index / every));
+                let when = format!("t = {:.2} orbits", sample.t_orbits);
+                let written = write_vtk_frame(&path, particles, &title)
+                    .and_then(|_| write_surface_density_png(&png, &grid, &when))
+                    .and_then(|_| write_top_view_png(&top, &domain, particles, &when));
                 if let Err(e) = written {
                     frame_error = Some(e);
                 }

@@ -256,6 +256,24 @@ pub fn write_surface_density_png(
     grid: &crate::wakes::SurfaceDensity,
     title: &str,
 ) -> Result<()> {
+    write_png_atomic(path, |tmp| draw_surface_density(tmp, grid, title))
+}
+
+/// The patch seen from above as a PNG image: every particle a filled disc of its radius, drawn
+/// from the lowest to the highest (x radial to the right, y azimuthal upwards, axes in metres),
+/// the way ring simulation papers show gravitational wakes (Salo et al. 2004, Fig. 1). Written to
+/// a temporary file in the same directory and renamed.
+pub fn write_top_view_png(
+    path: &Path,
+    domain: &crate::boundary::ShearingBox,
+    particles: &Particles,
+    title: &str,
+) -> Result<()> {
+    write_png_atomic(path, |tmp| draw_top_view(tmp, domain, particles, title))
+}
+
+/// Draw with `draw` into a temporary `.png` beside `path`, then rename it to `path`.
+fn write_png_atomic(path: &Path, draw: impl FnOnce(&Path) -> DrawResult) -> Result<()> {
     register_embedded_font();
     let io = |source| RingError::Io {
         path: path.display().to_string(),
@@ -266,8 +284,49 @@ pub fn write_surface_density_png(
     }
     // The encoder picks the format from the extension: keep `.png` on the temporary name.
     let tmp = path.with_extension(format!("tmp{}.png", std::process::id()));
-    draw_surface_density(&tmp, grid, title).map_err(|e| output_error(path, e))?;
+    draw(&tmp).map_err(|e| output_error(path, e))?;
     std::fs::rename(&tmp, path).map_err(io)
+}
+
+fn draw_top_view(
+    path: &Path,
+    domain: &crate::boundary::ShearingBox,
+    particles: &Particles,
+    title: &str,
+) -> DrawResult {
+    let (lx, ly) = (domain.lx(), domain.ly());
+    let root = BitMapBackend::new(path, (640, 640)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(format!("particles from above, {title}"), ("sans-serif", 18))
+        .margin(10)
+        .x_label_area_size(40)
+        .y_label_area_size(50)
+        .build_cartesian_2d(-0.5 * lx..0.5 * lx, -0.5 * ly..0.5 * ly)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("x (radial) [m]")
+        .y_desc("y (azimuthal) [m]")
+        .draw()?;
+    let pixels = chart.plotting_area().get_pixel_range();
+    let per_metre = f64::from(pixels.0.end - pixels.0.start) / lx;
+    let mut order: Vec<usize> = (0..particles.len()).collect();
+    order.sort_by(|&a, &b| particles.position[a].z.total_cmp(&particles.position[b].z));
+    let z_scale = particles
+        .position
+        .iter()
+        .map(|p| p.z.abs())
+        .fold(1e-9, f64::max);
+    chart.draw_series(order.into_iter().map(|i| {
+        let p = particles.position[i];
+        // Higher particles lighter, so that overlapping discs stay apart.
+        let grey = (90.0 + 100.0 * (p.z / z_scale)).clamp(0.0, 200.0) as u8;
+        let size = (particles.radius[i] * per_metre).round().max(1.0) as i32;
+        Circle::new((p.x, p.y), size, RGBColor(grey, grey, grey).filled())
+    }))?;
+    root.present()?;
+    Ok(())
 }
 
 fn draw_surface_density(
