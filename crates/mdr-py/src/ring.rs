@@ -314,12 +314,7 @@ impl Ring {
             let sim_ref: &mut RingSimulation<RingLaw> = &mut sim;
             let error = &self.error;
             py.detach(|| {
-                for _ in 0..chunk {
-                    sim_ref.step();
-                    if error.lock().map_or(true, |e| e.is_some()) {
-                        break;
-                    }
-                }
+                sim_ref.step_many(chunk, || error.lock().map_or(true, |e| e.is_some()));
             });
             done += chunk;
             if let Some(e) = self.error.lock().ok().and_then(|mut e| e.take()) {
