@@ -253,6 +253,138 @@ pub fn convex_distance_within(
     }
 }
 
+/// A thin surface of revolution: a polyline profile of `(radius, axial position)` points turned
+/// about an axis through `origin` along the unit `axis`, both in a collider's local frame. A
+/// cylinder is one segment at constant radius, a cone frustum one slanted segment, a capped
+/// cylinder three. LAMMPS's `region cylinder` and `region cone` walls are such surfaces.
+///
+/// **Contact.** The point of a surface of revolution nearest to a point `x` off the axis lies in
+/// the meridional half-plane through `x` (the surface is symmetric under rotations about the
+/// axis, and the distance to a circle of the surface is smallest at the circle's point in that
+/// half-plane), so the distance is the planar distance from `(ρ, a)` (`ρ` the distance of `x` from
+/// the axis, `a` its axial position) to the profile polyline: exact, with no facets, and a profile
+/// vertex gives the exact contact with the circular rim it sweeps (a rim contact). The surface
+/// has no thickness: a sphere touches it from either side.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfaceOfRevolution {
+    origin: Vector3<f64>,
+    axis: Vector3<f64>,
+    profile: Vec<(f64, f64)>,
+}
+
+impl SurfaceOfRevolution {
+    /// The surface of `profile` (`(radius, axial position)` points, at least two, radius ≥ 0) about
+    /// `axis` (normalised here) through `origin`, in the collider's local frame.
+    pub fn new(
+        origin: Vector3<f64>,
+        axis: Vector3<f64>,
+        profile: Vec<(f64, f64)>,
+    ) -> Result<Self, crate::CouplingError> {
+        let out = |name, value: f64, range| crate::CouplingError::OutOfRange { name, value, range };
+        let length = axis.norm();
+        if !(length.is_finite() && length > 0.0) || !origin.iter().all(|c| c.is_finite()) {
+            return Err(out("axis", length, "a finite non-zero vector"));
+        }
+        if profile.len() < 2 {
+            return Err(out("profile", profile.len() as f64, "at least 2 points"));
+        }
+        for &(r, a) in &profile {
+            if !(r.is_finite() && r >= 0.0 && a.is_finite()) {
+                return Err(out(
+                    "profile radius",
+                    r,
+                    "finite and >= 0, with a finite axial position",
+                ));
+            }
+        }
+        Ok(Self {
+            origin,
+            axis: axis / length,
+            profile,
+        })
+    }
+
+    /// The profile points `(radius, axial position)`.
+    pub fn profile(&self) -> &[(f64, f64)] {
+        &self.profile
+    }
+
+    /// Nearest point of the surface to the local point `x`: `(distance, unit normal from the
+    /// surface towards x, surface point)`, all local; the normal is undefined (zero) at distance 0.
+    fn nearest(&self, x: &Vector3<f64>) -> (f64, Vector3<f64>, Vector3<f64>) {
+        let rel = x - self.origin;
+        let a = rel.dot(&self.axis);
+        let radial = rel - self.axis * a;
+        let rho = radial.norm();
+        // On the axis every meridional half-plane is nearest: take any direction across it.
+        let e = if rho > 0.0 {
+            radial / rho
+        } else {
+            let t = if self.axis.x.abs() < 0.9 {
+                Vector3::x()
+            } else {
+                Vector3::y()
+            };
+            (t - self.axis * t.dot(&self.axis)).normalize()
+        };
+        let (mut best2, mut best) = (f64::INFINITY, (0.0, 0.0));
+        for w in self.profile.windows(2) {
+            let ((r0, a0), (r1, a1)) = (w[0], w[1]);
+            let (dr, da) = (r1 - r0, a1 - a0);
+            let len2 = dr * dr + da * da;
+            let t = if len2 > 0.0 {
+                (((rho - r0) * dr + (a - a0) * da) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let (qr, qa) = (r0 + t * dr, a0 + t * da);
+            let d2 = (rho - qr).powi(2) + (a - qa).powi(2);
+            if d2 < best2 {
+                best2 = d2;
+                best = (qr, qa);
+            }
+        }
+        let point = self.origin + e * best.0 + self.axis * best.1;
+        let d = x - point;
+        let dist = best2.sqrt();
+        let normal = if dist > 0.0 {
+            d / dist
+        } else {
+            Vector3::zeros()
+        };
+        (dist, normal, point)
+    }
+
+    /// Contact of the sphere (centre `c1` in world coordinates, radius `r1`) with the surface on
+    /// a collider at `pose`; `None` when they do not overlap.
+    pub fn sphere_contact(
+        &self,
+        c1: &Vector3<f64>,
+        r1: f64,
+        pose: &Pose,
+    ) -> Option<SurfaceContact> {
+        let local = to_na(pose.inverse_transform_point(to_glam(c1)));
+        let (dist, normal, _) = self.nearest(&local);
+        let overlap = r1 - dist;
+        if overlap <= 0.0 || dist == 0.0 {
+            return None;
+        }
+        let normal = to_na(pose.rotation * to_glam(&normal));
+        let p = c1 - normal * dist;
+        Some(SurfaceContact {
+            overlap,
+            normal,
+            point: p - normal * (0.5 * overlap),
+        })
+    }
+
+    /// Whether the world point `x` is within `reach` of the surface on a collider at `pose`.
+    pub fn within(&self, x: &Vector3<f64>, pose: &Pose, reach: f64) -> bool {
+        let local = to_na(pose.inverse_transform_point(to_glam(x)));
+        self.nearest(&local).0 < reach
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -400,5 +532,130 @@ mod tests {
         assert!(touching > 500, "{touching} touching samples");
         eprintln!("irregular hull: {touching} contacts, largest difference {worst:e}");
         assert!(worst < 1e-13, "largest difference {worst:e}");
+    }
+
+    /// Nearest distance to the surface of revolution by brute force over its points (an
+    /// independent reference for the meridional-plane closed form).
+    fn sampled_distance(surface: &SurfaceOfRevolution, x: &Vector3<f64>) -> f64 {
+        let axis = surface.axis;
+        let t = if axis.x.abs() < 0.9 {
+            Vector3::x()
+        } else {
+            Vector3::y()
+        };
+        let e1 = (t - axis * t.dot(&axis)).normalize();
+        let e2 = axis.cross(&e1);
+        let mut best = f64::INFINITY;
+        for w in surface.profile.windows(2) {
+            for k in 0..=400 {
+                let s = k as f64 / 400.0;
+                let (r, a) = (
+                    w[0].0 + s * (w[1].0 - w[0].0),
+                    w[0].1 + s * (w[1].1 - w[0].1),
+                );
+                for m in 0..1440 {
+                    let phi = std::f64::consts::TAU * m as f64 / 1440.0;
+                    let p = surface.origin + (e1 * phi.cos() + e2 * phi.sin()) * r + axis * a;
+                    best = best.min((x - p).norm());
+                }
+            }
+        }
+        best
+    }
+
+    #[test]
+    fn surface_of_revolution_distance_matches_sampling() {
+        // A funnel: cone from radius 2 at a = 0 to 20 at a = 40, tilted axis, off origin.
+        let cone = SurfaceOfRevolution::new(
+            Vector3::new(1.0, -2.0, 0.5),
+            Vector3::new(0.2, 0.1, 1.0),
+            vec![(2.0, 0.0), (20.0, 40.0)],
+        )
+        .unwrap();
+        let capped = SurfaceOfRevolution::new(
+            Vector3::zeros(),
+            Vector3::z(),
+            vec![(0.0, -1.0), (3.0, -1.0), (3.0, 1.0), (0.0, 1.0)],
+        )
+        .unwrap();
+        let points = [
+            Vector3::new(4.0, 3.0, 12.0),
+            Vector3::new(-1.0, 0.5, -3.0),
+            Vector3::new(12.0, -9.0, 41.0),
+            Vector3::new(1.3, -1.6, 20.0),
+        ];
+        for x in points {
+            let (d, n, q) = cone.nearest(&x);
+            let reference = sampled_distance(&cone, &x);
+            // Sampling resolution: 40 m / 400 along, 2π 20 m / 1440 around.
+            assert!((d - reference).abs() < 0.1, "{x:?}: {d} vs {reference}");
+            assert!(
+                d <= reference + 1e-9,
+                "{x:?}: the closed form is the minimum"
+            );
+            assert!((q + n * d - x).norm() < 1e-9);
+        }
+        for x in [
+            Vector3::new(1.0, 2.0, 0.7),
+            Vector3::new(3.5, 0.0, 1.4),
+            Vector3::new(0.0, 0.0, 0.2),
+        ] {
+            let d = capped.nearest(&x).0;
+            let reference = sampled_distance(&capped, &x);
+            assert!((d - reference).abs() < 0.02, "{x:?}: {d} vs {reference}");
+        }
+    }
+
+    #[test]
+    fn sphere_inside_an_exact_cylinder_touches_at_its_radius_in_every_direction() {
+        // Inner radius 2, open ends at z = ±5; a sphere of radius 0.5 whose centre is 1.6 from
+        // the axis overlaps by 0.1 whatever its azimuth (no facets), with the normal pointing to
+        // the axis; above the rim (z = 5.3) it touches the rim circle.
+        let cylinder = SurfaceOfRevolution::new(
+            Vector3::zeros(),
+            Vector3::z(),
+            vec![(2.0, -5.0), (2.0, 5.0)],
+        )
+        .unwrap();
+        let pose = Pose::from_translation(Vector::new(10.0, 0.0, 0.0));
+        for k in 0..7 {
+            let phi = 0.37 * k as f64;
+            let radial = Vector3::new(phi.cos(), phi.sin(), 0.0);
+            let c = Vector3::new(10.0, 0.0, 0.0) + radial * 1.6 + Vector3::new(0.0, 0.0, 0.3);
+            let contact = cylinder.sphere_contact(&c, 0.5, &pose).unwrap();
+            assert!((contact.overlap - 0.1).abs() < 1e-12, "{}", contact.overlap);
+            assert!((contact.normal + radial).norm() < 1e-12);
+            assert!((contact.point - (c + radial * 0.45)).norm() < 1e-12);
+        }
+        let c = Vector3::new(10.0 + 1.8, 0.0, 5.3);
+        let contact = cylinder.sphere_contact(&c, 0.5, &pose).unwrap();
+        let expected = 0.5 - (0.2f64.powi(2) + 0.3f64.powi(2)).sqrt();
+        assert!((contact.overlap - expected).abs() < 1e-12);
+        assert!(cylinder.within(&c, &pose, 0.37) && !cylinder.within(&c, &pose, 0.36));
+        assert!(cylinder
+            .sphere_contact(&Vector3::new(10.0, 0.0, 0.0), 0.5, &pose)
+            .is_none());
+    }
+
+    #[test]
+    fn surface_of_revolution_rejects_bad_input() {
+        let ok = vec![(1.0, 0.0), (1.0, 1.0)];
+        assert!(SurfaceOfRevolution::new(Vector3::zeros(), Vector3::zeros(), ok.clone()).is_err());
+        assert!(
+            SurfaceOfRevolution::new(Vector3::zeros(), Vector3::z(), vec![(1.0, 0.0)]).is_err()
+        );
+        assert!(SurfaceOfRevolution::new(
+            Vector3::zeros(),
+            Vector3::z(),
+            vec![(-1.0, 0.0), (1.0, 1.0)]
+        )
+        .is_err());
+        assert!(SurfaceOfRevolution::new(
+            Vector3::zeros(),
+            Vector3::z(),
+            vec![(f64::NAN, 0.0), (1.0, 1.0)]
+        )
+        .is_err());
+        assert!(SurfaceOfRevolution::new(Vector3::zeros(), Vector3::z(), ok).is_ok());
     }
 }

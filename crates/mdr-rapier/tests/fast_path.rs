@@ -5,6 +5,7 @@
 use mdr_rapier::fast::bed::{lattice_bed, Bed, BedSpec};
 use mdr_rapier::fast::rayon::ThreadPoolBuilder;
 use mdr_rapier::fast::{Boundary, ContactPartner, FastForceStepper};
+use mdr_rapier::geometry::SurfaceOfRevolution;
 use mdr_rapier::kernel::ContactWorks;
 use mdr_rapier::prelude::*;
 use mdr_rapier::rapier::prelude::*;
@@ -652,4 +653,54 @@ fn ended_contacts_carry_their_whole_books_once() {
     assert!(e.works.tangential_stiffness != 0.0, "{:?}", e.works);
     // Not recorded unless asked.
     assert!(run(false).1.is_empty());
+}
+
+/// A surface of revolution registered on the fast path: spheres inside an exact cylinder (a
+/// bounding cuboid as the rapier collider) touch it at its radius whatever their azimuth, also at
+/// the corners of a polygon that flat pieces would leave there; the stepper's candidate search
+/// and contacts both go through the closed form.
+#[test]
+fn spheres_touch_an_exact_cylinder_at_its_radius_in_every_direction() {
+    let mut world = PhysicsWorld {
+        gravity: Vector::ZERO,
+        ..PhysicsWorld::default()
+    };
+    let mut fast = FastForceStepper::new(model(), Boundary::Open)
+        .skin(0.1)
+        .unwrap();
+    let m = fast.insert_material(grain());
+    fast.configure(&mut world.integration_parameters, 1e-4)
+        .unwrap();
+    let body = world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(5.0, 0.0, 0.0)));
+    let cylinder = SurfaceOfRevolution::new(
+        nalgebra::Vector3::zeros(),
+        nalgebra::Vector3::z(),
+        vec![(2.0, -5.0), (2.0, 5.0)],
+    )
+    .unwrap();
+    fast.insert_surface_of_revolution(
+        &mut world,
+        ColliderBuilder::cuboid(2.5, 2.5, 5.0),
+        Some(body),
+        m,
+        cylinder,
+    )
+    .unwrap();
+    // Azimuths at the corners of a 32-gon (odd multiples of π/32), 1.6 from the axis.
+    let n = 8;
+    for k in 0..n {
+        let phi = std::f64::consts::PI / 32.0 * (8 * k + 1) as f64;
+        let at = Vector::new(5.0 + 1.6 * phi.cos(), 1.6 * phi.sin(), -4.0 + k as f64);
+        fast.insert_sphere(SphereBuilder::new(0.5, m).translation(at))
+            .unwrap();
+    }
+    fast.compute_forces(&world, false).unwrap();
+    let pairs = fast.surface_pairs();
+    let touching: Vec<usize> = (0..pairs.len()).filter(|&q| pairs.active[q]).collect();
+    assert_eq!(touching.len(), n, "one contact per sphere");
+    for q in touching {
+        let c = pairs.contact[q];
+        assert!((c.overlap - 0.1).abs() < 1e-12, "overlap {}", c.overlap);
+        assert!(c.normal.z.abs() < 1e-12, "{:?}", c.normal);
+    }
 }

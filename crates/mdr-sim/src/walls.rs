@@ -57,6 +57,61 @@ pub struct Wall {
     pub angular_velocity: Option<Vector3<f64>>,
     /// Simulated time (s) at which the wall is removed (a plug that opens); `None`: never.
     pub removed_at: Option<f64>,
+    /// The exact surface a cylinder or cone wall stands for (`exact_surface = true`), relative to
+    /// `origin`: on the neighbour-list path the spheres touch it instead of `pieces`.
+    pub revolution: Option<Revolution>,
+}
+
+/// A surface of revolution in the wall body's frame: the `(radius, axial position)` profile
+/// turned about `axis` (unit) through `center` (m).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Revolution {
+    /// A point on the axis, where the axial position is zero.
+    pub center: Vector3<f64>,
+    /// Unit axis.
+    pub axis: Vector3<f64>,
+    /// Profile points `(radius, axial position)` (m).
+    pub profile: Vec<(f64, f64)>,
+}
+
+impl Revolution {
+    /// The inner surface of `cylinder_container` with the same arguments: the side at `radius`
+    /// from `-length/2` to `length/2` about `center`, and the end discs when `capped`.
+    pub fn cylinder(
+        center: Vector3<f64>,
+        axis: Vector3<f64>,
+        radius: f64,
+        length: f64,
+        capped: bool,
+    ) -> Self {
+        let h = length / 2.0;
+        let profile = if capped {
+            vec![(0.0, -h), (radius, -h), (radius, h), (0.0, h)]
+        } else {
+            vec![(radius, -h), (radius, h)]
+        };
+        Self {
+            center,
+            axis,
+            profile,
+        }
+    }
+
+    /// The inner surface of `cone_container` with the same arguments: radius `bottom_radius` at
+    /// `center`, `top_radius` at `length` along `axis`.
+    pub fn cone(
+        center: Vector3<f64>,
+        axis: Vector3<f64>,
+        bottom_radius: f64,
+        top_radius: f64,
+        length: f64,
+    ) -> Self {
+        Self {
+            center,
+            axis,
+            profile: vec![(bottom_radius, 0.0), (top_radius, length)],
+        }
+    }
 }
 
 /// The rotation taking `z` to `axis`.

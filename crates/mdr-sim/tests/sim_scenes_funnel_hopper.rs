@@ -175,6 +175,50 @@ fn bad_funnel_and_sweep_keys_are_refused_with_file_line_and_key() {
     assert!(m.contains("[2, 255]"), "{m}");
 }
 
+/// `exact_surface = true` on the cone and the spout: the spheres touch the smooth surfaces of
+/// revolution on the neighbour-list path; they are held until the plug opens (none leaks through
+/// a wall: a sphere that did would fall below the sink before the opening) and then drain
+/// completely. The key is refused on walls that are not cylinders or cones and off the
+/// neighbour-list path.
+#[test]
+fn exact_cone_and_spout_hold_the_spheres_and_let_them_drain() {
+    let exact =
+        |text: String| text.replace("segments = 32\n", "segments = 32\nexact_surface = true\n");
+    let good = exact(funnel(40, 0.45, 0.2));
+    assert_eq!(good.matches("exact_surface = true").count(), 2);
+    let dir = common::temp_dir("funnel-exact");
+    let path = common::write(&dir, "funnel.toml", &good);
+    let scene = mdr_sim::load_scene(&path).unwrap_or_else(|p| panic!("{p}"));
+    let summary = run_scene(
+        &scene,
+        &RunOptions::new(dir.join("out")).quiet(true).no_frames(true),
+    )
+    .expect("run");
+    let h = &summary.headline;
+    eprintln!("{}", h.text);
+    assert_eq!(
+        h.get("spheres_in_funnel_at_opening"),
+        Some(40.0),
+        "{}",
+        h.text
+    );
+    assert_eq!(h.get("spheres_in_funnel_at_end"), Some(0.0), "{}", h.text);
+    let _ = std::fs::remove_dir_all(&dir);
+
+    let plane = funnel(40, 0.45, 0.2).replace(
+        "normal = [0.0, 0.0, 1.0]\n",
+        "normal = [0.0, 0.0, 1.0]\nexact_surface = true\n",
+    );
+    let m = refused(&plane, "exact_surface", "exact_surface = true");
+    assert!(m.contains("not used"), "{m}");
+    let rapier = good.replace(
+        "headline = \"funnel\"",
+        "headline = \"funnel\"\nforce_path = \"rapier\"",
+    );
+    let m = refused(&rapier, "exact_surface", "exact_surface = true");
+    assert!(m.contains("neighbour-list path only"), "{m}");
+}
+
 #[test]
 fn radius_classes_round_every_radius_down_to_its_class() {
     let text = funnel(40, 0.2, 0.1).replace(

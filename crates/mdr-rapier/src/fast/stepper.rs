@@ -35,7 +35,7 @@ use super::particles::{FastParticles, Species};
 use super::surfaces::{surface_displacement, FastSurface, SurfacePairs};
 use crate::convert::{to_glam, to_na};
 use crate::error::{positive, CouplingError, Result};
-use crate::geometry::{sphere_sphere, ConvexFaces, SurfaceContact};
+use crate::geometry::{sphere_sphere, ConvexFaces, SurfaceContact, SurfaceOfRevolution};
 use crate::kernel::{
     evaluate_pair, Arms, ContactKinematics, ContactWorks, PairHistory, PairWrench, SphereArms,
 };
@@ -501,6 +501,34 @@ where
         collider: ColliderHandle,
         material: MaterialHandle,
     ) -> Result<()> {
+        self.register_surface_as(colliders, collider, material, None)
+    }
+
+    /// Insert a collider (on `parent`, rapier's contact impulses off) whose contacts follow the
+    /// exact surface of revolution `surface` (given in the collider's local frame) instead of
+    /// its shape: a cylinder or cone wall that rapier sees as flat pieces (for its bounding box
+    /// and its other uses) touches the spheres as the smooth surface it stands for.
+    pub fn insert_surface_of_revolution(
+        &mut self,
+        world: &mut PhysicsWorld,
+        collider: ColliderBuilder,
+        parent: Option<RigidBodyHandle>,
+        material: MaterialHandle,
+        surface: SurfaceOfRevolution,
+    ) -> Result<ColliderHandle> {
+        self.material(material)?;
+        let c = world.insert_collider(collider.solver_groups(InteractionGroups::none()), parent);
+        self.register_surface_as(&world.colliders, c, material, Some(Arc::new(surface)))?;
+        Ok(c)
+    }
+
+    fn register_surface_as(
+        &mut self,
+        colliders: &ColliderSet,
+        collider: ColliderHandle,
+        material: MaterialHandle,
+        revolution: Option<Arc<SurfaceOfRevolution>>,
+    ) -> Result<()> {
         self.material(material)?;
         let co = colliders
             .get(collider)
@@ -515,6 +543,7 @@ where
                 .shape()
                 .as_convex_polyhedron()
                 .map(|poly| Arc::new(ConvexFaces::of(poly))),
+            revolution,
         };
         // Keep surfaces in collider-index order (the plain path's summation order).
         let at = self

@@ -6,6 +6,7 @@
 use crate::convert::to_glam;
 use crate::geometry::{
     convex_distance_within, sphere_convex, sphere_shape, ConvexFaces, SurfaceContact,
+    SurfaceOfRevolution,
 };
 use crate::kernel::PairWrench;
 use crate::particles::MaterialHandle;
@@ -31,6 +32,10 @@ pub struct FastSurface {
     /// The faces of a convex-polyhedron collider (its contacts then take the exact face
     /// projection of [`crate::geometry::sphere_convex`] instead of parry's GJK).
     pub convex: Option<Arc<ConvexFaces>>,
+    /// An exact surface of revolution standing for the collider's shape (a cylinder or cone wall
+    /// whose collider is made of flat pieces): its contacts and candidates take
+    /// [`SurfaceOfRevolution`]'s closed form instead of the collider's shape.
+    pub revolution: Option<Arc<SurfaceOfRevolution>>,
 }
 
 impl FastSurface {
@@ -42,6 +47,9 @@ impl FastSurface {
         center: &Vector3<f64>,
         radius: f64,
     ) -> Option<SurfaceContact> {
+        if let Some(surface) = &self.revolution {
+            return surface.sphere_contact(center, radius, co.position());
+        }
         match &self.convex {
             Some(faces) => sphere_convex(center, radius, faces, co.shape(), co.position()),
             None => sphere_shape(center, radius, co.shape(), co.position()),
@@ -50,6 +58,9 @@ impl FastSurface {
 
     /// Whether the centre `x` is within `reach` of the collider `co`.
     pub fn within(&self, co: &Collider, x: &Vector3<f64>, reach: f64) -> bool {
+        if let Some(surface) = &self.revolution {
+            return surface.within(x, co.position(), reach);
+        }
         match &self.convex {
             Some(faces) => convex_distance_within(x, faces, co.position(), reach).is_some(),
             None => {

@@ -15,6 +15,7 @@ use mdr_contact::normal::MdrElastoPlastic;
 use mdr_contact::tangential::Mindlin;
 use mdr_rapier::convert::to_glam;
 use mdr_rapier::fast::{Boundary, FastForceStepper};
+use mdr_rapier::geometry::SurfaceOfRevolution;
 use mdr_rapier::particles::{MaterialHandle, SphereBuilder};
 use mdr_rapier::{ForceModeStepper, RestitutionHooks};
 use rapier3d_f64::parry::shape::TriMeshFlags;
@@ -181,6 +182,33 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
         };
         let handle = world.insert_body(body);
         wall_bodies.push(handle);
+        if let (Inserter::Fast(s), Some(revolution)) = (&mut inserter, &wall.revolution) {
+            // One collider for the whole wall (its pieces as a compound, for rapier's bounding
+            // boxes), touching as the exact surface of revolution.
+            let shapes = wall
+                .pieces
+                .iter()
+                .map(|piece| piece_collider(piece).map(|b| (b.position, b.shape)))
+                .collect::<Result<Vec<_>, _>>()?;
+            let surface = SurfaceOfRevolution::new(
+                revolution.center,
+                revolution.axis,
+                revolution.profile.clone(),
+            )?;
+            let c = s.insert_surface_of_revolution(
+                &mut world,
+                ColliderBuilder::compound(shapes),
+                Some(handle),
+                materials[wall.material],
+                surface,
+            )?;
+            let i = c.into_raw_parts().0 as usize;
+            if wall_of_collider.len() <= i {
+                wall_of_collider.resize(i + 1, usize::MAX);
+            }
+            wall_of_collider[i] = j;
+            continue;
+        }
         for piece in &wall.pieces {
             let collider = piece_collider(piece)?;
             let material = materials[wall.material];

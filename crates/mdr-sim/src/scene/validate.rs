@@ -536,6 +536,14 @@ impl Checker<'_, '_> {
         for (w, wall) in file.walls.iter().enumerate() {
             let table = root.key("walls").index(w);
             let material = material_index(self, &table.key("material"), &wall.material);
+            let neighbour_list = !(file.run.coupling == CouplingMode::Restitution
+                || file.run.force_path == Some(ForcePath::Rapier));
+            if wall.exact_surface == Some(true) && !neighbour_list {
+                self.error(
+                    &table.key("exact_surface"),
+                    "applies to the neighbour-list path only (coupling = \"force\", force_path = \"neighbour_list\"): remove it or set it to false",
+                );
+            }
             if let (Some(wall_out), Some(material)) = (self.wall(&table, wall, w), material) {
                 walls_out.push(Wall {
                     material,

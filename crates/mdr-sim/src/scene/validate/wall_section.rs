@@ -1,6 +1,7 @@
 //! `[[walls]]`: every wall kind as solid pieces, and the initial overlaps of spheres and walls.
 
 use super::*;
+use crate::walls::Revolution;
 
 impl Checker<'_, '_> {
     pub(super) fn wall(&mut self, table: &KeyPath, w: &WallSection, index: usize) -> Option<Wall> {
@@ -25,6 +26,7 @@ impl Checker<'_, '_> {
             ("scale", w.scale.is_some()),
             ("offset_m", w.offset_m.is_some()),
             ("top_radius_m", w.top_radius_m.is_some()),
+            ("exact_surface", w.exact_surface.is_some()),
         ];
         let used: &[&str] = match w.kind {
             WallKind::Plane => &["point_m", "normal"],
@@ -37,6 +39,7 @@ impl Checker<'_, '_> {
                 "capped",
                 "segments",
                 "thickness_m",
+                "exact_surface",
             ],
             WallKind::Mesh => &["file", "scale", "offset_m"],
             WallKind::Cone => &[
@@ -47,6 +50,7 @@ impl Checker<'_, '_> {
                 "length_m",
                 "segments",
                 "thickness_m",
+                "exact_surface",
             ],
             WallKind::OrificePlate => &[
                 "center_m",
@@ -86,6 +90,8 @@ impl Checker<'_, '_> {
             Some(t) => Some(self.positive(&table.key("thickness_m"), t)?),
             None => None,
         };
+        let exact = w.exact_surface.unwrap_or(false);
+        let mut revolution = None;
         let pieces = match w.kind {
             WallKind::Plane => {
                 let point = vec_req(self, "point_m", w.point_m);
@@ -118,6 +124,10 @@ impl Checker<'_, '_> {
                 let radius = pos_req(self, "radius_m", w.radius_m);
                 let length = pos_req(self, "length_m", w.length_m);
                 let (center, axis, radius, length) = (center?, axis?, radius?, length?);
+                let capped = w.capped.unwrap_or(false);
+                if exact {
+                    revolution = Some(Revolution::cylinder(center, axis, radius, length, capped));
+                }
                 walls::cylinder_container(
                     center,
                     axis,
@@ -125,7 +135,7 @@ impl Checker<'_, '_> {
                     length,
                     thickness.unwrap_or(radius / 5.0),
                     segments,
-                    w.capped.unwrap_or(false),
+                    capped,
                 )
             }
             WallKind::Cone => {
@@ -138,6 +148,9 @@ impl Checker<'_, '_> {
                 let top = pos_req(self, "top_radius_m", w.top_radius_m);
                 let length = pos_req(self, "length_m", w.length_m);
                 let (center, axis, radius, top, length) = (center?, axis?, radius?, top?, length?);
+                if exact {
+                    revolution = Some(Revolution::cone(center, axis, radius, top, length));
+                }
                 walls::cone_container(
                     center,
                     axis,
@@ -225,6 +238,10 @@ impl Checker<'_, '_> {
         };
         // Pieces are stored relative to the wall body's origin.
         let pieces = pieces.into_iter().map(|p| p.translated(&-origin)).collect();
+        let revolution = revolution.map(|r| Revolution {
+            center: r.center - origin,
+            ..r
+        });
         Some(Wall {
             index,
             material: 0,
@@ -232,6 +249,7 @@ impl Checker<'_, '_> {
             origin,
             angular_velocity,
             removed_at,
+            revolution,
         })
     }
 
