@@ -282,7 +282,7 @@ impl SurfaceOfRevolution {
     ) -> Result<Self, crate::CouplingError> {
         let out = |name, value: f64, range| crate::CouplingError::OutOfRange { name, value, range };
         let length = axis.norm();
-        if !(length.is_finite() && length > 0.0) || !origin.iter().all(|c| c.is_finite()) {
+        if !(length.is_finite() && length > 0.0 && origin.iter().all(|c| c.is_finite())) {
             return Err(out("axis", length, "a finite non-zero vector"));
         }
         if profile.len() < 2 {
