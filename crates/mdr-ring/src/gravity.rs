@@ -3,7 +3,8 @@
 //!
 //! - [`GravitySolver::Tree`]: a Barnes–Hut tree (Barnes & Hut 1986) over the particles of the box,
 //!   walked once for every ghost box, O(N log N) per step — the method of REBOUND's shearing sheet
-//!   (Rein & Liu 2012, A&A 537, A128, §3.3–3.4);
+//!   (Rein & Liu 2012, A&A 537, A128, §3.3–3.4) — by groups of nearby targets that share one
+//!   interaction list (Barnes 1990, J. Comput. Phys. 87, 161);
 //! - [`GravitySolver::Direct`]: the direct sum, O(N²) per ghost box — the exact reference for the
 //!   tree, and with `ghost_boxes = 0` the nearest-image sum of the first version of this crate.
 //!
@@ -48,7 +49,7 @@ pub enum GravitySolver {
         /// Ghost boxes on each side, radially and azimuthally (0: nearest image).
         ghost_boxes: usize,
     },
-    /// Barnes–Hut tree with monopole nodes, walked once per ghost box.
+    /// Barnes–Hut tree with monopole nodes, walked once per ghost box for each group of targets.
     Tree {
         /// Opening angle `θ`: a node of side `w` at distance `d` from the target (to its centre of
         /// mass) is taken whole when `w < θ d` and the target lies outside it.
@@ -187,8 +188,8 @@ impl SelfGravity {
     }
 
     /// Accelerations of all particles (m/s²) at `time`, by the configured solver. Parallel over
-    /// particles; each particle's sum runs in a fixed order, so the result does not depend on the
-    /// number of threads.
+    /// particles (the tree: over groups of particles); each particle's sum runs in a fixed order,
+    /// so the result does not depend on the number of threads.
     pub fn accelerations(
         &self,
         domain: &ShearingBox,
