@@ -220,8 +220,9 @@ impl SelfGravity {
                     .map_init(Interactions::default, |list, &group| {
                         let node = &tree.nodes[group as usize];
                         let mut acc = vec![Vector::ZERO; (node.end - node.start) as usize];
+                        let bounds = tree.group_box(node);
                         for &shift in &shifts {
-                            tree.interactions(node, shift, walk, list);
+                            tree.interactions(bounds, shift, walk, list);
                             tree.apply(node, shift, walk, list, &mut acc);
                         }
                         acc
@@ -450,8 +451,8 @@ impl Tree {
         groups
     }
 
-    /// The bounding box of the group's particles seen from the tree shifted by `(sx, sy)`.
-    fn group_box(&self, group: &Node, (sx, sy): (f64, f64)) -> [Vector; 2] {
+    /// The bounding box of the group's particles.
+    fn group_box(&self, group: &Node) -> [Vector; 2] {
         let (mut lo, mut hi) = (
             Vector::splat(f64::INFINITY),
             Vector::splat(f64::NEG_INFINITY),
@@ -460,19 +461,26 @@ impl Tree {
             lo = lo.min(*p);
             hi = hi.max(*p);
         }
-        let shift = Vector::new(sx, sy, 0.0);
-        [lo - shift, hi - shift]
+        [lo, hi]
     }
 
-    /// The interaction list of `group` with the tree shifted by `(sx, sy)`, as sources in the
-    /// unshifted tree's frame: the centres of mass of the nodes taken whole, then the particles
-    /// of the leaves that are opened. A node is taken whole only when the opening criterion
+    /// The interaction list of the group with bounding box `[lo, hi]` and the tree shifted by
+    /// `(sx, sy)`, as sources in the unshifted tree's frame: the centres of mass of the nodes
+    /// taken whole, then the particles of the leaves that are opened. A node is taken whole only when the opening criterion
     /// `w < θ d` holds for the point of the group's bounding box nearest to its centre of mass
     /// and the box lies outside the node, so every target of the group would take it whole on
     /// its own walk too (the group walk is at least as accurate as one walk per target; Barnes
     /// 1990, J. Comput. Phys. 87, 161).
-    fn interactions(&self, group: &Node, shift: (f64, f64), walk: Walk, list: &mut Interactions) {
-        let [lo, hi] = self.group_box(group, shift);
+    fn interactions(
+        &self,
+        [lo, hi]: [Vector; 2],
+        (sx, sy): (f64, f64),
+        walk: Walk,
+        list: &mut Interactions,
+    ) {
+        // The group's bounding box seen from the unshifted tree.
+        let shift = Vector::new(sx, sy, 0.0);
+        let (lo, hi) = (lo - shift, hi - shift);
         list.clear();
         list.stack.push(0);
         while let Some(index) = list.stack.pop() {

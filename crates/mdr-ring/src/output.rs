@@ -288,17 +288,28 @@ fn write_png_atomic(path: &Path, draw: impl FnOnce(&Path) -> DrawResult) -> Resu
     std::fs::rename(&tmp, path).map_err(io)
 }
 
-fn draw_top_view(
+type PatchChart<'a> = ChartContext<
+    'a,
+    BitMapBackend<'a>,
+    plotters::coord::cartesian::Cartesian2d<
+        plotters::coord::types::RangedCoordf64,
+        plotters::coord::types::RangedCoordf64,
+    >,
+>;
+
+/// A PNG of the `lx × ly` patch centred on the origin (x radial to the right, y azimuthal
+/// upwards, axes in metres) with `caption`; `draw` fills the plotting area.
+fn draw_patch(
     path: &Path,
-    domain: &crate::boundary::ShearingBox,
-    particles: &Particles,
-    title: &str,
+    height: u32,
+    caption: String,
+    (lx, ly): (f64, f64),
+    draw: impl FnOnce(&mut PatchChart<'_>) -> DrawResult,
 ) -> DrawResult {
-    let (lx, ly) = (domain.lx(), domain.ly());
-    let root = BitMapBackend::new(path, (640, 640)).into_drawing_area();
+    let root = BitMapBackend::new(path, (640, height)).into_drawing_area();
     root.fill(&WHITE)?;
     let mut chart = ChartBuilder::on(&root)
-        .caption(format!("particles from above, {title}"), ("sans-serif", 18))
+        .caption(caption, ("sans-serif", 18))
         .margin(10)
         .x_label_area_size(40)
         .y_label_area_size(50)
@@ -309,24 +320,38 @@ fn draw_top_view(
         .x_desc("x (radial) [m]")
         .y_desc("y (azimuthal) [m]")
         .draw()?;
-    let pixels = chart.plotting_area().get_pixel_range();
-    let per_metre = f64::from(pixels.0.end - pixels.0.start) / lx;
-    let mut order: Vec<usize> = (0..particles.len()).collect();
-    order.sort_by(|&a, &b| particles.position[a].z.total_cmp(&particles.position[b].z));
-    let z_scale = particles
-        .position
-        .iter()
-        .map(|p| p.z.abs())
-        .fold(1e-9, f64::max);
-    chart.draw_series(order.into_iter().map(|i| {
-        let p = particles.position[i];
-        // Higher particles lighter, so that overlapping discs stay apart.
-        let grey = (90.0 + 100.0 * (p.z / z_scale)).clamp(0.0, 200.0) as u8;
-        let size = (particles.radius[i] * per_metre).round().max(1.0) as i32;
-        Circle::new((p.x, p.y), size, RGBColor(grey, grey, grey).filled())
-    }))?;
+    draw(&mut chart)?;
     root.present()?;
     Ok(())
+}
+
+fn draw_top_view(
+    path: &Path,
+    domain: &crate::boundary::ShearingBox,
+    particles: &Particles,
+    title: &str,
+) -> DrawResult {
+    let (lx, ly) = (domain.lx(), domain.ly());
+    let caption = format!("particles from above, {title}");
+    draw_patch(path, 640, caption, (lx, ly), |chart| {
+        let pixels = chart.plotting_area().get_pixel_range();
+        let per_metre = f64::from(pixels.0.end - pixels.0.start) / lx;
+        let mut order: Vec<usize> = (0..particles.len()).collect();
+        order.sort_by(|&a, &b| particles.position[a].z.total_cmp(&particles.position[b].z));
+        let z_scale = particles
+            .position
+            .iter()
+            .map(|p| p.z.abs())
+            .fold(1e-9, f64::max);
+        chart.draw_series(order.into_iter().map(|i| {
+            let p = particles.position[i];
+            // Higher particles lighter, so that overlapping discs stay apart.
+            let grey = (90.0 + 100.0 * (p.z / z_scale)).clamp(0.0, 200.0) as u8;
+            let size = (particles.radius[i] * per_metre).round().max(1.0) as i32;
+            Circle::new((p.x, p.y), size, RGBColor(grey, grey, grey).filled())
+        }))?;
+        Ok(())
+    })
 }
 
 fn draw_surface_density(
@@ -335,33 +360,21 @@ fn draw_surface_density(
     title: &str,
 ) -> DrawResult {
     let (lx, ly) = (grid.dx * grid.nx as f64, grid.dy * grid.ny as f64);
-    let root = BitMapBackend::new(path, (640, 600)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(format!("surface density, {title}"), ("sans-serif", 18))
-        .margin(10)
-        .x_label_area_size(40)
-        .y_label_area_size(50)
-        .build_cartesian_2d(-0.5 * lx..0.5 * lx, -0.5 * ly..0.5 * ly)?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc("x (radial) [m]")
-        .y_desc("y (azimuthal) [m]")
-        .draw()?;
-    let mean = grid.mean().max(f64::MIN_POSITIVE);
-    chart.draw_series((0..grid.ny).flat_map(|iy| {
-        (0..grid.nx).map(move |ix| {
-            let level = (grid.sigma[iy * grid.nx + ix] / mean / 2.5).clamp(0.0, 1.0);
-            let grey = (255.0 * level).round() as u8;
-            let x0 = -0.5 * lx + ix as f64 * grid.dx;
-            let y0 = -0.5 * ly + iy as f64 * grid.dy;
-            Rectangle::new(
-                [(x0, y0), (x0 + grid.dx, y0 + grid.dy)],
-                RGBColor(grey, grey, grey).filled(),
-            )
-        })
-    }))?;
-    root.present()?;
-    Ok(())
+    let caption = format!("surface density, {title}");
+    draw_patch(path, 600, caption, (lx, ly), |chart| {
+        let mean = grid.mean().max(f64::MIN_POSITIVE);
+        chart.draw_series((0..grid.ny).flat_map(|iy| {
+            (0..grid.nx).map(move |ix| {
+                let level = (grid.sigma[iy * grid.nx + ix] / mean / 2.5).clamp(0.0, 1.0);
+                let grey = (255.0 * level).round() as u8;
+                let x0 = -0.5 * lx + ix as f64 * grid.dx;
+                let y0 = -0.5 * ly + iy as f64 * grid.dy;
+                Rectangle::new(
+                    [(x0, y0), (x0 + grid.dx, y0 + grid.dy)],
+                    RGBColor(grey, grey, grey).filled(),
+                )
+            })
+        }))?;
+        Ok(())
+    })
 }
