@@ -97,6 +97,29 @@ impl Revolution {
         }
     }
 
+    /// The surface of `orifice_plate` with the same arguments, axis `z`: the top face from
+    /// `outer_radius` in to the hole's rim, the hole's side down to the bottom face, and the
+    /// bottom face back out (the outer rim, which no sphere reaches inside a container, is left
+    /// open).
+    pub fn orifice_plate(
+        center: Vector3<f64>,
+        outer_radius: f64,
+        orifice_diameter: f64,
+        thickness: f64,
+    ) -> Self {
+        let hole = orifice_diameter / 2.0;
+        Self {
+            center,
+            axis: Vector3::z(),
+            profile: vec![
+                (outer_radius, 0.0),
+                (hole, 0.0),
+                (hole, -thickness),
+                (outer_radius, -thickness),
+            ],
+        }
+    }
+
     /// The inner surface of `cone_container` with the same arguments: radius `bottom_radius` at
     /// `center`, `top_radius` at `length` along `axis`.
     pub fn cone(

@@ -440,6 +440,36 @@ fn hopper_orifice_sweep_runs_once_per_diameter_and_fits_the_rates() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// `exact_surface = true` on the hopper's cylinder and orifice plate: with an orifice narrower
+/// than a sphere the plate holds every sphere (none passes through the top face or the hole's
+/// rim), and with an orifice of 6 d the spheres drain through the hole.
+#[test]
+fn exact_cylinder_and_orifice_plate_hold_the_spheres_and_let_them_drain() {
+    let exact = |orifice: &str| {
+        let text = hopper(200, 0.1, "[]")
+            .replace("orifice_sweep_m = []\n", "")
+            .replace("orifice_diameter_m = 0.012", &format!("orifice_diameter_m = {orifice}"))
+            .replace("segments = 32\n", "segments = 32\nexact_surface = true\n");
+        assert_eq!(text.matches("exact_surface = true").count(), 2);
+        text
+    };
+    let dir = common::temp_dir("hopper-exact");
+    let mut fractions = Vec::new();
+    for (tag, orifice) in [("closed", "0.0015"), ("open", "0.012")] {
+        let path = common::write(&dir, &format!("{tag}.toml"), &exact(orifice));
+        let scene = mdr_sim::load_scene(&path).unwrap_or_else(|p| panic!("{p}"));
+        let summary = run_scene(
+            &scene,
+            &RunOptions::new(dir.join(tag)).quiet(true).no_frames(true),
+        )
+        .expect("run");
+        eprintln!("{tag}: {}", summary.headline.text);
+        fractions.push(summary.headline.get("discharged_fraction").expect("fraction"));
+    }
+    assert_eq!(fractions[0], 0.0, "no sphere passes a 1.5 mm hole: {fractions:?}");
+    assert!(fractions[1] > 0.1, "the 12 mm orifice drains: {fractions:?}");
+}
+
 /// The physics of the sweep (minutes on a loaded machine: `cargo test -p mdr-sim --test
 /// sim_scenes_funnel_hopper -- --ignored`): ~760 soft spheres, orifices of 5, 6, 7 d, 0.2 s
 /// each: the rate grows with the orifice and the fitted correlation passes through the rates.

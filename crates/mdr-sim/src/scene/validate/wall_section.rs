@@ -58,6 +58,7 @@ impl Checker<'_, '_> {
                 "orifice_diameter_m",
                 "thickness_m",
                 "segments",
+                "exact_surface",
             ],
         };
         let unused: Vec<(&str, bool)> = all
@@ -173,13 +174,11 @@ impl Checker<'_, '_> {
                     );
                     return None;
                 }
-                walls::orifice_plate(
-                    center,
-                    outer,
-                    hole,
-                    thickness.unwrap_or(outer / 10.0),
-                    segments,
-                )
+                let thickness = thickness.unwrap_or(outer / 10.0);
+                if exact {
+                    revolution = Some(Revolution::orifice_plate(center, outer, hole, thickness));
+                }
+                walls::orifice_plate(center, outer, hole, thickness, segments)
             }
             WallKind::Mesh => {
                 let file = self.require(table, "file", w.file.as_deref(), &req)?;
