@@ -289,6 +289,9 @@ struct SceneFigures {
     max_speed_m_per_s: Option<f64>,
     /// Neighbour-list builds during the timed steps (neighbour-list path).
     rebuilds: Option<u64>,
+    /// Listed sphere pairs per particle at the last step (`2 × listed pairs / particles`,
+    /// neighbour-list path): what the pair loop tests each step, touching or not.
+    listed_pairs_per_particle: Option<f64>,
     scene: String,
 }
 
@@ -345,6 +348,7 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
                 .rebuilds()
                 .zip(rebuilds0)
                 .map(|(now, before)| now - before),
+            listed_pairs_per_particle: steps.listed_pairs().map(|p| 2.0 * p as f64 / n as f64),
             scene: scene.name.clone(),
         })
     })?;
@@ -376,6 +380,9 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
             "  {:.3} contacts per particle (sphere-sphere), {} wall contacts",
             figures.contacts_per_particle, figures.wall_contacts
         );
+        if let Some(listed) = figures.listed_pairs_per_particle {
+            println!("  {listed:.3} listed pairs per particle (touching or within the skin)");
+        }
         match (figures.rebuilds, figures.max_speed_m_per_s) {
             (Some(r), Some(v)) => println!(
                 "  peak RSS {:.1} MB; {r} neighbour-list builds; largest sphere speed {v:.3} m/s",

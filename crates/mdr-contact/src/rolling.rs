@@ -193,7 +193,7 @@ impl EpsdRollingState {
 impl RollingLaw for EpsdRollingLaw {
     type State = EpsdRollingState;
 
-    #[inline]
+    #[inline(always)]
     fn update(&self, state: &mut EpsdRollingState, input: &RollingInput) -> RollingResponse {
         if input.normal_force <= 0.0 {
             // The contact opened: the spring is released without doing work on the bodies, so
@@ -228,12 +228,13 @@ impl RollingLaw for EpsdRollingLaw {
         let elastic_increment = -stiffness * rotation;
         torque += elastic_increment;
         let cap = self.arm * input.normal_force;
-        let magnitude = torque.norm();
         let mut response = RollingResponse {
             stiffness_energy,
             ..RollingResponse::default()
         };
-        if magnitude > cap {
+        // Squared lengths first: the square root is taken only at the limit (both sides ≥ 0).
+        if torque.norm_squared() > cap * cap {
+            let magnitude = torque.norm();
             // At the limit: the excess rotation `Δθ_p = (|M_trial| − cap)/k_r` is plastic and
             // dissipates `cap · Δθ_p`.
             let excess = magnitude - cap;

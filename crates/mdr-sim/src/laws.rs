@@ -191,7 +191,9 @@ impl RollingModel for AnyRolling {
 
 impl RollingLaw for AnyRollingLaw {
     type State = EpsdRollingState;
-    #[inline]
+    // Always inlined: called out of line, the law must compute every field of its response,
+    // the energies the pair loop does not read among them.
+    #[inline(always)]
     fn update(&self, state: &mut EpsdRollingState, input: &RollingInput) -> RollingResponse {
         match &self.0 {
             Some(l) => l.update(state, input),

@@ -448,7 +448,10 @@ fn exact_cylinder_and_orifice_plate_hold_the_spheres_and_let_them_drain() {
     let exact = |orifice: &str| {
         let text = hopper(200, 0.1, "[]")
             .replace("orifice_sweep_m = []\n", "")
-            .replace("orifice_diameter_m = 0.012", &format!("orifice_diameter_m = {orifice}"))
+            .replace(
+                "orifice_diameter_m = 0.012",
+                &format!("orifice_diameter_m = {orifice}"),
+            )
             .replace("segments = 32\n", "segments = 32\nexact_surface = true\n");
         assert_eq!(text.matches("exact_surface = true").count(), 2);
         text
@@ -464,10 +467,21 @@ fn exact_cylinder_and_orifice_plate_hold_the_spheres_and_let_them_drain() {
         )
         .expect("run");
         eprintln!("{tag}: {}", summary.headline.text);
-        fractions.push(summary.headline.get("discharged_fraction").expect("fraction"));
+        fractions.push(
+            summary
+                .headline
+                .get("discharged_fraction")
+                .expect("fraction"),
+        );
     }
-    assert_eq!(fractions[0], 0.0, "no sphere passes a 1.5 mm hole: {fractions:?}");
-    assert!(fractions[1] > 0.1, "the 12 mm orifice drains: {fractions:?}");
+    assert_eq!(
+        fractions[0], 0.0,
+        "no sphere passes a 1.5 mm hole: {fractions:?}"
+    );
+    assert!(
+        fractions[1] > 0.1,
+        "the 12 mm orifice drains: {fractions:?}"
+    );
 }
 
 /// The physics of the sweep (minutes on a loaded machine: `cargo test -p mdr-sim --test

@@ -84,6 +84,15 @@ impl<'a> SceneSteps<'a> {
         }
     }
 
+    /// Sphere pairs in the neighbour list (neighbour-list path): the touching ones and those
+    /// within the skin, each of which the pair loop tests every step.
+    pub fn listed_pairs(&self) -> Option<usize> {
+        match &self.sim.built.coupling {
+            Coupling::Fast(stepper) => Some(stepper.pairs().len()),
+            _ => None,
+        }
+    }
+
     /// Touching pairs at the last force evaluation.
     pub fn contacts(&self) -> ContactCounts {
         match &self.sim.built.coupling {
