@@ -233,8 +233,9 @@ impl RollingLaw for EpsdRollingLaw {
             ..RollingResponse::default()
         };
         // Squared lengths first: the square root is taken only at the limit (both sides ≥ 0).
-        if torque.norm_squared() > cap * cap {
-            let magnitude = torque.norm();
+        let magnitude2 = torque.norm_squared();
+        if magnitude2 > cap * cap {
+            let magnitude = magnitude2.sqrt();
             // At the limit: the excess rotation `Δθ_p = (|M_trial| − cap)/k_r` is plastic and
             // dissipates `cap · Δθ_p`.
             let excess = magnitude - cap;

@@ -57,8 +57,9 @@ pub struct Wall {
     pub angular_velocity: Option<Vector3<f64>>,
     /// Simulated time (s) at which the wall is removed (a plug that opens); `None`: never.
     pub removed_at: Option<f64>,
-    /// The exact surface a cylinder or cone wall stands for (`exact_surface = true`), relative to
-    /// `origin`: on the neighbour-list path the spheres touch it instead of `pieces`.
+    /// The exact surface a cylinder, cone or orifice-plate wall stands for (`exact_surface =
+    /// true`), relative to `origin`: on the neighbour-list path the spheres touch it instead of
+    /// `pieces`.
     pub revolution: Option<Revolution>,
 }
 

@@ -96,7 +96,6 @@ fn resume_matches(text: &str, tag: &str, no_frames: bool) {
     }
     // Contacts happened, so histories mattered.
     assert!(whole.energy.iter().any(|r| r.contacts > 0));
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// Restitution mode: rapier resolves the contacts with impulses, and its solver starts from the
@@ -139,7 +138,6 @@ fn resumed_restitution_run_is_bit_identical_to_the_uninterrupted_run() {
         .filter(|(a, b)| a.translation != b.translation)
         .count();
     assert!(moved > 0, "nothing moved after the stop");
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]
@@ -240,7 +238,6 @@ fn damaged_and_foreign_checkpoints_are_refused() {
     )
     .expect("extending a run");
     assert_eq!(cont.step, longer.total_steps());
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// Ctrl-C: the CLI's handler sets the run's interrupt flag. Set it from another thread while the
@@ -317,5 +314,4 @@ fn an_interrupted_run_writes_a_final_checkpoint_and_resumes_bit_identically() {
     for (i, (a, b)) in whole.particles.iter().zip(&resumed.particles).enumerate() {
         assert_eq!(bits(a), bits(b), "particle {i} differs after the restart");
     }
-    std::fs::remove_dir_all(&dir).ok();
 }

@@ -64,7 +64,6 @@ fn frictionless_column_collapse_keeps_the_energy_sum_within_one_percent() {
         "drift {worst:.3e} J vs plastic {:.3e} J",
         last.plastic_j
     );
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// With Mindlin friction the books hold too: slip work is booked as friction, the stored
@@ -117,7 +116,6 @@ fn frictional_column_collapse_books_friction_within_one_percent() {
         without > 3.0 * worst,
         "drift {worst:.3e} J with the stiffness book, {without:.3e} J without"
     );
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// With rolling resistance (Ai et al.'s elastic–plastic spring, μ_r = 0.1) the books hold as
@@ -206,5 +204,4 @@ fn rolling_resistance_column_collapse_books_rolling_within_one_percent() {
         "drift {worst:.3e} J with the stiffness books, {without_t:.3e} J without the tangential \
          one, {without_r:.3e} J without the rolling one"
     );
-    std::fs::remove_dir_all(&dir).ok();
 }

@@ -131,7 +131,6 @@ fn drop_headline_is_the_same_on_both_paths() {
         (e / e_plain - 1.0).abs() < 1e-9,
         "paths differ: {e} vs {e_plain}"
     );
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// Column collapse and hopper discharge: the same headline on both paths, and the drum the same
@@ -168,7 +167,6 @@ fn column_hopper_and_drum_headlines_agree_on_both_paths() {
         a > 0.0 && (a / b - 1.0).abs() < 0.1,
         "drum wall work {a} vs {b}"
     );
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A closed cuboid as OBJ text (outward normals).
@@ -255,7 +253,6 @@ rotation_center_m = [0.0, 0.0, 0.0]
     // incremental springs against a rotating 32-facet mesh); bound 10 %.
     assert!(drift < 0.1 * dissipated, "books drift {drift:.3e} J");
     assert!(drift_without_wall_work > 10.0 * drift);
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// Every other wall kind and placement: a box filled by lattice (normal sizes), random fill
@@ -414,7 +411,6 @@ normal = [0.0, 0.0, 1.0]
         }
     }
     assert!(left > 0 && right > 0, "both meshes carry spheres");
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// The same scene in a pool of one thread and of two threads: the same bits.
@@ -438,7 +434,6 @@ fn scene_results_do_not_depend_on_the_number_of_threads() {
         assert_eq!(a.balance_j.to_bits(), b.balance_j.to_bits());
         assert_eq!(a.wall_work_j.to_bits(), b.wall_work_j.to_bits());
     }
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// Two 2 mm spheres in zero gravity in a box periodic over [0, 0.1] m in x and y: A at

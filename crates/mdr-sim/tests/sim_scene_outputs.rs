@@ -56,7 +56,6 @@ fn frames_collection_csv_and_plots_are_written_and_read_back() {
         })
         .count();
     assert_eq!(leftovers, 0);
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// The long run: the column scene at reduced size (4 × 4 × 5 = 80 spheres instead
@@ -161,5 +160,4 @@ fn long_column_run_stays_finite_and_bounded() {
         worst < 0.01 * e0,
         "energy drift {worst:.3e} J of {e0:.3e} J"
     );
-    std::fs::remove_dir_all(&dir).ok();
 }

@@ -160,7 +160,6 @@ fn overlapping_placement_is_refused() {
     .unwrap();
     let err = parse_scene(&path, &text).unwrap_err();
     assert!(err.errors().any(|e| e.key == "walls[0]"), "{err}");
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]

@@ -33,7 +33,6 @@ fn low_column_is_compared_with_lube_in_its_regime() {
         height <= h0 * 1.01 && height > 0.5 * h0,
         "H = {height}, H0 = {h0}"
     );
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A thin drum (two spheres deep) turning in the rolling regime: a finite angle of repose in
@@ -82,5 +81,4 @@ fn small_drum_has_a_dynamic_angle_of_repose() {
     let std = h.get("angle_std_deg").unwrap();
     assert!((15.0..55.0).contains(&angle), "{angle}");
     assert!(std < 10.0, "{std}");
-    std::fs::remove_dir_all(&dir).ok();
 }

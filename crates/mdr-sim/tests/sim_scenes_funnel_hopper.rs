@@ -178,8 +178,8 @@ fn bad_funnel_and_sweep_keys_are_refused_with_file_line_and_key() {
 /// `exact_surface = true` on the cone and the spout: the spheres touch the smooth surfaces of
 /// revolution on the neighbour-list path; they are held until the plug opens (none leaks through
 /// a wall: a sphere that did would fall below the sink before the opening) and then drain
-/// completely. The key is refused on walls that are not cylinders or cones and off the
-/// neighbour-list path.
+/// completely. The key is refused on walls that are not surfaces of revolution (a plane) and off
+/// the neighbour-list path.
 #[test]
 fn exact_cone_and_spout_hold_the_spheres_and_let_them_drain() {
     let exact =
@@ -203,7 +203,6 @@ fn exact_cone_and_spout_hold_the_spheres_and_let_them_drain() {
         h.text
     );
     assert_eq!(h.get("spheres_in_funnel_at_end"), Some(0.0), "{}", h.text);
-    let _ = std::fs::remove_dir_all(&dir);
 
     let plane = funnel(40, 0.45, 0.2).replace(
         "normal = [0.0, 0.0, 1.0]\n",
@@ -310,7 +309,6 @@ fn spheres_fall_through_once_the_plug_is_removed_and_are_removed_below_the_sink(
         "drift {drift:e} J against {:e} J removed",
         last.removed_j
     );
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A sphere resting on the plug of a closed funnel that never opens stays: nothing is removed.
@@ -326,7 +324,6 @@ fn without_removal_the_plug_holds() {
     .expect("run");
     assert_eq!(summary.headline.get("spheres_in_funnel_at_end"), Some(20.0));
     assert!(summary.particles.iter().all(|p| p.translation[2] > 0.0));
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A small flat-bottomed hopper of soft spheres: `count` lattice sites trimmed to a cylinder,
@@ -437,7 +434,6 @@ fn hopper_orifice_sweep_runs_once_per_diameter_and_fits_the_rates() {
         assert!((fit.c - b.powf(2.5) / (rho_b * 9.81f64.sqrt())).abs() < 1e-12 * fit.c.abs());
         assert!((fit.k + a / (b * 0.002)).abs() < 1e-9 * fit.k.abs().max(1.0));
     }
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// `exact_surface = true` on the hopper's cylinder and orifice plate: with an orifice narrower
@@ -516,5 +512,4 @@ fn hopper_orifice_sweep_rates_grow_with_the_orifice() {
         let back = (a + b * d).powf(2.5);
         assert!((back / w - 1.0).abs() < 0.1, "D = {d}: fit {back} vs {w}");
     }
-    std::fs::remove_dir_all(&dir).ok();
 }

@@ -506,8 +506,8 @@ where
 
     /// Insert a collider (on `parent`, rapier's contact impulses off) whose contacts follow the
     /// exact surface of revolution `surface` (given in the collider's local frame) instead of
-    /// its shape: a cylinder or cone wall that rapier sees as flat pieces (for its bounding box
-    /// and its other uses) touches the spheres as the smooth surface it stands for.
+    /// its shape: a cylinder, cone or orifice-plate wall that rapier sees as flat pieces (for its
+    /// bounding box and its other uses) touches the spheres as the smooth surface it stands for.
     pub fn insert_surface_of_revolution(
         &mut self,
         world: &mut PhysicsWorld,

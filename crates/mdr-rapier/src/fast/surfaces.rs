@@ -32,8 +32,8 @@ pub struct FastSurface {
     /// The faces of a convex-polyhedron collider (its contacts then take the exact face
     /// projection of [`crate::geometry::sphere_convex`] instead of parry's GJK).
     pub convex: Option<Arc<ConvexFaces>>,
-    /// An exact surface of revolution standing for the collider's shape (a cylinder or cone wall
-    /// whose collider is made of flat pieces): its contacts and candidates take
+    /// An exact surface of revolution standing for the collider's shape (a cylinder, cone or
+    /// orifice-plate wall whose collider is made of flat pieces): its contacts and candidates take
     /// [`SurfaceOfRevolution`]'s closed form instead of the collider's shape.
     pub revolution: Option<Arc<SurfaceOfRevolution>>,
 }

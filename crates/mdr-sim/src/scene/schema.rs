@@ -405,7 +405,7 @@ pub struct WallSection {
     /// Cylinder / cone / orifice plate: number of segments around the circle (default 48).
     #[serde(default)]
     pub segments: Option<u32>,
-    /// Cylinder / cone: on the neighbour-list path the spheres touch the exact surface of
+    /// Cylinder / cone / orifice plate: on the neighbour-list path the spheres touch the exact surface of
     /// revolution (no facets, as LAMMPS's `region cylinder` / `region cone` walls) instead of the
     /// `segments` flat pieces, which rapier still uses for its bounding boxes (default false).
     #[serde(default, skip_serializing_if = "Option::is_none")]
