@@ -6,8 +6,13 @@
 # and on the funnel, timed in the state the scene's headline is measured in (after warm-up
 # steps: the hopper's bed formed and draining, the column collapsing, the drum turning), each
 # with 1 and 2 threads. Scene cases are named by their file (`bed.toml`, `hopper.toml`, …).
+# The bed also runs as a scene with the contact sub-models of the hopper (stiffness-proportional
+# damping instead of the Hertzian one) and of the drum (that damping and rolling resistance):
+# `bed_hopper_law.toml` and `bed_drum_law.toml`, written into OUT_DIR from scenes/bed.toml, so that
+# each scene is also compared with the resting bed under its own law.
 # Prints one table: particle-steps per wall second and per CPU second, the ratio of the bed's
-# one-thread rate to the scene's, and the two-thread speed-up.
+# one-thread rate to the scene's, and the two-thread speed-up; then each scene against the bed
+# scene with its law.
 #
 # Usage: benches/scene_throughput.sh [OUT_DIR]   (JSON lines in OUT_DIR/scene_throughput.jsonl;
 # default target/scene-throughput). Environment: MDR_DEM (the binary; default
@@ -26,18 +31,31 @@ echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 for t in 1 2; do
   echo "{\"case\":\"bed\",$("$bin" bench bed --law mdr --threads $t --json | cut -c2-)" >> "$jsonl"
 done
-# scene  warm-up steps  timed steps
-while read -r scene warmup steps; do
+# The bed scene under the hopper's and the drum's contact sub-models (the data file by its full
+# path, as the copies live in OUT_DIR).
+bed_law() {
+  sed -e "s|^file = \"../benches/|file = \"$repo/benches/|" \
+      -e 's|^damping = .*|damping = "stiffness_viscous"\ndamping_eta = 0.3|' \
+      -e '/^damping_gamma_n_per_m_s/d' -e '/^damping_tangential_ratio/d' \
+      "$repo/scenes/bed.toml"
+}
+bed_law > "$out/bed_hopper_law.toml"
+bed_law | sed 's|^damping_eta = 0.3|damping_eta = 0.3\nrolling_friction = 0.1|' > "$out/bed_drum_law.toml"
+# scene file  warm-up steps  timed steps
+while read -r file warmup steps; do
+  case $file in /*) path=$file ;; *) path=$repo/scenes/$file ;; esac
   for t in 1 2; do
-    echo "{\"case\":\"$scene.toml\",$("$bin" bench scene "$repo/scenes/$scene.toml" --warmup "$warmup" \
+    echo "{\"case\":\"$(basename "$file")\",$("$bin" bench scene "$path" --warmup "$warmup" \
       --steps "$steps" --threads $t --json | cut -c2-)" >> "$jsonl"
   done
-done <<'LIST'
-bed 2000 10000
-hopper 15000 3000
-column 5000 3000
-drum 20000 5000
-funnel 30000 20000
+done <<LIST
+bed.toml 2000 10000
+$out/bed_hopper_law.toml 2000 10000
+$out/bed_drum_law.toml 2000 10000
+hopper.toml 15000 3000
+column.toml 5000 3000
+drum.toml 20000 5000
+funnel.toml 30000 20000
 LIST
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
 python3 - "$jsonl" <<'PY'
@@ -55,4 +73,9 @@ for case, r in one.items():
           f"{r.get('cpu_particle_steps_per_s', r.get('particle_steps_per_cpu_s')) / 1e6:10.3f} "
           f"{bed / r['particle_steps_per_s']:9.2f} {s2 / 1e6:10.3f} "
           f"{s2 / r['particle_steps_per_s']:8.2f}")
+print("each scene against the bed scene with its contact sub-models (one thread):")
+for case, law in (("hopper.toml", "bed_hopper_law.toml"), ("drum.toml", "bed_drum_law.toml")):
+    if case in one and law in one:
+        print(f"  {case:12} {one[law]['particle_steps_per_s'] / one[case]['particle_steps_per_s']:.2f}"
+              f"  ({law})")
 PY

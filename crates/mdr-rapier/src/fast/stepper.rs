@@ -62,6 +62,8 @@ mod restart;
 
 /// Pairs per parallel work item of the force loops.
 const CHUNK: usize = 2048;
+/// Particle–surface pairs per chunk of the parallel surface pass.
+const SURFACE_CHUNK: usize = 256;
 /// Touching pairs per block of the two-stage pair loop (geometry, then law).
 const BLOCK: usize = 128;
 
@@ -544,6 +546,10 @@ where
                 .as_convex_polyhedron()
                 .map(|poly| Arc::new(ConvexFaces::of(poly))),
             revolution,
+            plane: co
+                .shape()
+                .as_halfspace()
+                .map(|half_space| to_na(half_space.normal).normalize()),
         };
         // Keep surfaces in collider-index order (the plain path's summation order).
         let at = self

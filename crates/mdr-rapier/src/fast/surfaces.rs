@@ -1,12 +1,13 @@
 //! Particles against rapier colliders (walls, meshes, containers, user bodies): candidate pairs
 //! found at neighbour-list rebuilds with parry distance queries, exact contacts every step with
-//! [`crate::geometry::sphere_shape`] (or, for convex polyhedra, the face projection of
-//! [`crate::geometry::sphere_convex`]), histories carried over rebuilds by `(particle, surface)`.
+//! [`crate::geometry::sphere_shape`] (or a closed form: half-spaces through
+//! [`crate::geometry::sphere_half_space`], convex polyhedra through the face projection of
+//! [`crate::geometry::sphere_convex`], surfaces of revolution), histories carried over rebuilds by `(particle, surface)`.
 
 use crate::convert::to_glam;
 use crate::geometry::{
-    convex_distance_within, sphere_convex, sphere_shape, ConvexFaces, SurfaceContact,
-    SurfaceOfRevolution,
+    convex_distance_within, half_space_distance, sphere_convex, sphere_half_space, sphere_shape,
+    ConvexFaces, SurfaceContact, SurfaceOfRevolution,
 };
 use crate::kernel::PairWrench;
 use crate::particles::MaterialHandle;
@@ -36,6 +37,10 @@ pub struct FastSurface {
     /// orifice-plate wall whose collider is made of flat pieces): its contacts and candidates take
     /// [`SurfaceOfRevolution`]'s closed form instead of the collider's shape.
     pub revolution: Option<Arc<SurfaceOfRevolution>>,
+    /// The outward unit normal, in the collider's frame, of a half-space collider (a plane
+    /// wall): its contacts take the closed form of [`crate::geometry::sphere_half_space`]
+    /// instead of parry's projection.
+    pub plane: Option<Vector3<f64>>,
 }
 
 impl FastSurface {
@@ -50,6 +55,9 @@ impl FastSurface {
         if let Some(surface) = &self.revolution {
             return surface.sphere_contact(center, radius, co.position());
         }
+        if let Some(normal) = &self.plane {
+            return sphere_half_space(center, radius, normal, co.position());
+        }
         match &self.convex {
             Some(faces) => sphere_convex(center, radius, faces, co.shape(), co.position()),
             None => sphere_shape(center, radius, co.shape(), co.position()),
@@ -60,6 +68,9 @@ impl FastSurface {
     pub fn within(&self, co: &Collider, x: &Vector3<f64>, reach: f64) -> bool {
         if let Some(surface) = &self.revolution {
             return surface.within(x, co.position(), reach);
+        }
+        if let Some(normal) = &self.plane {
+            return half_space_distance(x, normal, co.position()) < reach;
         }
         match &self.convex {
             Some(faces) => convex_distance_within(x, faces, co.position(), reach).is_some(),

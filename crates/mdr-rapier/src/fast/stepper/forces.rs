@@ -206,14 +206,16 @@ where
             ..
         } = &mut self.surface_pairs;
         let (particle, surface) = (&*particle, &*surface);
+        // Smaller chunks than the sphere pairs': a scene's wall contacts are few (a floor
+        // under a column, a hopper's rim), and one or two chunks would leave a thread idle.
         let results: Vec<(usize, Vec<EndedContact>)> = history
-            .par_chunks_mut(CHUNK)
-            .zip(wrench.par_chunks_mut(CHUNK))
-            .zip(active.par_chunks_mut(CHUNK))
-            .zip(contacts.par_chunks_mut(CHUNK))
+            .par_chunks_mut(SURFACE_CHUNK)
+            .zip(wrench.par_chunks_mut(SURFACE_CHUNK))
+            .zip(active.par_chunks_mut(SURFACE_CHUNK))
+            .zip(contacts.par_chunks_mut(SURFACE_CHUNK))
             .enumerate()
             .map(|(c, (((history, wrench), active), contacts))| {
-                let base = c * CHUNK;
+                let base = c * SURFACE_CHUNK;
                 let mut touching = 0;
                 let mut ended = Vec::new();
                 for k in 0..history.len() {
