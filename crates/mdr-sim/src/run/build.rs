@@ -273,9 +273,13 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
             // prediction distance as the plain path.
             world.integration_parameters.normalized_prediction_distance =
                 prediction_distance(scene) / world.integration_parameters.length_unit;
-            // The energy books take each contact's works once, when its history ends.
+            // The energy books take each contact's works once, when its history ends. No
+            // output reads a sphere's orientation and no sphere contact depends on it, so it is
+            // not integrated (as LAMMPS's `atom_style sphere`); spins are.
             Coupling::Fast(Box::new(
-                (*s).skin(skin(scene))?.record_ended_contacts(true),
+                (*s).skin(skin(scene))?
+                    .record_ended_contacts(true)
+                    .track_orientation(false),
             ))
         }
         Inserter::Restitution(mut h) => {
