@@ -64,11 +64,11 @@ rows = [json.loads(l) for l in open(sys.argv[1])]
 one = {r["case"]: r for r in rows if r["threads"] == 1}
 two = {r["case"]: r for r in rows if r["threads"] == 2}
 bed = one["bed"]["particle_steps_per_s"]
-print(f"{'case':12} {'spheres':>8} {'contacts/p':>10} {'1 thread':>10} {'per CPU s':>10} "
+print(f"{'case':20} {'spheres':>8} {'contacts/p':>10} {'1 thread':>10} {'per CPU s':>10} "
       f"{'bed/scene':>9} {'2 threads':>10} {'speed-up':>8}  (M particle-steps/s)")
 for case, r in one.items():
     s2 = two[case]["particle_steps_per_s"]
-    print(f"{case:12} {r['particles']:8d} {r['contacts_per_particle']:10.2f} "
+    print(f"{case:20} {r['particles']:8d} {r['contacts_per_particle']:10.2f} "
           f"{r['particle_steps_per_s'] / 1e6:10.3f} "
           f"{r.get('cpu_particle_steps_per_s', r.get('particle_steps_per_cpu_s')) / 1e6:10.3f} "
           f"{bed / r['particle_steps_per_s']:9.2f} {s2 / 1e6:10.3f} "
@@ -76,6 +76,6 @@ for case, r in one.items():
 print("each scene against the bed scene with its contact sub-models (one thread):")
 for case, law in (("hopper.toml", "bed_hopper_law.toml"), ("drum.toml", "bed_drum_law.toml")):
     if case in one and law in one:
-        print(f"  {case:12} {one[law]['particle_steps_per_s'] / one[case]['particle_steps_per_s']:.2f}"
+        print(f"  {case:20} {one[law]['particle_steps_per_s'] / one[case]['particle_steps_per_s']:.2f}"
               f"  ({law})")
 PY

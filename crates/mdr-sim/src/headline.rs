@@ -417,14 +417,26 @@ impl Tracker {
                 r.push("mass_flow_rate_kg_per_s", rate);
                 r.push("beverloo_kg_per_s", beverloo);
                 r.push("ratio_to_beverloo", rate / beverloo);
+                let rate_text = if rate.is_finite() {
+                    format!(
+                        "W = {rate:.4e} kg/s (fit over the second half of the run, {} samples)",
+                        window.len()
+                    )
+                } else {
+                    format!(
+                        "W not measured: {} samples of the discharged mass in the second half of \
+                         the run (between none and 90 % of the mass), a fit needs 3 (run longer, \
+                         or write rows more often with output_interval_s)",
+                        window.len()
+                    )
+                };
                 r.text = format!(
                     "hopper discharge: D = {orifice:.4e} m, d = {d:.4e} m (D/d = {:.2}), discharged {:.1} % of the mass\n  \
-                     steady mass flow rate W = {rate:.4e} kg/s (fit over the second half of the run, {} samples)\n  \
+                     steady mass flow rate {rate_text}\n  \
                      Beverloo W = C ρ_b √g (D − k d)^{{5/2}} = {beverloo:.4e} kg/s (C = {BEVERLOO_C}, k = {BEVERLOO_K}, \
                      ρ_b = {BULK_SOLID_FRACTION} ρ_p); ratio {:.3}",
                     orifice / d,
                     100.0 * final_mass / total,
-                    window.len(),
                     rate / beverloo
                 );
             }
