@@ -90,8 +90,7 @@ pub fn sphere_half_space(
     local_normal: &Vector3<f64>,
     pose: &Pose,
 ) -> Option<SurfaceContact> {
-    let normal = to_na(pose.rotation * to_glam(local_normal));
-    let signed = normal.dot(&(c1 - to_na(pose.translation)));
+    let (normal, signed) = half_space_normal_and_distance(c1, local_normal, pose);
     let overlap = r1 - signed;
     if overlap <= 0.0 {
         return None;
@@ -108,7 +107,18 @@ pub fn sphere_half_space(
 /// (negative inside).
 #[inline]
 pub fn half_space_distance(x: &Vector3<f64>, local_normal: &Vector3<f64>, pose: &Pose) -> f64 {
-    to_na(pose.rotation * to_glam(local_normal)).dot(&(x - to_na(pose.translation)))
+    half_space_normal_and_distance(x, local_normal, pose).1
+}
+
+/// The half-space's outward normal in the world and the signed distance `n · (x − o)` of `x`.
+#[inline(always)]
+fn half_space_normal_and_distance(
+    x: &Vector3<f64>,
+    local_normal: &Vector3<f64>,
+    pose: &Pose,
+) -> (Vector3<f64>, f64) {
+    let normal = to_na(pose.rotation * to_glam(local_normal));
+    (normal, normal.dot(&(x - to_na(pose.translation))))
 }
 
 /// A convex polyhedron as its planar faces, for an exact sphere contact without GJK: the

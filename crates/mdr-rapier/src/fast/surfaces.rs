@@ -2,7 +2,8 @@
 //! found at neighbour-list rebuilds with parry distance queries, exact contacts every step with
 //! [`crate::geometry::sphere_shape`] (or a closed form: half-spaces through
 //! [`crate::geometry::sphere_half_space`], convex polyhedra through the face projection of
-//! [`crate::geometry::sphere_convex`], surfaces of revolution), histories carried over rebuilds by `(particle, surface)`.
+//! [`crate::geometry::sphere_convex`], surfaces of revolution), histories carried over rebuilds
+//! by `(particle, surface)`.
 
 use crate::convert::to_glam;
 use crate::geometry::{
