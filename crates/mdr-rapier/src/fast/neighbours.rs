@@ -1,6 +1,7 @@
 //! Binned neighbour lists with a skin (the LAMMPS scheme): particles and their periodic ghosts
 //! are sorted into cells of side `2 r_max + skin`; every particle `i` looks at the 27 cells around
-//! it for partners `j > i` closer than `r_i + r_j + skin`. The list is a half list sorted by
+//! it for partners `j > i` closer than `r_i + r_j + skin`, reading each row of three cells as one
+//! run of a cell-ordered copy of the points. The list is a half list sorted by
 //! `(i, j, image)`, with the pair's contact history stored next to it; histories are carried over
 //! a rebuild by merging the old and new lists on that key.
 //!
@@ -127,6 +128,11 @@ pub struct NeighbourBuilder {
     cell_of: Vec<u32>,
     cell_start: Vec<u32>,
     cell_items: Vec<u32>,
+    /// `(x, y, z, r)` of the points in cell order (`cell_items` order): the candidate search
+    /// reads a stencil row's cells as one contiguous run instead of gathering each point.
+    sorted: Vec<[f64; 4]>,
+    /// `(particle, image code)` of the points in cell order.
+    sorted_owner: Vec<(u32, u8)>,
     /// Fill cursors of the counting sorts.
     fill: Vec<u32>,
     /// Per block: `(j, image)` candidates and per-particle counts.
@@ -143,6 +149,8 @@ impl NeighbourBuilder {
                 + self.cell_items.capacity()
                 + self.fill.capacity())
                 * 4
+            + self.sorted.capacity() * 32
+            + self.sorted_owner.capacity() * 8
             + self
                 .blocks
                 .iter()
@@ -184,7 +192,10 @@ impl NeighbourBuilder {
         }
 
         // Cell grid over the bounding box of all points; the cell side is at least the cutoff
-        // and grows if the box is so sparse that the grid would exceed ~2 cells per point.
+        // and grows if the box is so sparse that the grid would exceed 8 cells per point (a
+        // hopper's particles fill a cylinder inside their square bounding box, and the parked
+        // ones a sparse lattice below it: a tighter cap would grow the cells, and with them the
+        // candidates of every particle, by half).
         let mut lo = Vector3::repeat(f64::INFINITY);
         let mut hi = Vector3::repeat(f64::NEG_INFINITY);
         for p in &self.points {
@@ -196,7 +207,7 @@ impl NeighbourBuilder {
             std::array::from_fn(|k| (((hi[k] - lo[k]) / cell).floor() as usize + 1).max(1))
         };
         let mut d = dims(cell);
-        while (d[0] as f64) * (d[1] as f64) * (d[2] as f64) > 2.0 * self.points.len() as f64 + 27.0
+        while (d[0] as f64) * (d[1] as f64) * (d[2] as f64) > 8.0 * self.points.len() as f64 + 27.0
         {
             cell *= 1.26;
             d = dims(cell);
@@ -228,6 +239,19 @@ impl NeighbourBuilder {
             self.cell_items[self.fill[c as usize] as usize] = p as u32;
             self.fill[c as usize] += 1;
         }
+        self.sorted.clear();
+        self.sorted_owner.clear();
+        for &q in &self.cell_items {
+            let q = q as usize;
+            let (owner, code) = if q < n {
+                (q as u32, Image::ZERO.code())
+            } else {
+                self.ghosts[q - n]
+            };
+            let x = &self.points[q];
+            self.sorted.push([x.x, x.y, x.z, r[owner as usize]]);
+            self.sorted_owner.push((owner, code));
+        }
 
         // Parallel search, one buffer per block of particles.
         let nblocks = n.div_ceil(BLOCK);
@@ -235,9 +259,9 @@ impl NeighbourBuilder {
             self.blocks.resize_with(nblocks, Default::default);
         }
         let points = &self.points;
-        let ghosts = &self.ghosts;
+        let sorted = &self.sorted;
+        let sorted_owner = &self.sorted_owner;
         let cell_start = &self.cell_start;
-        let cell_items = &self.cell_items;
         self.blocks[..nblocks]
             .par_iter_mut()
             .enumerate()
@@ -247,27 +271,23 @@ impl NeighbourBuilder {
                 for i in b * BLOCK..((b + 1) * BLOCK).min(n) {
                     let start = cands.len();
                     let xi = &points[i];
+                    let ri = r[i];
                     let c = cell_index(xi);
+                    // The three cells of a stencil row are adjacent in cell order, so their
+                    // points are one run of `sorted`.
+                    let (x_lo, x_hi) = (c[0].saturating_sub(1), (c[0] + 1).min(d[0] - 1));
                     for cz in c[2].saturating_sub(1)..(c[2] + 2).min(d[2]) {
                         for cy in c[1].saturating_sub(1)..(c[1] + 2).min(d[1]) {
-                            for cx in c[0].saturating_sub(1)..(c[0] + 2).min(d[0]) {
-                                let cell = (cz * d[1] + cy) * d[0] + cx;
-                                for &q in &cell_items
-                                    [cell_start[cell] as usize..cell_start[cell + 1] as usize]
-                                {
-                                    let q = q as usize;
-                                    let (j, code) = if q < n {
-                                        (q as u32, Image::ZERO.code())
-                                    } else {
-                                        ghosts[q - n]
-                                    };
-                                    if (j as usize) <= i {
-                                        continue;
-                                    }
-                                    let reach = r[i] + r[j as usize] + skin;
-                                    if (xi - points[q]).norm_squared() < reach * reach {
-                                        cands.push((j, code));
-                                    }
+                            let row = (cz * d[1] + cy) * d[0];
+                            let run = cell_start[row + x_lo] as usize
+                                ..cell_start[row + x_hi + 1] as usize;
+                            for (s, &(j, code)) in
+                                sorted[run.clone()].iter().zip(&sorted_owner[run])
+                            {
+                                let reach = ri + s[3] + skin;
+                                let (dx, dy, dz) = (xi.x - s[0], xi.y - s[1], xi.z - s[2]);
+                                if (j as usize) > i && dx * dx + dy * dy + dz * dz < reach * reach {
+                                    cands.push((j, code));
                                 }
                             }
                         }
@@ -320,8 +340,16 @@ impl NeighbourBuilder {
                 q += 1;
             }
             if q < old.len() && key(old, q) == k {
-                out.history.push(std::mem::take(&mut old.history[q]));
-                out.active.push(old.active[q]);
+                // A pair that is not active holds the default history: only live ones are
+                // copied (`old` is overwritten by the next build; its active entries are what
+                // this build dropped).
+                let live = old.active[q];
+                out.history.push(if live {
+                    old.history[q].clone()
+                } else {
+                    H::default()
+                });
+                out.active.push(live);
                 // Carried over: what stays active in `old` was dropped by this build.
                 old.active[q] = false;
                 if keep_wrenches {
@@ -352,5 +380,130 @@ impl NeighbourBuilder {
             out.second[self.fill[j] as usize] = p as u32;
             self.fill[j] += 1;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// Every pair `(i < j, image)` closer than `r_i + r_j + skin`, by testing all of them.
+    fn brute_force(
+        boundary: &Boundary,
+        x: &[Vector3<f64>],
+        r: &[f64],
+        skin: f64,
+    ) -> Vec<(u32, u32, u8)> {
+        let offsets = boundary.offsets();
+        let codes: Vec<u8> = if boundary.is_periodic() {
+            (0..9).collect()
+        } else {
+            vec![Image::ZERO.code()]
+        };
+        let mut pairs = Vec::new();
+        for i in 0..x.len() {
+            for j in i + 1..x.len() {
+                for &code in &codes {
+                    let reach = r[i] + r[j] + skin;
+                    if (x[i] - (x[j] + offsets[code as usize].position)).norm_squared()
+                        < reach * reach
+                    {
+                        pairs.push((i as u32, j as u32, code));
+                    }
+                }
+            }
+        }
+        pairs
+    }
+
+    /// The binned search finds exactly the pairs a test of every pair finds, sorted, with the
+    /// per-particle indexes consistent: dense and polydisperse, in open space with a sparse
+    /// cloud far away (which makes the grid coarser than the cutoff) and in a periodic box.
+    #[test]
+    fn binned_search_matches_every_pair_tested() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let skin = 0.1;
+        for periodic in [false, true] {
+            let boundary = if periodic {
+                Boundary::periodic_xy((0.0, 6.0), (0.0, 5.0)).unwrap()
+            } else {
+                Boundary::Open
+            };
+            let mut x = Vec::new();
+            let mut r = Vec::new();
+            for _ in 0..1500 {
+                x.push(Vector3::new(
+                    rng.random_range(0.0..6.0),
+                    rng.random_range(0.0..5.0),
+                    rng.random_range(0.0..4.0),
+                ));
+                r.push(rng.random_range(0.2..0.35));
+            }
+            if !periodic {
+                for _ in 0..300 {
+                    x.push(Vector3::new(
+                        rng.random_range(-60.0..60.0),
+                        rng.random_range(-60.0..60.0),
+                        rng.random_range(-60.0..0.0),
+                    ));
+                    r.push(0.3);
+                }
+            }
+            let mut builder = NeighbourBuilder::default();
+            let (mut old, mut list) = (PairList::<u8>::default(), PairList::<u8>::default());
+            builder.build(&boundary, &x, &r, skin, &mut old, &mut list);
+            let found: Vec<(u32, u32, u8)> = (0..list.len())
+                .map(|p| (list.i[p], list.j[p], list.image[p]))
+                .collect();
+            let expected = brute_force(&boundary, &x, &r, skin);
+            assert!(expected.len() > 2 * x.len(), "a dense packing");
+            assert_eq!(found, expected, "periodic: {periodic}");
+            for i in 0..x.len() {
+                let first = list.first[i] as usize..list.first[i + 1] as usize;
+                assert!(list.i[first].iter().all(|&k| k as usize == i));
+                let second = list.second_start[i] as usize..list.second_start[i + 1] as usize;
+                assert!(list.second[second]
+                    .iter()
+                    .all(|&p| list.j[p as usize] as usize == i));
+            }
+        }
+    }
+
+    /// A rebuild carries each live pair's history over by `(i, j, image)`, starts new pairs from
+    /// the default, and leaves the pairs it dropped active in the old list.
+    #[test]
+    fn rebuild_carries_live_histories_by_key() {
+        let x = vec![
+            Vector3::new(0.0, 0.0, 0.0),
+            Vector3::new(0.9, 0.0, 0.0),
+            Vector3::new(0.45, 0.8, 0.0),
+        ];
+        let r = vec![0.5; 3];
+        let mut builder = NeighbourBuilder::default();
+        let (mut old, mut list) = (PairList::<u32>::default(), PairList::<u32>::default());
+        builder.build(&Boundary::Open, &x, &r, 0.1, &mut old, &mut list);
+        assert_eq!(
+            (list.i.clone(), list.j.clone()),
+            (vec![0, 0, 1], vec![1, 2, 2])
+        );
+        // Pairs (0, 1) and (0, 2) touch with a history; (1, 2) is listed but apart.
+        list.active = vec![true, true, false];
+        list.history = vec![11, 12, 0];
+        // Particle 2 leaves: (0, 2) and (1, 2) drop out, (0, 1) stays.
+        let moved = vec![x[0], x[1], Vector3::new(0.0, 5.0, 0.0)];
+        let mut next = PairList::default();
+        builder.build(&Boundary::Open, &moved, &r, 0.1, &mut list, &mut next);
+        assert_eq!((next.i.clone(), next.j.clone()), (vec![0], vec![1]));
+        assert_eq!(
+            (next.history.clone(), next.active.clone()),
+            (vec![11], vec![true])
+        );
+        assert_eq!(
+            list.active,
+            vec![false, true, false],
+            "(0, 2) was dropped while live"
+        );
     }
 }
