@@ -127,9 +127,8 @@ pub struct NeighbourBuilder {
     points: Vec<Vector3<f64>>,
     cell_of: Vec<u32>,
     cell_start: Vec<u32>,
-    cell_items: Vec<u32>,
-    /// `(x, y, z, r)` of the points in cell order (`cell_items` order): the candidate search
-    /// reads a stencil row's cells as one contiguous run instead of gathering each point.
+    /// `(x, y, z, r)` of the points in cell order (a cell's points in increasing point index):
+    /// the candidate search reads a stencil row's cells as one contiguous run.
     sorted: Vec<[f64; 4]>,
     /// `(particle, image code)` of the points in cell order.
     sorted_owner: Vec<(u32, u8)>,
@@ -144,11 +143,7 @@ impl NeighbourBuilder {
     pub fn bytes(&self) -> usize {
         self.ghosts.capacity() * 8
             + self.points.capacity() * 24
-            + (self.cell_of.capacity()
-                + self.cell_start.capacity()
-                + self.cell_items.capacity()
-                + self.fill.capacity())
-                * 4
+            + (self.cell_of.capacity() + self.cell_start.capacity() + self.fill.capacity()) * 4
             + self.sorted.capacity() * 32
             + self.sorted_owner.capacity() * 8
             + self
@@ -230,27 +225,23 @@ impl NeighbourBuilder {
         for c in 0..ncells {
             self.cell_start[c + 1] += self.cell_start[c];
         }
-        self.cell_items.clear();
-        self.cell_items.resize(self.points.len(), 0);
-        // Fill in point order: items of a cell are in increasing point index.
+        // Fill in point order: a cell's points are in increasing point index.
+        self.sorted.clear();
+        self.sorted.resize(self.points.len(), [0.0; 4]);
+        self.sorted_owner.clear();
+        self.sorted_owner.resize(self.points.len(), (0, 0));
         self.fill.clear();
         self.fill.extend_from_slice(&self.cell_start[..ncells]);
-        for (p, &c) in self.cell_of.iter().enumerate() {
-            self.cell_items[self.fill[c as usize] as usize] = p as u32;
-            self.fill[c as usize] += 1;
-        }
-        self.sorted.clear();
-        self.sorted_owner.clear();
-        for &q in &self.cell_items {
-            let q = q as usize;
+        for (q, (&c, x)) in self.cell_of.iter().zip(&self.points).enumerate() {
             let (owner, code) = if q < n {
                 (q as u32, Image::ZERO.code())
             } else {
                 self.ghosts[q - n]
             };
-            let x = &self.points[q];
-            self.sorted.push([x.x, x.y, x.z, r[owner as usize]]);
-            self.sorted_owner.push((owner, code));
+            let at = self.fill[c as usize] as usize;
+            self.sorted[at] = [x.x, x.y, x.z, r[owner as usize]];
+            self.sorted_owner[at] = (owner, code);
+            self.fill[c as usize] += 1;
         }
 
         // Parallel search, one buffer per block of particles.
