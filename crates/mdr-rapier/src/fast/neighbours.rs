@@ -28,7 +28,9 @@ pub struct PairList<H> {
     pub image: Vec<u8>,
     /// Whether the pair touched at the last force evaluation (its history is live).
     pub active: Vec<bool>,
-    /// Contact history of each pair (default while apart).
+    /// Contact history of each pair, meaningful only while the pair is `active`: a pair that
+    /// starts touching starts from the default history (the pair loop resets it then), so
+    /// neither a build nor a separation spends a write on the pairs that are apart.
     pub history: Vec<H>,
     /// Wrench of each pair at the last force evaluation of the parallel path (several threads),
     /// which gathers them per particle; zero where not `active` (the pair loop keeps it so, and
@@ -115,8 +117,10 @@ impl<H> PairList<H> {
     }
 }
 
-/// One search block's buffers: `(j, image)` candidates and per-particle counts.
-type BlockBuffers = (Vec<(u32, u8)>, Vec<u32>);
+/// One search block's buffers: the partners found, as `(j << 8) | image code` (one integer, so
+/// that sorting a particle's partners by `(j, image)` compares one word), and per-particle
+/// counts.
+type BlockBuffers = (Vec<u64>, Vec<u32>);
 
 /// The cell grid and the search buffers, kept between rebuilds.
 #[derive(Debug, Default)]
@@ -278,7 +282,7 @@ impl NeighbourBuilder {
                                 let reach = ri + s[3] + skin;
                                 let (dx, dy, dz) = (xi.x - s[0], xi.y - s[1], xi.z - s[2]);
                                 if (j as usize) > i && dx * dx + dy * dy + dz * dz < reach * reach {
-                                    cands.push((j, code));
+                                    cands.push((u64::from(j) << 8) | u64::from(code));
                                 }
                             }
                         }
@@ -298,7 +302,8 @@ impl NeighbourBuilder {
             let mut k = 0;
             for (di, &count) in counts.iter().enumerate() {
                 let i = (b * BLOCK + di) as u32;
-                for &(j, code) in &cands[k..k + count as usize] {
+                for &partner in &cands[k..k + count as usize] {
+                    let (j, code) = ((partner >> 8) as u32, partner as u8);
                     out.i.push(i);
                     out.j.push(j);
                     out.image.push(code);
@@ -313,9 +318,13 @@ impl NeighbourBuilder {
         }
         let m = out.i.len();
 
-        // Carry histories over: both lists are sorted by (i, j, image).
-        out.history.clear();
+        // Carry histories over: both lists are sorted by (i, j, image). Only the live ones are
+        // copied; the other entries keep whatever the buffer held, since a history counts only
+        // while its pair is active (`old` is overwritten by the next build; its active entries
+        // are what this build dropped).
+        out.history.resize(m, H::default());
         out.active.clear();
+        out.active.resize(m, false);
         // Wrenches are kept only while the parallel path runs (it gathers them per particle);
         // the one-thread path leaves the list's `wrench` empty.
         let keep_wrenches = old.wrench.len() == old.len() && !old.is_empty();
@@ -331,25 +340,16 @@ impl NeighbourBuilder {
                 q += 1;
             }
             if q < old.len() && key(old, q) == k {
-                // A pair that is not active holds the default history: only live ones are
-                // copied (`old` is overwritten by the next build; its active entries are what
-                // this build dropped).
-                let live = old.active[q];
-                out.history.push(if live {
-                    old.history[q].clone()
-                } else {
-                    H::default()
-                });
-                out.active.push(live);
-                // Carried over: what stays active in `old` was dropped by this build.
-                old.active[q] = false;
-                if keep_wrenches {
-                    out.wrench[p] = old.wrench[q];
+                if old.active[q] {
+                    out.history[p].clone_from(&old.history[q]);
+                    out.active[p] = true;
+                    // Carried over: what stays active in `old` was dropped by this build.
+                    old.active[q] = false;
+                    if keep_wrenches {
+                        out.wrench[p] = old.wrench[q];
+                    }
                 }
                 q += 1;
-            } else {
-                out.history.push(H::default());
-                out.active.push(false);
             }
         }
 
@@ -462,8 +462,8 @@ mod tests {
         }
     }
 
-    /// A rebuild carries each live pair's history over by `(i, j, image)`, starts new pairs from
-    /// the default, and leaves the pairs it dropped active in the old list.
+    /// A rebuild carries each live pair's history over by `(i, j, image)`, lists new pairs as
+    /// inactive, and leaves the pairs it dropped active in the old list.
     #[test]
     fn rebuild_carries_live_histories_by_key() {
         let x = vec![

@@ -91,8 +91,9 @@ where
                             &history[k],
                         ));
                     }
+                    // Its history is left as it is: a pair that touches again starts from
+                    // the default (below).
                     active[k] = false;
-                    history[k] = Default::default();
                     if let Some(w) = wrench.get_mut(k) {
                         *w = PairWrench::default();
                     }
@@ -116,7 +117,12 @@ where
                     let k = k as usize;
                     let (i, j) = (pi[k] as usize, pj[k] as usize);
                     let offset = &offsets[image[k] as usize];
-                    active[k] = true;
+                    if !active[k] {
+                        // A contact begins: from the default history (an inactive pair's entry
+                        // is stale, see `PairList::history`).
+                        history[k] = Default::default();
+                        active[k] = true;
+                    }
                     let kinematics = ContactKinematics {
                         overlap,
                         normal,

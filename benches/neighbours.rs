@@ -1,0 +1,97 @@
+//! Cost of one neighbour-list build of the neighbour-list path (binning, the half-stencil
+//! search, grouping by first particle, and the carry-over of contact histories), on 20,736
+//! spheres of radius 2 mm packed as a jittered face-centred cubic lattice with 1 % gaps (12
+//! neighbours within the skin, as dense as a scene's bed): in open space (a hopper or a
+//! column) and in a box periodic in x and y (a bed). The skin is 0.1 d, the scenes'
+//! default; each pair carries a 144-byte history (the size of a scene's), live where the spheres
+//! touch, so the carry-over moves what a scene's does.
+//!
+//! Run: `cargo bench --bench neighbours -- --warm-up-time 1 --measurement-time 5`
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use mdr_contact::nalgebra::Vector3;
+use mdr_rapier::fast::neighbours::{NeighbourBuilder, PairList};
+use mdr_rapier::fast::Boundary;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+const RADIUS: f64 = 0.002;
+/// Cubic cells of the lattice (4 spheres each).
+const CELLS: [usize; 3] = [18, 18, 16];
+/// Side of a cubic cell: nearest neighbours 2.02 r apart.
+const SIDE: f64 = std::f64::consts::SQRT_2 * 2.02 * RADIUS;
+
+/// A scene's history size.
+type History = [f64; 18];
+
+/// Jittered FCC lattice, each sphere moved by up to ±0.5 % of d per axis.
+fn lattice() -> (Vec<Vector3<f64>>, Vec<f64>) {
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let basis = [
+        [0.0, 0.0, 0.0],
+        [0.5, 0.5, 0.0],
+        [0.5, 0.0, 0.5],
+        [0.0, 0.5, 0.5],
+    ];
+    let mut x = Vec::new();
+    for k in 0..CELLS[2] {
+        for j in 0..CELLS[1] {
+            for i in 0..CELLS[0] {
+                for b in basis {
+                    let mut jitter = || rng.random_range(-0.01..0.01) * RADIUS;
+                    x.push(Vector3::new(
+                        (i as f64 + b[0] + 0.25) * SIDE + jitter(),
+                        (j as f64 + b[1] + 0.25) * SIDE + jitter(),
+                        (k as f64 + b[2] + 0.25) * SIDE + jitter(),
+                    ));
+                }
+            }
+        }
+    }
+    let r = vec![RADIUS; x.len()];
+    (x, r)
+}
+
+fn build(c: &mut Criterion) {
+    let (x, r) = lattice();
+    let skin = 0.2 * RADIUS;
+    let side = |n: usize| n as f64 * SIDE;
+    let cases = [
+        ("open", Boundary::Open),
+        (
+            "periodic_xy",
+            Boundary::periodic_xy((0.0, side(CELLS[0])), (0.0, side(CELLS[1]))).unwrap(),
+        ),
+    ];
+    let mut group = c.benchmark_group("neighbour_build");
+    group.throughput(Throughput::Elements(x.len() as u64));
+    for (name, boundary) in cases {
+        let mut builder = NeighbourBuilder::default();
+        let (mut old, mut list) = (PairList::<History>::default(), PairList::default());
+        builder.build(&boundary, &x, &r, skin, &mut old, &mut list);
+        // Live histories where the spheres touch.
+        let offsets = boundary.offsets();
+        for p in 0..list.len() {
+            let (i, j) = (list.i[p] as usize, list.j[p] as usize);
+            let xj = x[j] + offsets[list.image[p] as usize].position;
+            list.active[p] = (x[i] - xj).norm() < r[i] + r[j];
+            list.history[p] = [p as f64; 18];
+        }
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                std::mem::swap(&mut old, &mut list);
+                builder.build(&boundary, &x, &r, skin, &mut old, &mut list);
+                list.len()
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group! {
+    name = benches;
+    // Criterion's plot backend needs a system font, which the build machine may not have.
+    config = Criterion::default().without_plots();
+    targets = build
+}
+criterion_main!(benches);
