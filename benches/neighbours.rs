@@ -1,7 +1,8 @@
-//! Cost of one neighbour-list build of the neighbour-list path (binning, the half-stencil
-//! search, grouping by first particle, and the carry-over of contact histories), on 20,736
-//! spheres of radius 2 mm packed as a jittered face-centred cubic lattice with 1 % gaps (12
-//! neighbours within the skin, as dense as a scene's bed): in open space (a hopper or a
+//! Cost of one neighbour-list build of the neighbour-list path (binning, the search of the 27
+//! cells around each sphere, the sorted pair list and its per-particle indexes, and the
+//! carry-over of the live contact histories), on 20,736
+//! spheres of radius 2 mm packed as a jittered face-centred cubic lattice (12 neighbours within
+//! the skin, 6 listed pairs per sphere, about half of them touching): in open space (a hopper or a
 //! column) and in a box periodic in x and y (a bed). The skin is 0.1 d, the scenes'
 //! default; each pair carries a 144-byte history (the size of a scene's), live where the spheres
 //! touch, so the carry-over moves what a scene's does.
@@ -18,8 +19,8 @@ use rand_chacha::ChaCha8Rng;
 const RADIUS: f64 = 0.002;
 /// Cubic cells of the lattice (4 spheres each).
 const CELLS: [usize; 3] = [18, 18, 16];
-/// Side of a cubic cell: nearest neighbours 2.02 r apart.
-const SIDE: f64 = std::f64::consts::SQRT_2 * 2.02 * RADIUS;
+/// Side of a cubic cell: nearest neighbours 2 r apart before the jitter.
+const SIDE: f64 = std::f64::consts::SQRT_2 * 2.0 * RADIUS;
 
 /// A scene's history size.
 type History = [f64; 18];
