@@ -479,6 +479,11 @@ mod tests {
             (list.i.clone(), list.j.clone()),
             (vec![0, 0, 1], vec![1, 2, 2])
         );
+        assert_eq!(
+            list.active,
+            vec![false; 3],
+            "a first build lists every pair as apart"
+        );
         // Pairs (0, 1) and (0, 2) touch with a history; (1, 2) is listed but apart.
         list.active = vec![true, true, false];
         list.history = vec![11, 12, 0];

@@ -80,9 +80,10 @@ where
                 touching_pairs[touching] = k as u16;
                 touching += usize::from(touch);
                 if active[k] & !touch {
-                    // Separated: the plain path drops the entry, so does this one. The
-                    // wrench of an inactive pair is kept at zero, so that the per-particle
-                    // gather need not test `active`.
+                    // Separated: the plain path drops the entry; this one marks the pair
+                    // inactive and leaves its history as it is (a pair that touches again
+                    // starts from the default, below). The wrench of an inactive pair is kept
+                    // at zero, so that the per-particle gather need not test `active`.
                     if record {
                         ended.push(EndedContact::of(
                             i as u32,
@@ -91,8 +92,6 @@ where
                             &history[k],
                         ));
                     }
-                    // Its history is left as it is: a pair that touches again starts from
-                    // the default (below).
                     active[k] = false;
                     if let Some(w) = wrench.get_mut(k) {
                         *w = PairWrench::default();
