@@ -5,9 +5,12 @@
 //! `(i, j, image)`, with the pair's contact history stored next to it; histories are carried over
 //! a rebuild by merging the old and new lists on that key.
 //!
-//! The build is parallel over blocks of particles; each block writes into its own persistent
-//! buffer and the buffers are concatenated in block order, so the list does not depend on the
-//! number of threads and steady-state rebuilds do not allocate.
+//! The build is parallel over blocks of particles: each block searches into its own persistent
+//! buffer, then writes its share of the list (whose place follows from the blocks' counts) and
+//! merges it with its share of the old list (found by the first particle, on which the old list
+//! is sorted) to carry the histories over. The list does not depend on the number of threads,
+//! and steady-state rebuilds do not allocate beyond a vector of per-block tasks. Binning and
+//! the transposed index are serial.
 
 use super::boundary::{Boundary, Image};
 use crate::kernel::PairWrench;
@@ -140,6 +143,10 @@ pub struct NeighbourBuilder {
     fill: Vec<u32>,
     /// Per block: `(j, image)` candidates and per-particle counts.
     blocks: Vec<BlockBuffers>,
+    /// Where each block's pairs start in the new list (and the list's length last).
+    new_start: Vec<usize>,
+    /// Where each block's pairs start in the old list (and the old list's length last).
+    old_start: Vec<usize>,
 }
 
 impl NeighbourBuilder {
@@ -292,66 +299,103 @@ impl NeighbourBuilder {
                 }
             });
 
-        // Concatenate in block order.
-        out.i.clear();
-        out.j.clear();
-        out.image.clear();
-        out.first.clear();
-        out.first.push(0);
-        for (b, (cands, counts)) in self.blocks[..nblocks].iter().enumerate() {
-            let mut k = 0;
-            for (di, &count) in counts.iter().enumerate() {
-                let i = (b * BLOCK + di) as u32;
-                for &partner in &cands[k..k + count as usize] {
-                    let (j, code) = ((partner >> 8) as u32, partner as u8);
-                    out.i.push(i);
-                    out.j.push(j);
-                    out.image.push(code);
-                }
-                k += count as usize;
-                out.first.push(out.i.len() as u32);
-            }
+        // Each block's range in the new list (its candidates, in block order) and in the old
+        // one (the old pairs whose first particle is in the block: the old list is sorted by
+        // `i`, and may be for another number of particles).
+        self.new_start.clear();
+        self.new_start.push(0);
+        for (cands, _) in &self.blocks[..nblocks] {
+            self.new_start
+                .push(self.new_start.last().unwrap() + cands.len());
         }
-        if n == 0 {
-            out.first.clear();
-            out.first.push(0);
-        }
-        let m = out.i.len();
+        let m = self.new_start[nblocks];
+        self.old_start.clear();
+        self.old_start.extend((0..nblocks).map(|b| {
+            let lo = (b * BLOCK) as u32;
+            old.i.partition_point(|&i| i < lo)
+        }));
+        // The last block also takes the old pairs of particles past `n` (none match).
+        self.old_start.push(old.len());
 
-        // Carry histories over: both lists are sorted by (i, j, image). Only the live ones are
-        // copied; the other entries keep whatever the buffer held, since a history counts only
-        // while its pair is active (`old` is overwritten by the next build; its active entries
-        // are what this build dropped).
-        out.history.resize(m, H::default());
-        out.active.clear();
-        out.active.resize(m, false);
-        // Wrenches are kept only while the parallel path runs (it gathers them per particle);
-        // the one-thread path leaves the list's `wrench` empty.
+        // Only the live histories are copied; the other entries keep whatever the buffer held,
+        // since a history counts only while its pair is active (`old` is overwritten by the
+        // next build; its active entries are what this build dropped). Wrenches are kept only
+        // while the parallel path runs (it gathers them per particle); the one-thread path
+        // leaves the list's `wrench` empty.
         let keep_wrenches = old.wrench.len() == old.len() && !old.is_empty();
-        out.wrench.clear();
+        out.i.resize(m, 0);
+        out.j.resize(m, 0);
+        out.image.resize(m, 0);
+        out.active.resize(m, false);
+        out.history.resize(m, H::default());
         if keep_wrenches {
             out.wrench.resize(m, PairWrench::default());
+        } else {
+            out.wrench.clear();
         }
-        let key = |l: &PairList<H>, p: usize| (l.i[p], l.j[p], l.image[p]);
-        let mut q = 0;
-        for p in 0..m {
-            let k = key(out, p);
-            while q < old.len() && key(old, q) < k {
-                q += 1;
-            }
-            if q < old.len() && key(old, q) == k {
-                if old.active[q] {
-                    out.history[p].clone_from(&old.history[q]);
-                    out.active[p] = true;
-                    // Carried over: what stays active in `old` was dropped by this build.
-                    old.active[q] = false;
-                    if keep_wrenches {
-                        out.wrench[p] = old.wrench[q];
+        out.first.resize(n + 1, 0);
+        out.first[0] = 0;
+
+        // Per block, in parallel: write the block's pairs, then carry the histories over by
+        // merging its new pairs with its old ones (both sorted by `(i, j, image)`).
+        let PairList {
+            i: old_i,
+            j: old_j,
+            image: old_image,
+            active: old_active,
+            history: old_history,
+            wrench: old_wrench,
+            ..
+        } = old;
+        let old = OldPairs {
+            i: old_i,
+            j: old_j,
+            image: old_image,
+            history: old_history,
+            wrench: old_wrench,
+        };
+        let bounds = &self.new_start;
+        let old_bounds = &self.old_start;
+        let wrench_bounds = if keep_wrenches { &bounds[..] } else { &[][..] };
+        let tasks: Vec<BlockTask<'_, H>> = self.blocks[..nblocks]
+            .iter()
+            .zip(split_at_bounds(&mut out.i, bounds))
+            .zip(split_at_bounds(&mut out.j, bounds))
+            .zip(split_at_bounds(&mut out.image, bounds))
+            .zip(split_at_bounds(&mut out.active, bounds))
+            .zip(split_at_bounds(&mut out.history, bounds))
+            .zip(
+                split_at_bounds(&mut out.wrench, wrench_bounds)
+                    .into_iter()
+                    .map(Some)
+                    .chain(std::iter::repeat_with(|| None)),
+            )
+            .zip(out.first[1..].chunks_mut(BLOCK))
+            .zip(split_at_bounds(old_active, old_bounds))
+            .enumerate()
+            .map(
+                |(
+                    b,
+                    ((((((((block, i), j), image), active), history), wrench), first), old_active),
+                )| {
+                    BlockTask {
+                        first_particle: b * BLOCK,
+                        base: bounds[b],
+                        old_range: old_bounds[b]..old_bounds[b + 1],
+                        block,
+                        i,
+                        j,
+                        image,
+                        active,
+                        history,
+                        wrench,
+                        first,
+                        old_active,
                     }
-                }
-                q += 1;
-            }
-        }
+                },
+            )
+            .collect();
+        tasks.into_par_iter().for_each(|task| task.run(&old));
 
         // Transposed index: pairs by second particle, in increasing first particle.
         out.second_start.clear();
@@ -370,6 +414,90 @@ impl NeighbourBuilder {
             let j = out.j[p] as usize;
             out.second[self.fill[j] as usize] = p as u32;
             self.fill[j] += 1;
+        }
+    }
+}
+
+/// `slice` cut at `bounds` (increasing, starting at 0): the parts
+/// `bounds[k]..bounds[k + 1]`.
+fn split_at_bounds<'a, T>(mut slice: &'a mut [T], bounds: &[usize]) -> Vec<&'a mut [T]> {
+    let mut parts = Vec::with_capacity(bounds.len().saturating_sub(1));
+    for w in bounds.windows(2) {
+        let (head, tail) = std::mem::take(&mut slice).split_at_mut(w[1] - w[0]);
+        parts.push(head);
+        slice = tail;
+    }
+    parts
+}
+
+/// What a block's carry-over reads of the old list.
+struct OldPairs<'a, H> {
+    i: &'a [u32],
+    j: &'a [u32],
+    image: &'a [u8],
+    history: &'a [H],
+    wrench: &'a [PairWrench],
+}
+
+/// One search block's share of the new list, and its old pairs' `active` flags.
+struct BlockTask<'a, H> {
+    /// Index of the block's first particle.
+    first_particle: usize,
+    /// Index of the block's first pair in the new list.
+    base: usize,
+    /// The block's pairs in the old list.
+    old_range: std::ops::Range<usize>,
+    block: &'a BlockBuffers,
+    i: &'a mut [u32],
+    j: &'a mut [u32],
+    image: &'a mut [u8],
+    active: &'a mut [bool],
+    history: &'a mut [H],
+    /// `None` when the list keeps no wrenches.
+    wrench: Option<&'a mut [PairWrench]>,
+    /// `first[i + 1]` of the block's particles.
+    first: &'a mut [u32],
+    old_active: &'a mut [bool],
+}
+
+impl<H: Clone> BlockTask<'_, H> {
+    fn run(self, old: &OldPairs<'_, H>) {
+        let (cands, counts) = self.block;
+        let mut p = 0;
+        for (di, &count) in counts.iter().enumerate() {
+            let i = (self.first_particle + di) as u32;
+            for &partner in &cands[p..p + count as usize] {
+                self.i[p] = i;
+                self.j[p] = (partner >> 8) as u32;
+                self.image[p] = partner as u8;
+                p += 1;
+            }
+            self.first[di] = (self.base + p) as u32;
+        }
+        let mut wrench = self.wrench;
+        let old_base = self.old_range.start;
+        let old_key = |q: usize| (old.i[q], old.j[q], old.image[q]);
+        let mut q = self.old_range.start;
+        for p in 0..self.i.len() {
+            let key = (self.i[p], self.j[p], self.image[p]);
+            while q < self.old_range.end && old_key(q) < key {
+                q += 1;
+            }
+            let carried = q < self.old_range.end
+                && old_key(q) == key
+                && std::mem::take(&mut self.old_active[q - old_base]);
+            // Carried over: what stays active in `old` was dropped by this build.
+            self.active[p] = carried;
+            if carried {
+                self.history[p].clone_from(&old.history[q]);
+            }
+            if let Some(w) = wrench.as_deref_mut() {
+                w[p] = if carried {
+                    old.wrench[q]
+                } else {
+                    PairWrench::default()
+                };
+            }
         }
     }
 }
@@ -458,6 +586,94 @@ mod tests {
                 assert!(list.second[second]
                     .iter()
                     .all(|&p| list.j[p as usize] as usize == i));
+            }
+        }
+    }
+
+    /// Over many search blocks, and when particles were removed or added since the last
+    /// build, a rebuild carries exactly the live histories whose key it lists again (checked
+    /// against a map by key), marks every other pair inactive, and leaves active in the old
+    /// list exactly the live pairs it dropped.
+    #[test]
+    fn rebuild_carries_histories_across_blocks_by_key() {
+        use std::collections::HashMap;
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        let boundary = Boundary::periodic_xy((0.0, 8.0), (0.0, 8.0)).unwrap();
+        let cloud = |rng: &mut ChaCha8Rng, n: usize| -> Vec<Vector3<f64>> {
+            (0..n)
+                .map(|_| {
+                    Vector3::new(
+                        rng.random_range(0.0..8.0),
+                        rng.random_range(0.0..8.0),
+                        rng.random_range(0.0..6.0),
+                    )
+                })
+                .collect()
+        };
+        let x = cloud(&mut rng, 3000);
+        for n_next in [3000, 2100, 3400] {
+            let mut builder = NeighbourBuilder::default();
+            let (mut old, mut list) = (PairList::<u64>::default(), PairList::<u64>::default());
+            builder.build(&boundary, &x, &vec![0.25; 3000], 0.1, &mut old, &mut list);
+            let mut live = HashMap::new();
+            for p in 0..list.len() {
+                list.active[p] = rng.random_bool(0.5);
+                list.history[p] = rng.random();
+                if list.active[p] {
+                    live.insert((list.i[p], list.j[p], list.image[p]), list.history[p]);
+                }
+            }
+            // Keep the first particles (moved a little), drop or add the rest.
+            let mut moved: Vec<Vector3<f64>> = x[..n_next.min(3000)]
+                .iter()
+                .map(|p| {
+                    let shift = Vector3::new(
+                        rng.random_range(-0.05..0.05),
+                        rng.random_range(-0.05..0.05),
+                        rng.random_range(-0.05..0.05),
+                    );
+                    let mut q = p + shift;
+                    q.z = q.z.max(0.0);
+                    let mut v = Vector3::zeros();
+                    boundary.wrap(&mut q, &mut v);
+                    q
+                })
+                .collect();
+            moved.extend(cloud(&mut rng, n_next.saturating_sub(3000)));
+            let mut next = PairList::default();
+            builder.build(
+                &boundary,
+                &moved,
+                &vec![0.25; n_next],
+                0.1,
+                &mut list,
+                &mut next,
+            );
+            assert!(next.len() > 4 * BLOCK, "pairs of several blocks");
+            let mut carried = 0;
+            for p in 0..next.len() {
+                let key = (next.i[p], next.j[p], next.image[p]);
+                match live.remove(&key) {
+                    Some(h) => {
+                        assert!(next.active[p], "{key:?} carried");
+                        assert_eq!(next.history[p], h, "{key:?}");
+                        carried += 1;
+                    }
+                    None => assert!(!next.active[p], "{key:?} starts apart"),
+                }
+            }
+            assert!(carried > 1000, "most live pairs are listed again");
+            // What is left in the map was dropped while live: exactly the old list's active.
+            let dropped: Vec<_> = (0..list.len())
+                .filter(|&p| list.active[p])
+                .map(|p| (list.i[p], list.j[p], list.image[p]))
+                .collect();
+            assert_eq!(dropped.len(), live.len(), "n = {n_next}");
+            assert!(dropped.iter().all(|k| live.contains_key(k)));
+            assert_eq!(next.first.len(), n_next + 1);
+            for i in 0..n_next {
+                let own = next.first[i] as usize..next.first[i + 1] as usize;
+                assert!(next.i[own].iter().all(|&k| k as usize == i));
             }
         }
     }
