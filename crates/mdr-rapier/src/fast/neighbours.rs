@@ -8,9 +8,9 @@
 //! The build is parallel over blocks of particles: each block searches into its own persistent
 //! buffer, then writes its share of the list (whose place follows from the blocks' counts) and
 //! merges it with its share of the old list (found by the first particle, on which the old list
-//! is sorted) to carry the histories over. The list does not depend on the number of threads,
-//! and steady-state rebuilds do not allocate beyond a vector of per-block tasks. Binning and
-//! the transposed index are serial.
+//! is sorted) to carry the histories over. The list does not depend on the number of threads;
+//! steady-state rebuilds allocate only a few vectors of one entry per block. Binning and the
+//! transposed index are serial.
 
 use super::boundary::{Boundary, Image};
 use crate::kernel::PairWrench;
@@ -143,10 +143,6 @@ pub struct NeighbourBuilder {
     fill: Vec<u32>,
     /// Per block: `(j, image)` candidates and per-particle counts.
     blocks: Vec<BlockBuffers>,
-    /// Where each block's pairs start in the new list (and the list's length last).
-    new_start: Vec<usize>,
-    /// Where each block's pairs start in the old list (and the old list's length last).
-    old_start: Vec<usize>,
 }
 
 impl NeighbourBuilder {
@@ -302,20 +298,17 @@ impl NeighbourBuilder {
         // Each block's range in the new list (its candidates, in block order) and in the old
         // one (the old pairs whose first particle is in the block: the old list is sorted by
         // `i`, and may be for another number of particles).
-        self.new_start.clear();
-        self.new_start.push(0);
+        let mut bounds = Vec::with_capacity(nblocks + 1);
+        bounds.push(0);
         for (cands, _) in &self.blocks[..nblocks] {
-            self.new_start
-                .push(self.new_start.last().unwrap() + cands.len());
+            bounds.push(bounds[bounds.len() - 1] + cands.len());
         }
-        let m = self.new_start[nblocks];
-        self.old_start.clear();
-        self.old_start.extend((0..nblocks).map(|b| {
-            let lo = (b * BLOCK) as u32;
-            old.i.partition_point(|&i| i < lo)
-        }));
-        // The last block also takes the old pairs of particles past `n` (none match).
-        self.old_start.push(old.len());
+        let m = bounds[nblocks];
+        let old_bounds: Vec<usize> = (0..nblocks)
+            .map(|b| old.i.partition_point(|&i| (i as usize) < b * BLOCK))
+            // The last block also takes the old pairs of particles past `n` (none match).
+            .chain([old.len()])
+            .collect();
 
         // Only the live histories are copied; the other entries keep whatever the buffer held,
         // since a history counts only while its pair is active (`old` is overwritten by the
@@ -354,16 +347,14 @@ impl NeighbourBuilder {
             history: old_history,
             wrench: old_wrench,
         };
-        let bounds = &self.new_start;
-        let old_bounds = &self.old_start;
         let wrench_bounds = if keep_wrenches { &bounds[..] } else { &[][..] };
         let tasks: Vec<BlockTask<'_, H>> = self.blocks[..nblocks]
             .iter()
-            .zip(split_at_bounds(&mut out.i, bounds))
-            .zip(split_at_bounds(&mut out.j, bounds))
-            .zip(split_at_bounds(&mut out.image, bounds))
-            .zip(split_at_bounds(&mut out.active, bounds))
-            .zip(split_at_bounds(&mut out.history, bounds))
+            .zip(split_at_bounds(&mut out.i, &bounds))
+            .zip(split_at_bounds(&mut out.j, &bounds))
+            .zip(split_at_bounds(&mut out.image, &bounds))
+            .zip(split_at_bounds(&mut out.active, &bounds))
+            .zip(split_at_bounds(&mut out.history, &bounds))
             .zip(
                 split_at_bounds(&mut out.wrench, wrench_bounds)
                     .into_iter()
@@ -371,7 +362,7 @@ impl NeighbourBuilder {
                     .chain(std::iter::repeat_with(|| None)),
             )
             .zip(out.first[1..].chunks_mut(BLOCK))
-            .zip(split_at_bounds(old_active, old_bounds))
+            .zip(split_at_bounds(old_active, &old_bounds))
             .enumerate()
             .map(
                 |(
