@@ -12,7 +12,8 @@ use mdr_contact::normal::{
     Thornton, ThorntonLaw, ThorntonState,
 };
 use mdr_contact::rolling::{
-    EpsdRolling, EpsdRollingState, RollingInput, RollingLaw, RollingModel, RollingResponse,
+    EpsdRolling, EpsdRollingState, NoRolling, RollingInput, RollingLaw, RollingModel,
+    RollingResponse,
 };
 use mdr_contact::tangential::Mindlin;
 use mdr_contact::{ContactPair, Result};
@@ -213,6 +214,35 @@ impl RollingLaw for AnyRollingLaw {
             Some(l) => l.dissipated_work(state),
             None => 0.0,
         }
+    }
+}
+
+/// A rolling model a scene's neighbour-list stepper can run with, and how its per-contact
+/// history is written to and read from a checkpoint (as the elastic–plastic spring's state, the
+/// default one when the scene has no rolling resistance). A scene without rolling resistance
+/// runs with [`NoRolling`], whose history is empty and whose update is nothing, rather than with
+/// [`AnyRolling`] switched off: every contact then carries no rolling state and takes no rolling
+/// branch (docs/performance.md).
+pub trait SceneRolling: RollingModel<Law: Clone> + 'static {
+    /// The history to write for a contact.
+    fn record(state: &<Self::Law as RollingLaw>::State) -> EpsdRollingState;
+    /// The history a written one restores.
+    fn restore(record: &EpsdRollingState) -> <Self::Law as RollingLaw>::State;
+}
+
+impl SceneRolling for NoRolling {
+    fn record(_: &()) -> EpsdRollingState {
+        EpsdRollingState::default()
+    }
+    fn restore(_: &EpsdRollingState) {}
+}
+
+impl SceneRolling for EpsdRolling {
+    fn record(state: &EpsdRollingState) -> EpsdRollingState {
+        *state
+    }
+    fn restore(record: &EpsdRollingState) -> EpsdRollingState {
+        *record
     }
 }
 

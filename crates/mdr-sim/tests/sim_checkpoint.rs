@@ -34,6 +34,15 @@ fn resumed_run_on_the_rapier_path_is_bit_identical_to_the_uninterrupted_run() {
     resume_matches(&text, "resume-rapier", true);
 }
 
+/// Without rolling resistance the neighbour-list path keeps no rolling history per contact (the
+/// checkpoint writes the default one): the restart is bit-identical all the same.
+#[test]
+fn resumed_run_without_rolling_resistance_is_bit_identical() {
+    let text = common::column(3, 3, 0.03, 0.5, "");
+    assert!(!text.contains("rolling_friction"));
+    resume_matches(&text, "resume-no-rolling", true);
+}
+
 /// A rotating drum (kinematic mesh container, moving-wall books) on the neighbour-list path,
 /// with frames and the contact network written (steps that store every pair's wrench) and
 /// periodic checkpoints: stopped between two neighbour-list builds and resumed, bit for bit.

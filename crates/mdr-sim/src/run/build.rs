@@ -8,13 +8,15 @@
 //! and rapier keeps and moves the wall bodies.
 
 use crate::error::SimError;
-use crate::laws::{scene_model, AnyDamping, AnyNormal, AnyRolling};
+use crate::laws::{scene_model, AnyDamping, AnyNormal, AnyRolling, SceneRolling};
 use crate::scene::{CouplingMode, ForcePath, NormalSpec, Scene};
 use crate::walls::WallPiece;
 use mdr_contact::normal::MdrElastoPlastic;
+use mdr_contact::rolling::{EpsdRolling, NoRolling};
 use mdr_contact::tangential::Mindlin;
 use mdr_rapier::convert::to_glam;
-use mdr_rapier::fast::{Boundary, FastForceStepper};
+use mdr_rapier::fast::particles::FastParticles;
+use mdr_rapier::fast::{Boundary, FastForceStepper, FastStepReport};
 use mdr_rapier::geometry::SurfaceOfRevolution;
 use mdr_rapier::particles::{MaterialHandle, SphereBuilder};
 use mdr_rapier::{ForceModeStepper, RestitutionHooks};
@@ -24,15 +26,85 @@ use rapier3d_f64::prelude::*;
 /// The force-mode stepper type every scene uses.
 pub type SceneStepper = ForceModeStepper<AnyNormal, Mindlin, AnyDamping, AnyRolling>;
 
-/// The neighbour-list force-mode stepper type every scene uses by default.
-pub type FastSceneStepper = FastForceStepper<AnyNormal, Mindlin, AnyDamping, AnyRolling>;
+/// The neighbour-list force-mode stepper of a scene, with rolling model `R`.
+pub type FastSceneStepper<R> = FastForceStepper<AnyNormal, Mindlin, AnyDamping, R>;
+
+/// The neighbour-list stepper of a scene (the default force path), by rolling model: a scene
+/// without rolling resistance runs with [`NoRolling`], so that its contacts carry no rolling
+/// history and take no rolling branch (a fifth of the pair loop's cost, docs/performance.md).
+pub enum FastScene {
+    /// No rolling resistance (`rolling_friction = 0`).
+    Sliding(Box<FastSceneStepper<NoRolling>>),
+    /// The elastic–plastic spring rolling resistance.
+    Rolling(Box<FastSceneStepper<EpsdRolling>>),
+}
+
+/// `$body` with `$s` bound to the stepper of a [`FastScene`] (a reference to it when `$scene`
+/// is one), whichever its rolling model: for code generic over [`SceneRolling`].
+macro_rules! with_fast {
+    ($scene:expr, $s:ident => $body:expr) => {
+        match $scene {
+            $crate::run::build::FastScene::Sliding($s) => $body,
+            $crate::run::build::FastScene::Rolling($s) => $body,
+        }
+    };
+}
+pub(crate) use with_fast;
+
+impl FastScene {
+    /// The spheres.
+    pub fn particles(&self) -> &FastParticles {
+        with_fast!(self, s => s.particles())
+    }
+
+    /// The spheres, to change.
+    pub fn particles_mut(&mut self) -> &mut FastParticles {
+        with_fast!(self, s => s.particles_mut())
+    }
+
+    /// Neighbour-list builds so far.
+    pub fn rebuilds(&self) -> u64 {
+        with_fast!(self, s => s.rebuilds())
+    }
+
+    /// Sphere pairs in the neighbour list.
+    pub fn listed_pairs(&self) -> usize {
+        with_fast!(self, s => s.pairs().len())
+    }
+
+    /// What the last step did.
+    pub fn last_report(&self) -> FastStepReport {
+        with_fast!(self, s => s.last_report())
+    }
+
+    /// Build the neighbour lists at the next step (after particles jumped).
+    pub fn request_rebuild(&mut self) {
+        with_fast!(self, s => s.request_rebuild())
+    }
+}
+
+/// A neighbour-list stepper's settings for scenes: the skin, energy books that take each
+/// contact's works once, when its history ends, and no orientations (no output reads a sphere's
+/// orientation and no sphere contact depends on it, as LAMMPS's `atom_style sphere`; spins are
+/// integrated).
+fn scene_settings<R: SceneRolling>(
+    stepper: FastSceneStepper<R>,
+    scene: &Scene,
+) -> Result<Box<FastSceneStepper<R>>, SimError> {
+    Ok(Box::new(
+        stepper
+            .skin(skin(scene))?
+            .record_ended_contacts(true)
+            .track_orientation(false),
+    ))
+}
 
 /// The coupling of a built scene.
 pub enum Coupling {
     /// Force mode on rapier's broad and narrow phase (`force_path = "rapier"`).
     Force(Box<SceneStepper>),
     /// Force mode on the neighbour-list path (the default).
-    Fast(Box<FastSceneStepper>),
+    Fast(FastScene),
     /// Restitution mode.
     Restitution(Box<RestitutionHooks>),
 }
@@ -119,7 +191,7 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
 
     enum Inserter {
         Force(Box<SceneStepper>),
-        Fast(Box<FastSceneStepper>),
+        Fast(FastScene),
         Restitution(Box<RestitutionHooks>),
     }
     let mut inserter = match scene.coupling {
@@ -139,9 +211,13 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
                 }
                 None => Boundary::Open,
             };
-            Inserter::Fast(Box::new(
-                FastForceStepper::new(model, boundary).with_rolling(rolling),
-            ))
+            let stepper = FastForceStepper::new(model, boundary);
+            Inserter::Fast(match rolling {
+                AnyRolling(Some(rolling)) => {
+                    FastScene::Rolling(Box::new(stepper.with_rolling(rolling)))
+                }
+                AnyRolling(None) => FastScene::Sliding(Box::new(stepper)),
+            })
         }
         CouplingMode::Restitution => {
             let NormalSpec::Mdr {
@@ -165,7 +241,7 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
         .iter()
         .map(|(_, m)| match &mut inserter {
             Inserter::Force(s) => s.particles_mut().insert_material(*m),
-            Inserter::Fast(s) => s.insert_material(*m),
+            Inserter::Fast(s) => with_fast!(s, s => s.insert_material(*m)),
             Inserter::Restitution(h) => h.particles_mut().insert_material(*m),
         })
         .collect();
@@ -195,13 +271,13 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
                 revolution.axis,
                 revolution.profile.clone(),
             )?;
-            let c = s.insert_surface_of_revolution(
+            let c = with_fast!(s, s => s.insert_surface_of_revolution(
                 &mut world,
                 ColliderBuilder::compound(shapes),
                 Some(handle),
                 materials[wall.material],
                 surface,
-            )?;
+            ))?;
             let i = c.into_raw_parts().0 as usize;
             if wall_of_collider.len() <= i {
                 wall_of_collider.resize(i + 1, usize::MAX);
@@ -216,9 +292,9 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
                 Inserter::Force(s) => {
                     s.insert_surface(&mut world, collider, Some(handle), material)?
                 }
-                Inserter::Fast(s) => {
-                    s.insert_surface(&mut world, collider, Some(handle), material)?
-                }
+                Inserter::Fast(s) => with_fast!(s, s => {
+                    s.insert_surface(&mut world, collider, Some(handle), material)
+                })?,
                 Inserter::Restitution(h) => {
                     h.insert_surface(&mut world, collider, Some(handle), material)?
                 }
@@ -241,7 +317,7 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
         let (b, c) = match &mut inserter {
             Inserter::Force(s) => s.insert_sphere(&mut world, sphere)?,
             Inserter::Fast(s) => {
-                s.insert_sphere(sphere)?;
+                with_fast!(s, s => s.insert_sphere(sphere))?;
                 continue;
             }
             Inserter::Restitution(h) => h.insert_sphere(&mut world, sphere)?,
@@ -268,19 +344,15 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
             Coupling::Force(s)
         }
         Inserter::Fast(s) => {
-            s.configure(&mut world.integration_parameters, scene.dt)?;
+            with_fast!(&s, s => s.configure(&mut world.integration_parameters, scene.dt))?;
             // The walls' broad phase (rapier still detects wall–wall pairs) uses the same
             // prediction distance as the plain path.
             world.integration_parameters.normalized_prediction_distance =
                 prediction_distance(scene) / world.integration_parameters.length_unit;
-            // The energy books take each contact's works once, when its history ends. No
-            // output reads a sphere's orientation and no sphere contact depends on it, so it is
-            // not integrated (as LAMMPS's `atom_style sphere`); spins are.
-            Coupling::Fast(Box::new(
-                (*s).skin(skin(scene))?
-                    .record_ended_contacts(true)
-                    .track_orientation(false),
-            ))
+            Coupling::Fast(match s {
+                FastScene::Sliding(s) => FastScene::Sliding(scene_settings(*s, scene)?),
+                FastScene::Rolling(s) => FastScene::Rolling(scene_settings(*s, scene)?),
+            })
         }
         Inserter::Restitution(mut h) => {
             world.integration_parameters.dt = scene.dt;

@@ -25,12 +25,12 @@ pub use steps::{ContactCounts, SceneSteps};
 use crate::checkpoint::{self, CheckpointError};
 use crate::error::{output, SimError};
 use crate::headline::{HeadlineReport, HeadlineSample, ParticleView, Tracker};
-use crate::laws::AnyRollingLaw;
+use crate::laws::SceneRolling;
 use crate::output::energy::{self, EnergyRow};
 use crate::output::plot;
 use crate::output::vtk::{self, CollectionEntry, ContactFrame, ParticleFrame};
 use crate::scene::Scene;
-use build::{build, Built, Coupling};
+use build::{build, with_fast, Built, Coupling, FastSceneStepper};
 use indicatif::{ProgressBar, ProgressStyle};
 use mdr_contact::normal::NormalLaw;
 use mdr_contact::rolling::RollingLaw;
@@ -345,15 +345,7 @@ impl<'a> Sim<'a> {
                 }
             }
             Coupling::Fast(stepper) => {
-                let state = data
-                    .fast
-                    .as_ref()
-                    .and_then(|f| f.to_state())
-                    .ok_or_else(|| CheckpointError::Incompatible {
-                        path: path.to_path_buf(),
-                        reason: "it holds no valid neighbour-list state".to_owned(),
-                    })?;
-                stepper.import_lists(world, state)?;
+                with_fast!(stepper, s => restore_fast_lists(s, world, data, path))?;
             }
             Coupling::Restitution(hooks) => {
                 let history = hooks.history();
@@ -542,10 +534,10 @@ impl<'a> Sim<'a> {
                     dt,
                 );
             }
-            Coupling::Fast(stepper) => {
-                stepper.compute_forces(world, keep_wrenches)?;
-                self.books.take_fast(stepper, &world.bodies, dt);
-            }
+            Coupling::Fast(stepper) => with_fast!(stepper, s => {
+                s.compute_forces(world, keep_wrenches)?;
+                self.books.take_fast(s, &world.bodies, dt);
+            }),
             Coupling::Restitution(_) => {}
         }
         Ok(())
@@ -559,7 +551,7 @@ impl<'a> Sim<'a> {
                 world.step();
             }
             Coupling::Fast(stepper) => {
-                stepper.advance(world)?;
+                with_fast!(stepper, s => s.advance(world))?;
             }
             Coupling::Restitution(hooks) => hooks.step(world)?,
         }
@@ -584,19 +576,21 @@ impl<'a> Sim<'a> {
                 .extend(p.species.iter().map(|&s| p.species_table[s as usize].mass));
             v.contacts.clear();
             v.contacts.resize(n, 0);
-            let pairs = stepper.pairs();
-            for q in 0..pairs.len() {
-                if pairs.active[q] {
-                    v.contacts[pairs.i[q] as usize] += 1;
-                    v.contacts[pairs.j[q] as usize] += 1;
+            with_fast!(stepper, s => {
+                let pairs = s.pairs();
+                for q in 0..pairs.len() {
+                    if pairs.active[q] {
+                        v.contacts[pairs.i[q] as usize] += 1;
+                        v.contacts[pairs.j[q] as usize] += 1;
+                    }
                 }
-            }
-            let sp = stepper.surface_pairs();
-            for q in 0..sp.len() {
-                if sp.active[q] {
-                    v.contacts[sp.particle[q] as usize] += 1;
+                let sp = s.surface_pairs();
+                for q in 0..sp.len() {
+                    if sp.active[q] {
+                        v.contacts[sp.particle[q] as usize] += 1;
+                    }
                 }
-            }
+            });
             return;
         }
         for (h, p) in self.built.particle_bodies.iter().zip(&self.scene.particles) {
@@ -666,4 +660,23 @@ fn progress_bar(quiet: bool, total: u64, start: u64) -> ProgressBar {
     );
     bar.set_position(start);
     bar
+}
+
+/// Put a checkpoint's neighbour lists and their histories into the neighbour-list stepper.
+fn restore_fast_lists<R: SceneRolling>(
+    stepper: &mut FastSceneStepper<R>,
+    world: &rapier3d_f64::prelude::PhysicsWorld,
+    data: &CheckpointData,
+    path: &Path,
+) -> Result<(), SimError> {
+    let state = data
+        .fast
+        .as_ref()
+        .and_then(|f| f.to_state::<R>())
+        .ok_or_else(|| CheckpointError::Incompatible {
+            path: path.to_path_buf(),
+            reason: "it holds no valid neighbour-list state".to_owned(),
+        })?;
+    stepper.import_lists(world, state)?;
+    Ok(())
 }

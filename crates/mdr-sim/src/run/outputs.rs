@@ -42,40 +42,11 @@ impl Sim<'_> {
             row.contacts = stepper.contacts().len() as u64;
         }
         if let Coupling::Fast(stepper) = &self.built.coupling {
-            let mut add =
-                |(law, rolling): &(SceneLaw, AnyRollingLaw), h: &FastPairHistory, overlap: f64| {
-                    row.elastic_normal_j += law.normal.elastic_energy(&h.contact.normal, overlap);
-                    let t = &h.contact.tangential;
-                    row.elastic_tangential_j += 0.5
-                        * law.tangential.stiffness(t.contact_radius)
-                        * t.displacement.norm_squared();
-                    row.elastic_rolling_j += rolling.elastic_energy(&h.rolling);
-                    row.contacts += 1;
-                };
-            let p = stepper.particles();
-            let sp = stepper.surface_pairs();
-            for q in (0..sp.len()).filter(|&q| sp.active[q]) {
-                let (i, s) = (sp.particle[q] as usize, sp.surface[q] as usize);
-                add(
-                    stepper.surface_pair_laws(i, s),
-                    &sp.history[q],
-                    sp.contact[q].overlap,
-                );
-            }
-            let pairs = stepper.pairs();
-            let offsets = stepper.boundary().offsets();
-            for q in (0..pairs.len()).filter(|&q| pairs.active[q]) {
-                let (i, j) = (pairs.i[q] as usize, pairs.j[q] as usize);
-                // Partner `j` as the pair sees it (its periodic image in a periodic box).
-                let xj = p.position[j] + offsets[pairs.image[q] as usize].position;
-                let overlap = sphere_sphere(&p.position[i], p.radius[i], &xj, p.radius[j])
-                    .map_or(0.0, |c| c.overlap);
-                add(stepper.sphere_pair_laws(i, j), &pairs.history[q], overlap);
-            }
+            with_fast!(stepper, s => live_elastic_energies(s, &mut row));
         }
         // The neighbour-list path's totals hold the contacts that ended; add the live ones.
         let live = match &self.built.coupling {
-            Coupling::Fast(stepper) => Books::live_fast(stepper, None),
+            Coupling::Fast(stepper) => with_fast!(stepper, s => Books::live_fast(s, None)),
             _ => ContactWorks::default(),
         };
         row.plastic_j = self.books.plastic + live.plastic;
@@ -98,7 +69,7 @@ impl Sim<'_> {
         if let Coupling::Fast(stepper) = &self.built.coupling {
             let p = stepper.particles();
             let mut plastic = self.books.particle_plastic.clone();
-            Books::live_fast(stepper, Some(&mut plastic));
+            with_fast!(stepper, s => Books::live_fast(s, Some(&mut plastic)));
             for (i, &plastic_work) in plastic.iter().enumerate().take(p.len()) {
                 frame.position.push(p.position[i].into());
                 frame.radius.push(p.radius[i]);
@@ -129,43 +100,7 @@ impl Sim<'_> {
         if scene.contact_network {
             let mut net = ContactFrame::default();
             if let Coupling::Fast(stepper) = &self.built.coupling {
-                let p = stepper.particles();
-                let sp = stepper.surface_pairs();
-                for q in (0..sp.len()).filter(|&q| sp.active[q]) {
-                    let (i, s) = (sp.particle[q] as usize, sp.surface[q] as usize);
-                    let (law, _) = stepper.surface_pair_laws(i, s);
-                    let (c, w) = (&sp.contact[q], &sp.wrench[q]);
-                    net.from.push(p.position[i].into());
-                    net.to.push(c.point.into());
-                    net.force.push(w.force.into());
-                    net.normal_force.push(w.force.dot(&c.normal));
-                    net.overlap.push(c.overlap);
-                    net.plastic_indentation
-                        .push(law.normal.residual_overlap(&sp.history[q].contact.normal));
-                }
-                let pairs = stepper.pairs();
-                let offsets = stepper.boundary().offsets();
-                for q in (0..pairs.len()).filter(|&q| pairs.active[q]) {
-                    let (i, j) = (pairs.i[q] as usize, pairs.j[q] as usize);
-                    let (law, _) = stepper.sphere_pair_laws(i, j);
-                    // In a periodic box the line goes to the partner's image next to `i`.
-                    let xj = p.position[j] + offsets[pairs.image[q] as usize].position;
-                    let Some(c) = sphere_sphere(&p.position[i], p.radius[i], &xj, p.radius[j])
-                    else {
-                        continue;
-                    };
-                    // Stored for every pair when a network frame is due (`compute_forces`).
-                    let force = pairs.wrench.get(q).map_or(Vector3::zeros(), |w| w.force);
-                    net.from.push(p.position[i].into());
-                    net.to.push(xj.into());
-                    net.force.push(force.into());
-                    net.normal_force.push(force.dot(&c.normal));
-                    net.overlap.push(c.overlap);
-                    net.plastic_indentation.push(
-                        law.normal
-                            .residual_overlap(&pairs.history[q].contact.normal),
-                    );
-                }
+                with_fast!(stepper, s => live_contact_network(s, &mut net));
             }
             if let Coupling::Force(stepper) = &self.built.coupling {
                 for e in stepper.contacts().entries() {
@@ -272,5 +207,78 @@ impl Sim<'_> {
             let _ = std::fs::remove_file(old);
         }
         Ok(())
+    }
+}
+
+/// Add the elastic energies of the contacts alive on the neighbour-list path to `row`, and
+/// count them.
+fn live_elastic_energies<R: SceneRolling>(stepper: &FastSceneStepper<R>, row: &mut EnergyRow) {
+    let mut add = |(law, rolling): &(SceneLaw, R::Law), h: &FastPairHistory<R>, overlap: f64| {
+        row.elastic_normal_j += law.normal.elastic_energy(&h.contact.normal, overlap);
+        let t = &h.contact.tangential;
+        row.elastic_tangential_j +=
+            0.5 * law.tangential.stiffness(t.contact_radius) * t.displacement.norm_squared();
+        row.elastic_rolling_j += rolling.elastic_energy(&h.rolling);
+        row.contacts += 1;
+    };
+    let p = stepper.particles();
+    let sp = stepper.surface_pairs();
+    for q in (0..sp.len()).filter(|&q| sp.active[q]) {
+        let (i, s) = (sp.particle[q] as usize, sp.surface[q] as usize);
+        add(
+            stepper.surface_pair_laws(i, s),
+            &sp.history[q],
+            sp.contact[q].overlap,
+        );
+    }
+    let pairs = stepper.pairs();
+    let offsets = stepper.boundary().offsets();
+    for q in (0..pairs.len()).filter(|&q| pairs.active[q]) {
+        let (i, j) = (pairs.i[q] as usize, pairs.j[q] as usize);
+        // Partner `j` as the pair sees it (its periodic image in a periodic box).
+        let xj = p.position[j] + offsets[pairs.image[q] as usize].position;
+        let overlap =
+            sphere_sphere(&p.position[i], p.radius[i], &xj, p.radius[j]).map_or(0.0, |c| c.overlap);
+        add(stepper.sphere_pair_laws(i, j), &pairs.history[q], overlap);
+    }
+}
+
+/// Add the contacts alive on the neighbour-list path to a contact-network frame.
+fn live_contact_network<R: SceneRolling>(stepper: &FastSceneStepper<R>, net: &mut ContactFrame) {
+    let p = stepper.particles();
+    let sp = stepper.surface_pairs();
+    for q in (0..sp.len()).filter(|&q| sp.active[q]) {
+        let (i, s) = (sp.particle[q] as usize, sp.surface[q] as usize);
+        let (law, _) = stepper.surface_pair_laws(i, s);
+        let (c, w) = (&sp.contact[q], &sp.wrench[q]);
+        net.from.push(p.position[i].into());
+        net.to.push(c.point.into());
+        net.force.push(w.force.into());
+        net.normal_force.push(w.force.dot(&c.normal));
+        net.overlap.push(c.overlap);
+        net.plastic_indentation
+            .push(law.normal.residual_overlap(&sp.history[q].contact.normal));
+    }
+    let pairs = stepper.pairs();
+    let offsets = stepper.boundary().offsets();
+    for q in (0..pairs.len()).filter(|&q| pairs.active[q]) {
+        let (i, j) = (pairs.i[q] as usize, pairs.j[q] as usize);
+        let (law, _) = stepper.sphere_pair_laws(i, j);
+        // In a periodic box the line goes to the partner's image next to `i`.
+        let xj = p.position[j] + offsets[pairs.image[q] as usize].position;
+        let Some(c) = sphere_sphere(&p.position[i], p.radius[i], &xj, p.radius[j]) else {
+            continue;
+        };
+        // Stored for every pair when a network frame is due (`compute_forces`).
+        let force = pairs.wrench.get(q).map_or(Vector3::zeros(), |w| w.force);
+        net.from.push(p.position[i].into());
+        net.to.push(xj.into());
+        net.force.push(force.into());
+        net.normal_force.push(force.dot(&c.normal));
+        net.overlap.push(c.overlap);
+        net.plastic_indentation.push(
+            law.normal
+                .residual_overlap(&pairs.history[q].contact.normal),
+        );
     }
 }

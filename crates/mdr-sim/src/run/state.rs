@@ -1,17 +1,17 @@
 //! What a run carries from step to step besides rapier's bodies: the energy books, and the
 //! checkpoint payload that holds everything needed to continue bit-identically.
 
-use super::build::{Coupling, FastSceneStepper, SceneStepper};
+use super::build::{with_fast, Coupling, FastSceneStepper, SceneStepper};
 use super::Sim;
 use crate::headline::{HeadlineSample, Tracker};
-use crate::laws::{AnyDamping, AnyNormal, AnyNormalState};
+use crate::laws::{AnyDamping, AnyNormal, AnyNormalState, SceneRolling};
 use crate::output::energy::EnergyRow;
 use crate::output::vtk::CollectionEntry;
 use crate::scene::Scene;
 use mdr_contact::damping::DampingModel;
 use mdr_contact::model::{ContactLaw, ContactState, WorkBooks};
 use mdr_contact::normal::{NormalLaw, NormalModel};
-use mdr_contact::rolling::{EpsdRollingState, RollingLaw};
+use mdr_contact::rolling::{EpsdRollingState, RollingLaw, RollingModel};
 use mdr_contact::tangential::{Mindlin, MindlinState, TangentialModel};
 use mdr_rapier::convert::{to_glam, to_na};
 use mdr_rapier::fast::particles::FastParticles;
@@ -176,9 +176,9 @@ impl Books {
     /// The step whose forces were just computed, on the neighbour-list path: the contacts that
     /// ended (their whole books, once), and the work of kinematic walls (`F · v_wall dt` per
     /// touching sphere, in the stepper's surface-pair order).
-    pub(crate) fn take_fast(
+    pub(crate) fn take_fast<R: SceneRolling>(
         &mut self,
-        stepper: &mut FastSceneStepper,
+        stepper: &mut FastSceneStepper<R>,
         bodies: &RigidBodySet,
         dt: f64,
     ) {
@@ -224,8 +224,8 @@ impl Books {
     /// ([`Books`]); with `particle_plastic`, their plastic work is added to it per particle
     /// (half to each sphere of a pair). Taken in parallel over fixed blocks of particles and
     /// joined in block order, so the sums do not depend on the number of threads.
-    pub(crate) fn live_fast(
-        stepper: &FastSceneStepper,
+    pub(crate) fn live_fast<R: SceneRolling>(
+        stepper: &FastSceneStepper<R>,
         particle_plastic: Option<&mut [f64]>,
     ) -> ContactWorks {
         /// Particles per block.
@@ -389,13 +389,16 @@ pub struct FastRecord {
     pub surface_histories: Vec<ContactRecord>,
 }
 
-pub(crate) type FastPairHistory =
-    mdr_rapier::kernel::PairHistory<ContactState<AnyNormalState, MindlinState>, EpsdRollingState>;
+/// The history of one pair on the neighbour-list path of a scene with rolling model `R`.
+pub(crate) type FastPairHistory<R> = mdr_rapier::kernel::PairHistory<
+    ContactState<AnyNormalState, MindlinState>,
+    <<R as RollingModel>::Law as RollingLaw>::State,
+>;
 
 impl FastRecord {
-    pub(crate) fn of(stepper: &FastSceneStepper) -> Self {
+    pub(crate) fn of<R: SceneRolling>(stepper: &FastSceneStepper<R>) -> Self {
         let state = stepper.export_lists();
-        let touching = |active: &[bool], history: &[FastPairHistory]| -> Vec<ContactRecord> {
+        let touching = |active: &[bool], history: &[FastPairHistory<R>]| -> Vec<ContactRecord> {
             active
                 .iter()
                 .zip(history)
@@ -404,7 +407,7 @@ impl FastRecord {
                 .map(|(k, (_, h))| ContactRecord {
                     key: k as u64,
                     contact: h.contact.clone(),
-                    rolling: h.rolling,
+                    rolling: R::record(&h.rolling),
                 })
                 .collect()
         };
@@ -428,16 +431,16 @@ impl FastRecord {
     }
 
     /// The stepper's state; `None` if a history's index is out of range.
-    pub(crate) fn to_state(&self) -> Option<FastListState<FastPairHistory>> {
+    pub(crate) fn to_state<R: SceneRolling>(&self) -> Option<FastListState<FastPairHistory<R>>> {
         let expand = |n: usize, records: &[ContactRecord]| {
             let mut active = vec![false; n];
-            let mut history = vec![FastPairHistory::default(); n];
+            let mut history = vec![FastPairHistory::<R>::default(); n];
             for r in records {
                 let k = usize::try_from(r.key).ok().filter(|&k| k < n)?;
                 active[k] = true;
-                history[k] = FastPairHistory {
+                history[k] = FastPairHistory::<R> {
                     contact: r.contact.clone(),
-                    rolling: r.rolling,
+                    rolling: R::restore(&r.rolling),
                 };
             }
             Some((active, history))
@@ -560,7 +563,7 @@ impl CheckpointData {
                 .map(|h| BodyRecord::of(&bodies[*h])),
         );
         let fast = match &sim.built.coupling {
-            Coupling::Fast(stepper) => Some(FastRecord::of(stepper)),
+            Coupling::Fast(stepper) => Some(with_fast!(stepper, s => FastRecord::of(s))),
             _ => None,
         };
         let (contacts, impacts) = match &sim.built.coupling {

@@ -88,7 +88,7 @@ impl<'a> SceneSteps<'a> {
     /// within the skin, each of which the pair loop tests every step.
     pub fn listed_pairs(&self) -> Option<usize> {
         match &self.sim.built.coupling {
-            Coupling::Fast(stepper) => Some(stepper.pairs().len()),
+            Coupling::Fast(stepper) => Some(stepper.listed_pairs()),
             _ => None,
         }
     }
