@@ -43,6 +43,28 @@ fn resumed_run_without_rolling_resistance_is_bit_identical() {
     resume_matches(&text, "resume-no-rolling", true);
 }
 
+/// The Hertz and Thornton laws, each with its own history on the neighbour-list path (Thornton's
+/// the longest: the largest overlap, the unloading curve and the residual overlap), written to
+/// a checkpoint and read back: bit-identical restarts, with rolling resistance and without.
+#[test]
+fn resumed_hertz_and_thornton_runs_are_bit_identical() {
+    let mdr = "normal = \"mdr\"\ncritical_line_load_n_per_m = 100.0\nhardening_ratio = 0.37";
+    for (tag, normal) in [
+        ("hertz", "normal = \"hertz\""),
+        (
+            "thornton",
+            "normal = \"thornton\"\nyield_pressure_pa = 5.0e5",
+        ),
+    ] {
+        let sliding = common::column(3, 3, 0.03, 0.5, "");
+        assert!(sliding.contains(mdr));
+        let sliding = sliding.replace(mdr, normal);
+        let rolling = sliding.replace("friction = 0.5", "friction = 0.5\nrolling_friction = 0.05");
+        resume_matches(&sliding, &format!("resume-{tag}"), true);
+        resume_matches(&rolling, &format!("resume-{tag}-rolling"), true);
+    }
+}
+
 /// A rotating drum (kinematic mesh container, moving-wall books) on the neighbour-list path,
 /// with frames and the contact network written (steps that store every pair's wrench) and
 /// periodic checkpoints: stopped between two neighbour-list builds and resumed, bit for bit.

@@ -8,10 +8,11 @@
 //! and rapier keeps and moves the wall bodies.
 
 use crate::error::SimError;
-use crate::laws::{scene_model, AnyDamping, AnyNormal, AnyRolling, SceneRolling};
+use crate::laws::{scene_model, AnyDamping, AnyNormal, AnyRolling, SceneNormal, SceneRolling};
 use crate::scene::{CouplingMode, ForcePath, NormalSpec, Scene};
 use crate::walls::WallPiece;
-use mdr_contact::normal::MdrElastoPlastic;
+use mdr_contact::model::ContactModel;
+use mdr_contact::normal::{Hertz, MdrElastoPlastic, Thornton};
 use mdr_contact::rolling::{EpsdRolling, NoRolling};
 use mdr_contact::tangential::Mindlin;
 use mdr_rapier::convert::to_glam;
@@ -26,26 +27,40 @@ use rapier3d_f64::prelude::*;
 /// The force-mode stepper type every scene uses.
 pub type SceneStepper = ForceModeStepper<AnyNormal, Mindlin, AnyDamping, AnyRolling>;
 
-/// The neighbour-list force-mode stepper of a scene, with rolling model `R`.
-pub type FastSceneStepper<R> = FastForceStepper<AnyNormal, Mindlin, AnyDamping, R>;
+/// The neighbour-list force-mode stepper of a scene, with normal model `N` and rolling model
+/// `R`.
+pub type FastSceneStepper<N, R> = FastForceStepper<N, Mindlin, AnyDamping, R>;
 
-/// The neighbour-list stepper of a scene (the default force path), by rolling model: a scene
-/// without rolling resistance runs with [`NoRolling`], so that its contacts carry no rolling
-/// history and take no rolling branch (a fifth of the pair loop's cost, docs/performance.md).
+/// The neighbour-list stepper of a scene (the default force path), compiled for each normal law
+/// and for rolling resistance on or off: a contact carries only the history its laws keep (a
+/// scene without rolling resistance runs with [`NoRolling`]: no rolling history, no rolling
+/// branch), and the pair loop takes no branch on the law (docs/performance.md).
 pub enum FastScene {
-    /// No rolling resistance (`rolling_friction = 0`).
-    Sliding(Box<FastSceneStepper<NoRolling>>),
-    /// The elastic–plastic spring rolling resistance.
-    Rolling(Box<FastSceneStepper<EpsdRolling>>),
+    /// MDR, no rolling resistance (`rolling_friction = 0`).
+    MdrSliding(Box<FastSceneStepper<MdrElastoPlastic, NoRolling>>),
+    /// MDR with the elastic–plastic spring rolling resistance.
+    MdrRolling(Box<FastSceneStepper<MdrElastoPlastic, EpsdRolling>>),
+    /// Hertz, no rolling resistance.
+    HertzSliding(Box<FastSceneStepper<Hertz, NoRolling>>),
+    /// Hertz with rolling resistance.
+    HertzRolling(Box<FastSceneStepper<Hertz, EpsdRolling>>),
+    /// Thornton, no rolling resistance.
+    ThorntonSliding(Box<FastSceneStepper<Thornton, NoRolling>>),
+    /// Thornton with rolling resistance.
+    ThorntonRolling(Box<FastSceneStepper<Thornton, EpsdRolling>>),
 }
 
 /// `$body` with `$s` bound to the stepper of a [`FastScene`] (a reference to it when `$scene`
-/// is one), whichever its rolling model: for code generic over [`SceneRolling`].
+/// is one), whichever its laws: for code generic over [`SceneNormal`] and [`SceneRolling`].
 macro_rules! with_fast {
     ($scene:expr, $s:ident => $body:expr) => {
         match $scene {
-            $crate::run::build::FastScene::Sliding($s) => $body,
-            $crate::run::build::FastScene::Rolling($s) => $body,
+            $crate::run::build::FastScene::MdrSliding($s) => $body,
+            $crate::run::build::FastScene::MdrRolling($s) => $body,
+            $crate::run::build::FastScene::HertzSliding($s) => $body,
+            $crate::run::build::FastScene::HertzRolling($s) => $body,
+            $crate::run::build::FastScene::ThorntonSliding($s) => $body,
+            $crate::run::build::FastScene::ThorntonRolling($s) => $body,
         }
     };
 }
@@ -87,16 +102,46 @@ impl FastScene {
 /// contact's works once, when its history ends, and no orientations (no output reads a sphere's
 /// orientation and no sphere contact depends on it, as LAMMPS's `atom_style sphere`; spins are
 /// integrated).
-fn scene_settings<R: SceneRolling>(
-    stepper: FastSceneStepper<R>,
+fn scene_settings<N: SceneNormal, R: SceneRolling>(
+    stepper: FastSceneStepper<N, R>,
     scene: &Scene,
-) -> Result<Box<FastSceneStepper<R>>, SimError> {
+) -> Result<Box<FastSceneStepper<N, R>>, SimError> {
     Ok(Box::new(
         stepper
             .skin(skin(scene))?
             .record_ended_contacts(true)
             .track_orientation(false),
     ))
+}
+
+impl FastScene {
+    /// The stepper for `model` with normal law `N` and the scene's rolling model, as the variant
+    /// `sliding` or `rolling` of its normal law.
+    fn new<N: SceneNormal>(
+        model: ContactModel<N, Mindlin, AnyDamping>,
+        rolling: AnyRolling,
+        boundary: Boundary,
+        sliding: fn(Box<FastSceneStepper<N, NoRolling>>) -> FastScene,
+        with_rolling: fn(Box<FastSceneStepper<N, EpsdRolling>>) -> FastScene,
+    ) -> FastScene {
+        let stepper = FastForceStepper::new(model, boundary);
+        match rolling {
+            AnyRolling(Some(rolling)) => with_rolling(Box::new(stepper.with_rolling(rolling))),
+            AnyRolling(None) => sliding(Box::new(stepper)),
+        }
+    }
+
+    /// The same stepper with the settings of [`scene_settings`].
+    fn with_scene_settings(self, scene: &Scene) -> Result<FastScene, SimError> {
+        Ok(match self {
+            FastScene::MdrSliding(s) => FastScene::MdrSliding(scene_settings(*s, scene)?),
+            FastScene::MdrRolling(s) => FastScene::MdrRolling(scene_settings(*s, scene)?),
+            FastScene::HertzSliding(s) => FastScene::HertzSliding(scene_settings(*s, scene)?),
+            FastScene::HertzRolling(s) => FastScene::HertzRolling(scene_settings(*s, scene)?),
+            FastScene::ThorntonSliding(s) => FastScene::ThorntonSliding(scene_settings(*s, scene)?),
+            FastScene::ThorntonRolling(s) => FastScene::ThorntonRolling(scene_settings(*s, scene)?),
+        })
+    }
 }
 
 /// The coupling of a built scene.
@@ -211,12 +256,28 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
                 }
                 None => Boundary::Open,
             };
-            let stepper = FastForceStepper::new(model, boundary);
-            Inserter::Fast(match rolling {
-                AnyRolling(Some(rolling)) => {
-                    FastScene::Rolling(Box::new(stepper.with_rolling(rolling)))
-                }
-                AnyRolling(None) => FastScene::Sliding(Box::new(stepper)),
+            Inserter::Fast(match model.normal {
+                AnyNormal::Mdr(normal) => FastScene::new(
+                    model.with_normal(normal),
+                    rolling,
+                    boundary,
+                    FastScene::MdrSliding,
+                    FastScene::MdrRolling,
+                ),
+                AnyNormal::Hertz(normal) => FastScene::new(
+                    model.with_normal(normal),
+                    rolling,
+                    boundary,
+                    FastScene::HertzSliding,
+                    FastScene::HertzRolling,
+                ),
+                AnyNormal::Thornton(normal) => FastScene::new(
+                    model.with_normal(normal),
+                    rolling,
+                    boundary,
+                    FastScene::ThorntonSliding,
+                    FastScene::ThorntonRolling,
+                ),
             })
         }
         CouplingMode::Restitution => {
@@ -349,10 +410,7 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
             // prediction distance as the plain path.
             world.integration_parameters.normalized_prediction_distance =
                 prediction_distance(scene) / world.integration_parameters.length_unit;
-            Coupling::Fast(match s {
-                FastScene::Sliding(s) => FastScene::Sliding(scene_settings(*s, scene)?),
-                FastScene::Rolling(s) => FastScene::Rolling(scene_settings(*s, scene)?),
-            })
+            Coupling::Fast(s.with_scene_settings(scene)?)
         }
         Inserter::Restitution(mut h) => {
             world.integration_parameters.dt = scene.dt;

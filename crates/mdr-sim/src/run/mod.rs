@@ -25,7 +25,7 @@ pub use steps::{ContactCounts, SceneSteps};
 use crate::checkpoint::{self, CheckpointError};
 use crate::error::{output, SimError};
 use crate::headline::{HeadlineReport, HeadlineSample, ParticleView, Tracker};
-use crate::laws::SceneRolling;
+use crate::laws::{SceneNormal, SceneRolling};
 use crate::output::energy::{self, EnergyRow};
 use crate::output::plot;
 use crate::output::vtk::{self, CollectionEntry, ContactFrame, ParticleFrame};
@@ -663,8 +663,8 @@ fn progress_bar(quiet: bool, total: u64, start: u64) -> ProgressBar {
 }
 
 /// Put a checkpoint's neighbour lists and their histories into the neighbour-list stepper.
-fn restore_fast_lists<R: SceneRolling>(
-    stepper: &mut FastSceneStepper<R>,
+fn restore_fast_lists<N: SceneNormal, R: SceneRolling>(
+    stepper: &mut FastSceneStepper<N, R>,
     world: &rapier3d_f64::prelude::PhysicsWorld,
     data: &CheckpointData,
     path: &Path,
@@ -672,7 +672,7 @@ fn restore_fast_lists<R: SceneRolling>(
     let state = data
         .fast
         .as_ref()
-        .and_then(|f| f.to_state::<R>())
+        .and_then(|f| f.to_state::<N, R>())
         .ok_or_else(|| CheckpointError::Incompatible {
             path: path.to_path_buf(),
             reason: "it holds no valid neighbour-list state".to_owned(),

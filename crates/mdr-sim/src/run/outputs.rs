@@ -212,15 +212,19 @@ impl Sim<'_> {
 
 /// Add the elastic energies of the contacts alive on the neighbour-list path to `row`, and
 /// count them.
-fn live_elastic_energies<R: SceneRolling>(stepper: &FastSceneStepper<R>, row: &mut EnergyRow) {
-    let mut add = |(law, rolling): &(SceneLaw, R::Law), h: &FastPairHistory<R>, overlap: f64| {
-        row.elastic_normal_j += law.normal.elastic_energy(&h.contact.normal, overlap);
-        let t = &h.contact.tangential;
-        row.elastic_tangential_j +=
-            0.5 * law.tangential.stiffness(t.contact_radius) * t.displacement.norm_squared();
-        row.elastic_rolling_j += rolling.elastic_energy(&h.rolling);
-        row.contacts += 1;
-    };
+fn live_elastic_energies<N: SceneNormal, R: SceneRolling>(
+    stepper: &FastSceneStepper<N, R>,
+    row: &mut EnergyRow,
+) {
+    let mut add =
+        |(law, rolling): &(SceneLaw<N>, R::Law), h: &FastPairHistory<N, R>, overlap: f64| {
+            row.elastic_normal_j += law.normal.elastic_energy(&h.contact.normal, overlap);
+            let t = &h.contact.tangential;
+            row.elastic_tangential_j +=
+                0.5 * law.tangential.stiffness(t.contact_radius) * t.displacement.norm_squared();
+            row.elastic_rolling_j += rolling.elastic_energy(&h.rolling);
+            row.contacts += 1;
+        };
     let p = stepper.particles();
     let sp = stepper.surface_pairs();
     for q in (0..sp.len()).filter(|&q| sp.active[q]) {
@@ -244,7 +248,10 @@ fn live_elastic_energies<R: SceneRolling>(stepper: &FastSceneStepper<R>, row: &m
 }
 
 /// Add the contacts alive on the neighbour-list path to a contact-network frame.
-fn live_contact_network<R: SceneRolling>(stepper: &FastSceneStepper<R>, net: &mut ContactFrame) {
+fn live_contact_network<N: SceneNormal, R: SceneRolling>(
+    stepper: &FastSceneStepper<N, R>,
+    net: &mut ContactFrame,
+) {
     let p = stepper.particles();
     let sp = stepper.surface_pairs();
     for q in (0..sp.len()).filter(|&q| sp.active[q]) {

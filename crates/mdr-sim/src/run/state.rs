@@ -4,7 +4,7 @@
 use super::build::{with_fast, Coupling, FastSceneStepper, SceneStepper};
 use super::Sim;
 use crate::headline::{HeadlineSample, Tracker};
-use crate::laws::{AnyDamping, AnyNormal, AnyNormalState, SceneRolling};
+use crate::laws::{AnyDamping, AnyNormalState, SceneNormal, SceneRolling};
 use crate::output::energy::EnergyRow;
 use crate::output::vtk::CollectionEntry;
 use crate::scene::Scene;
@@ -176,9 +176,9 @@ impl Books {
     /// The step whose forces were just computed, on the neighbour-list path: the contacts that
     /// ended (their whole books, once), and the work of kinematic walls (`F · v_wall dt` per
     /// touching sphere, in the stepper's surface-pair order).
-    pub(crate) fn take_fast<R: SceneRolling>(
+    pub(crate) fn take_fast<N: SceneNormal, R: SceneRolling>(
         &mut self,
-        stepper: &mut FastSceneStepper<R>,
+        stepper: &mut FastSceneStepper<N, R>,
         bodies: &RigidBodySet,
         dt: f64,
     ) {
@@ -224,8 +224,8 @@ impl Books {
     /// ([`Books`]); with `particle_plastic`, their plastic work is added to it per particle
     /// (half to each sphere of a pair). Taken in parallel over fixed blocks of particles and
     /// joined in block order, so the sums do not depend on the number of threads.
-    pub(crate) fn live_fast<R: SceneRolling>(
-        stepper: &FastSceneStepper<R>,
+    pub(crate) fn live_fast<N: SceneNormal, R: SceneRolling>(
+        stepper: &FastSceneStepper<N, R>,
         particle_plastic: Option<&mut [f64]>,
     ) -> ContactWorks {
         /// Particles per block.
@@ -290,9 +290,9 @@ fn wall_power(wall: &RigidBody, point: &Vector3<f64>, force: &Vector3<f64>) -> f
     force.dot(&v)
 }
 
-/// The composed law of a scene's pairs.
-pub(crate) type SceneLaw = ContactLaw<
-    <AnyNormal as NormalModel>::Law,
+/// The composed law of a scene's pairs, with normal model `N`.
+pub(crate) type SceneLaw<N> = ContactLaw<
+    <N as NormalModel>::Law,
     <Mindlin as TangentialModel>::Law,
     <AnyDamping as DampingModel>::Law,
 >;
@@ -389,16 +389,17 @@ pub struct FastRecord {
     pub surface_histories: Vec<ContactRecord>,
 }
 
-/// The history of one pair on the neighbour-list path of a scene with rolling model `R`.
-pub(crate) type FastPairHistory<R> = mdr_rapier::kernel::PairHistory<
-    ContactState<AnyNormalState, MindlinState>,
+/// The history of one pair on the neighbour-list path of a scene with normal model `N` and
+/// rolling model `R`.
+pub(crate) type FastPairHistory<N, R> = mdr_rapier::kernel::PairHistory<
+    ContactState<<<N as NormalModel>::Law as NormalLaw>::State, MindlinState>,
     <<R as RollingModel>::Law as RollingLaw>::State,
 >;
 
 impl FastRecord {
-    pub(crate) fn of<R: SceneRolling>(stepper: &FastSceneStepper<R>) -> Self {
+    pub(crate) fn of<N: SceneNormal, R: SceneRolling>(stepper: &FastSceneStepper<N, R>) -> Self {
         let state = stepper.export_lists();
-        let touching = |active: &[bool], history: &[FastPairHistory<R>]| -> Vec<ContactRecord> {
+        let touching = |active: &[bool], history: &[FastPairHistory<N, R>]| -> Vec<ContactRecord> {
             active
                 .iter()
                 .zip(history)
@@ -406,7 +407,11 @@ impl FastRecord {
                 .filter(|(_, (&a, _))| a)
                 .map(|(k, (_, h))| ContactRecord {
                     key: k as u64,
-                    contact: h.contact.clone(),
+                    contact: ContactState {
+                        normal: N::record(&h.contact.normal),
+                        tangential: h.contact.tangential,
+                        books: h.contact.books,
+                    },
                     rolling: R::record(&h.rolling),
                 })
                 .collect()
@@ -431,15 +436,21 @@ impl FastRecord {
     }
 
     /// The stepper's state; `None` if a history's index is out of range.
-    pub(crate) fn to_state<R: SceneRolling>(&self) -> Option<FastListState<FastPairHistory<R>>> {
+    pub(crate) fn to_state<N: SceneNormal, R: SceneRolling>(
+        &self,
+    ) -> Option<FastListState<FastPairHistory<N, R>>> {
         let expand = |n: usize, records: &[ContactRecord]| {
             let mut active = vec![false; n];
-            let mut history = vec![FastPairHistory::<R>::default(); n];
+            let mut history = vec![FastPairHistory::<N, R>::default(); n];
             for r in records {
                 let k = usize::try_from(r.key).ok().filter(|&k| k < n)?;
                 active[k] = true;
-                history[k] = FastPairHistory::<R> {
-                    contact: r.contact.clone(),
+                history[k] = FastPairHistory::<N, R> {
+                    contact: ContactState {
+                        normal: N::restore(&r.contact.normal),
+                        tangential: r.contact.tangential,
+                        books: r.contact.books,
+                    },
                     rolling: R::restore(&r.rolling),
                 };
             }
