@@ -1,6 +1,8 @@
 //! Run-time choice of the sub-models named in a scene file: enums that forward to the law
-//! crate's models, so one force-mode stepper type serves every scene. No physics here: each
-//! variant calls the law crate's own implementation.
+//! crate's models, so one stepper type serves every scene on rapier's force path; the
+//! neighbour-list path is compiled for each normal law and for rolling resistance on or off
+//! ([`SceneNormal`], [`SceneRolling`]) and keeps the enum of the damping law. No physics here:
+//! each variant calls the law crate's own implementation.
 
 use crate::scene::{ContactSpec, DampingSpec, NormalSpec};
 use mdr_contact::damping::{

@@ -648,3 +648,28 @@ pub fn fingerprint(scene: &Scene) -> u32 {
     }
     hasher.finalize()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::FastPairHistory;
+    use mdr_contact::normal::{Hertz, MdrElastoPlastic, Thornton};
+    use mdr_contact::rolling::{EpsdRolling, NoRolling};
+    use std::mem::size_of;
+
+    /// A contact on the neighbour-list path carries its own laws' history and nothing else: the
+    /// normal law's (8 bytes for MDR and Hertz, 24 for Thornton), Mindlin's displacement and
+    /// radius (32), the work books (32), and the rolling spring (40) only with rolling resistance.
+    #[test]
+    fn a_contact_carries_only_its_laws_history() {
+        assert_eq!(
+            size_of::<FastPairHistory<MdrElastoPlastic, NoRolling>>(),
+            72
+        );
+        assert_eq!(size_of::<FastPairHistory<Hertz, NoRolling>>(), 72);
+        assert_eq!(size_of::<FastPairHistory<Thornton, NoRolling>>(), 88);
+        assert_eq!(
+            size_of::<FastPairHistory<MdrElastoPlastic, EpsdRolling>>(),
+            112
+        );
+    }
+}
