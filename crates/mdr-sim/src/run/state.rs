@@ -11,7 +11,7 @@ use crate::scene::Scene;
 use mdr_contact::damping::DampingModel;
 use mdr_contact::model::{ContactLaw, ContactState, WorkBooks};
 use mdr_contact::normal::{NormalLaw, NormalModel};
-use mdr_contact::rolling::{EpsdRollingState, RollingLaw, RollingModel};
+use mdr_contact::rolling::{EpsdRollingState, RollingLaw};
 use mdr_contact::tangential::{Mindlin, MindlinState, TangentialModel};
 use mdr_rapier::convert::{to_glam, to_na};
 use mdr_rapier::fast::particles::FastParticles;
@@ -391,10 +391,7 @@ pub struct FastRecord {
 
 /// The history of one pair on the neighbour-list path of a scene with normal model `N` and
 /// rolling model `R`.
-pub(crate) type FastPairHistory<N, R> = mdr_rapier::kernel::PairHistory<
-    ContactState<<<N as NormalModel>::Law as NormalLaw>::State, MindlinState>,
-    <<R as RollingModel>::Law as RollingLaw>::State,
->;
+pub(crate) type FastPairHistory<N, R> = mdr_rapier::fast::FastHistory<N, Mindlin, R>;
 
 impl FastRecord {
     pub(crate) fn of<N: SceneNormal, R: SceneRolling>(stepper: &FastSceneStepper<N, R>) -> Self {
