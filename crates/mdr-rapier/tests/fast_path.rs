@@ -333,31 +333,52 @@ fn periodic_setup_with(
     (fast, world)
 }
 
+/// `bed` with its spheres in a scrambled order: neighbours in space far apart in index.
+fn scrambled(bed: &Bed) -> Bed {
+    let n = bed.len();
+    // A fixed permutation: i -> (i * 7919) mod n, with n prime to 7919.
+    assert_ne!(n % 7919, 0);
+    let order: Vec<usize> = (0..n).map(|i| (i * 7919) % n).collect();
+    Bed {
+        position: order.iter().map(|&k| bed.position[k]).collect(),
+        diameter: order.iter().map(|&k| bed.diameter[k]).collect(),
+        density: order.iter().map(|&k| bed.density[k]).collect(),
+        ..bed.clone()
+    }
+}
+
+/// The same run with 1, 2 and 3 threads gives the same bits, with the spheres in lattice order
+/// and in a scrambled one (each particle's partners then spread over the whole list, and over
+/// the chunks of the parallel pair loop).
 #[test]
 fn fast_path_is_deterministic_for_one_and_two_threads() {
-    let bed = lattice_bed(&BedSpec {
+    let lattice = lattice_bed(&BedSpec {
         count: 3000,
         ..BedSpec::default()
     })
     .unwrap();
-    let run = |threads| {
-        ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap()
-            .install(|| periodic_run(&bed, 400))
-    };
-    let one = run(1);
-    let two = run(2);
-    assert!(one.last_report().sphere_contacts > 50);
-    assert!(one.last_report().surface_contacts > 20);
-    assert!(
-        one.pairs().len() > 2048,
-        "the pair loop must split into chunks"
-    );
-    assert_eq!(one.particles().position, two.particles().position);
-    assert_eq!(one.particles().linvel, two.particles().linvel);
-    assert_eq!(one.particles().angvel, two.particles().angvel);
+    for bed in [lattice.clone(), scrambled(&lattice)] {
+        let run = |threads| {
+            ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| periodic_run(&bed, 400))
+        };
+        let one = run(1);
+        assert!(one.last_report().sphere_contacts > 50);
+        assert!(one.last_report().surface_contacts > 20);
+        assert!(
+            one.pairs().len() > 2048,
+            "the pair loop must split into chunks"
+        );
+        for threads in [2, 3] {
+            let other = run(threads);
+            assert_eq!(one.particles().position, other.particles().position);
+            assert_eq!(one.particles().linvel, other.particles().linvel);
+            assert_eq!(one.particles().angvel, other.particles().angvel);
+        }
+    }
 }
 
 /// The one-thread path stores no per-pair wrench and the parallel path needs them all for its
