@@ -1,6 +1,7 @@
-//! `mdr-dem sim run` and Ctrl-C: SIGINT while the run is under way makes it write a
-//! final checkpoint and exit with success, printing the `--resume` command; resuming from that
-//! checkpoint (with a `duration_s` that ends shortly after it) completes normally.
+//! `mdr-dem sim run` from the command line. Ctrl-C: SIGINT while the run is under way makes it
+//! write a final checkpoint and exit with success, printing the `--resume` command; resuming
+//! from that checkpoint (with a `duration_s` that ends shortly after it) completes normally.
+//! `--threads`: one and two threads write the same energy books, and 0 is refused by name.
 
 #![cfg(unix)]
 
@@ -147,5 +148,48 @@ fn ctrl_c_writes_a_final_checkpoint_and_the_run_resumes_from_it() {
         String::from_utf8_lossy(&resumed.stderr)
     );
     assert!(stdout.contains(&format!("{} steps", step + 50)), "{stdout}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn threads_flag_sets_the_pool_and_changes_no_result() {
+    let dir = std::env::temp_dir().join(format!("mdr_sim_cli_threads_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = write(&dir.join("column.toml"), &scene(400.5 * DT));
+    let run = |threads: &str| {
+        let out = dir.join(format!("out{threads}"));
+        let output = Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
+            .args(["sim", "run"])
+            .arg(&path)
+            .arg("--out")
+            .arg(&out)
+            .args(["--quiet", "--threads", threads])
+            .output()
+            .unwrap();
+        (output, out.join("column_energy.csv"))
+    };
+    let (one, one_csv) = run("1");
+    assert!(
+        one.status.success(),
+        "{}",
+        String::from_utf8_lossy(&one.stderr)
+    );
+    let (two, two_csv) = run("2");
+    assert!(
+        two.status.success(),
+        "{}",
+        String::from_utf8_lossy(&two.stderr)
+    );
+    let one_csv = std::fs::read(one_csv).unwrap();
+    assert!(one_csv.len() > 200, "energy rows written");
+    assert_eq!(one_csv, std::fs::read(two_csv).unwrap());
+    let (zero, _) = run("0");
+    assert!(!zero.status.success());
+    let stderr = String::from_utf8_lossy(&zero.stderr);
+    assert!(
+        stderr.contains("--threads = 0 is outside the allowed range [1, inf)"),
+        "{stderr}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }

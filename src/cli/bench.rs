@@ -141,7 +141,8 @@ pub fn run(cmd: BenchCommand) -> anyhow::Result<()> {
     }
 }
 
-fn rayon_pool(threads: usize) -> anyhow::Result<rayon::ThreadPool> {
+/// A pool of `threads` worker threads (`--threads`, at least 1).
+pub(crate) fn rayon_pool(threads: usize) -> anyhow::Result<rayon::ThreadPool> {
     if threads == 0 {
         bail!("--threads = 0 is outside the allowed range [1, inf)");
     }

@@ -1,4 +1,5 @@
-//! `mdr-dem sim run SCENE.toml [--resume CHECKPOINT] [--quiet] [--out DIR]`: a granular scene
+//! `mdr-dem sim run SCENE.toml [--resume CHECKPOINT] [--quiet] [--out DIR] [--threads T]`: a
+//! granular scene
 //! from a TOML file. Checks the file, runs it with a progress bar, writes VTK frames,
 //! the energy books, plots and checkpoints; Ctrl-C writes a final checkpoint and exits cleanly.
 
@@ -6,7 +7,7 @@ use anyhow::Context;
 use clap::Args;
 use mdr_sim::scene::Problems;
 use mdr_sim::{load_scene, run_scene, RunOptions};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
@@ -27,10 +28,15 @@ pub struct RunArgs {
     /// Only check the scene file and print what would run.
     #[arg(long)]
     pub check: bool,
+    /// Worker threads (default: the RAYON_NUM_THREADS environment variable, else every core).
+    /// The trajectory does not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
 }
 
 /// Run `mdr-dem sim run`.
 pub fn run(args: &RunArgs) -> anyhow::Result<()> {
+    let pool = args.threads.map(super::bench::rayon_pool).transpose()?;
     let scene = match load_scene(&args.scene) {
         Ok(scene) => scene,
         Err(problems) => {
@@ -64,13 +70,21 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     if args.check {
         return Ok(());
     }
+    match pool {
+        Some(pool) => pool.install(|| run_checked(args, &scene, &out)),
+        None => run_checked(args, &scene, &out),
+    }
+}
+
+/// The run of a checked scene, on the current rayon pool.
+fn run_checked(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Result<()> {
     let interrupt = Arc::new(AtomicBool::new(false));
     {
         let flag = Arc::clone(&interrupt);
         ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst))
             .context("installing the Ctrl-C handler")?;
     }
-    let options = RunOptions::new(&out)
+    let options = RunOptions::new(out)
         .quiet(args.quiet)
         .resume(args.resume.clone())
         .interrupt(interrupt);
@@ -79,14 +93,14 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
             args.resume.is_none(),
             "--resume continues one run: write its diameter into orifice_diameter_m, remove orifice_sweep_m and resume that scene"
         );
-        let sweep = mdr_sim::headline::run_orifice_sweep(&scene, &options)?;
+        let sweep = mdr_sim::headline::run_orifice_sweep(scene, &options)?;
         for run in &sweep.runs {
             println!("{}", run.headline.text);
         }
         println!("{}", sweep.text);
         return Ok(());
     }
-    let summary = run_scene(&scene, &options)?;
+    let summary = run_scene(scene, &options)?;
     if summary.stopped_early {
         eprintln!(
             "interrupted at t = {:.6e} s (step {}); continue with:\n  mdr-dem sim run {} --resume {}",
