@@ -9,7 +9,6 @@ use mdr_rapier::fast::bed::{
     bench_bed, peak_rss_mb, process_cpu_seconds, settled_bed, Bed, BedSpec, BenchFigures, BenchLaw,
     BenchSettings, BenchValue,
 };
-use mdr_rapier::fast::rayon;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -126,7 +125,7 @@ pub fn run(cmd: BenchCommand) -> anyhow::Result<()> {
         BenchCommand::Bed(args) => run_bed(&args),
         BenchCommand::Scene(args) => run_scene_bench(&args),
         BenchCommand::MakeBed(args) => {
-            let pool = rayon_pool(args.threads)?;
+            let pool = super::rayon_pool(args.threads)?;
             let spec = BedSpec {
                 count: args.count,
                 settle_steps: args.settle_steps,
@@ -139,16 +138,6 @@ pub fn run(cmd: BenchCommand) -> anyhow::Result<()> {
             Ok(())
         }
     }
-}
-
-/// A pool of `threads` worker threads (`--threads`, at least 1).
-pub(crate) fn rayon_pool(threads: usize) -> anyhow::Result<rayon::ThreadPool> {
-    if threads == 0 {
-        bail!("--threads = 0 is outside the allowed range [1, inf)");
-    }
-    Ok(rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()?)
 }
 
 /// The reference bed `benches/lammps/settled.data`, looked for in the working directory and its
@@ -300,7 +289,7 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
     if args.steps == 0 {
         bail!("--steps = 0 is outside the allowed range [1, inf) (timed steps)");
     }
-    let pool = rayon_pool(args.threads)?;
+    let pool = super::rayon_pool(args.threads)?;
     let scene = mdr_sim::scene::load_scene(&args.scene).map_err(|p| anyhow::anyhow!("{p}"))?;
     let figures = pool.install(|| -> anyhow::Result<SceneFigures> {
         let mut steps = match &args.resume {

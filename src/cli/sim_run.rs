@@ -1,7 +1,7 @@
 //! `mdr-dem sim run SCENE.toml [--resume CHECKPOINT] [--quiet] [--out DIR] [--threads T]`: a
-//! granular scene
-//! from a TOML file. Checks the file, runs it with a progress bar, writes VTK frames,
-//! the energy books, plots and checkpoints; Ctrl-C writes a final checkpoint and exits cleanly.
+//! granular scene from a TOML file. Checks the file, runs it with a progress bar, writes VTK
+//! frames, the energy books, plots and checkpoints; Ctrl-C writes a final checkpoint and exits
+//! cleanly.
 
 use anyhow::Context;
 use clap::Args;
@@ -36,7 +36,7 @@ pub struct RunArgs {
 
 /// Run `mdr-dem sim run`.
 pub fn run(args: &RunArgs) -> anyhow::Result<()> {
-    let pool = args.threads.map(super::bench::rayon_pool).transpose()?;
+    let pool = args.threads.map(super::rayon_pool).transpose()?;
     let scene = match load_scene(&args.scene) {
         Ok(scene) => scene,
         Err(problems) => {
