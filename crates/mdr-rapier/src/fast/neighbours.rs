@@ -35,18 +35,13 @@ pub struct PairList<H> {
     /// starts touching starts from the default history (the pair loop resets it then), so
     /// neither a build nor a separation spends a write on the pairs that are apart.
     pub history: Vec<H>,
-    /// Wrench of each pair at the last force evaluation of the parallel path (several threads),
-    /// which gathers them per particle; zero where not `active` (the pair loop keeps it so, and
-    /// the gather relies on it). Empty after a one-thread step: that path adds each wrench to
-    /// the particles' sums as it goes and stores none.
+    /// Wrench of each pair at the last force evaluation that was asked to keep them
+    /// (`FastForceStepper::compute_forces` with `keep_wrenches`, as for a contact-network
+    /// frame), zero where not `active`; empty after any other: the pair loop adds each wrench
+    /// to the particles' sums as it goes and stores none.
     pub wrench: Vec<PairWrench>,
     /// `first[i]..first[i + 1]`: the pairs whose first particle is `i`.
     pub first: Vec<u32>,
-    /// `second_start[j]..second_start[j + 1]` indexes `second`: the pairs whose second particle
-    /// is `j`, in increasing `i`.
-    pub second_start: Vec<u32>,
-    /// Pair indices grouped by second particle.
-    pub second: Vec<u32>,
 }
 
 impl<H> PairList<H> {
@@ -75,36 +70,19 @@ impl<H> PairList<H> {
             history: self.history.into_iter().map(f).collect(),
             wrench: self.wrench,
             first: self.first,
-            second_start: self.second_start,
-            second: self.second,
         }
     }
 
-    /// Recompute the per-particle indexes (`first`, `second_start`, `second`) of a list whose
-    /// `(i, j, image)` arrays are sorted, for `n` particles.
+    /// Recompute the per-particle index `first` of a list whose `(i, j, image)` arrays are
+    /// sorted, for `n` particles.
     pub(crate) fn reindex(&mut self, n: usize) {
-        let m = self.i.len();
         self.first.clear();
         self.first.resize(n + 1, 0);
         for &i in &self.i {
             self.first[i as usize + 1] += 1;
         }
-        self.second_start.clear();
-        self.second_start.resize(n + 1, 0);
-        for &j in &self.j {
-            self.second_start[j as usize + 1] += 1;
-        }
         for k in 0..n {
             self.first[k + 1] += self.first[k];
-            self.second_start[k + 1] += self.second_start[k];
-        }
-        let mut fill: Vec<u32> = self.second_start[..n].to_vec();
-        self.second.clear();
-        self.second.resize(m, 0);
-        for p in 0..m {
-            let j = self.j[p] as usize;
-            self.second[fill[j] as usize] = p as u32;
-            fill[j] += 1;
         }
     }
 
@@ -116,7 +94,7 @@ impl<H> PairList<H> {
             + self.active.capacity()
             + self.history.capacity() * std::mem::size_of::<H>()
             + self.wrench.capacity() * std::mem::size_of::<PairWrench>()
-            + (self.first.capacity() + self.second_start.capacity() + self.second.capacity()) * 4
+            + self.first.capacity() * 4
     }
 }
 
@@ -312,20 +290,14 @@ impl NeighbourBuilder {
 
         // Only the live histories are copied; the other entries keep whatever the buffer held,
         // since a history counts only while its pair is active (`old` is overwritten by the
-        // next build; its active entries are what this build dropped). Wrenches are kept only
-        // while the parallel path runs (it gathers them per particle); the one-thread path
-        // leaves the list's `wrench` empty.
-        let keep_wrenches = old.wrench.len() == old.len() && !old.is_empty();
+        // next build; its active entries are what this build dropped). Wrenches are stored only
+        // by a force evaluation that keeps them, for the list it runs on.
         out.i.resize(m, 0);
         out.j.resize(m, 0);
         out.image.resize(m, 0);
         out.active.resize(m, false);
         out.history.resize(m, H::default());
-        if keep_wrenches {
-            out.wrench.resize(m, PairWrench::default());
-        } else {
-            out.wrench.clear();
-        }
+        out.wrench.clear();
         out.first.resize(n + 1, 0);
         out.first[0] = 0;
 
@@ -337,7 +309,6 @@ impl NeighbourBuilder {
             image: old_image,
             active: old_active,
             history: old_history,
-            wrench: old_wrench,
             ..
         } = old;
         let old = OldPairs {
@@ -345,9 +316,7 @@ impl NeighbourBuilder {
             j: old_j,
             image: old_image,
             history: old_history,
-            wrench: old_wrench,
         };
-        let wrench_bounds = if keep_wrenches { &bounds[..] } else { &[][..] };
         let tasks: Vec<BlockTask<'_, H>> = self.blocks[..nblocks]
             .iter()
             .zip(split_at_bounds(&mut out.i, &bounds))
@@ -355,20 +324,11 @@ impl NeighbourBuilder {
             .zip(split_at_bounds(&mut out.image, &bounds))
             .zip(split_at_bounds(&mut out.active, &bounds))
             .zip(split_at_bounds(&mut out.history, &bounds))
-            .zip(
-                split_at_bounds(&mut out.wrench, wrench_bounds)
-                    .into_iter()
-                    .map(Some)
-                    .chain(std::iter::repeat_with(|| None)),
-            )
             .zip(out.first[1..].chunks_mut(BLOCK))
             .zip(split_at_bounds(old_active, &old_bounds))
             .enumerate()
             .map(
-                |(
-                    b,
-                    ((((((((block, i), j), image), active), history), wrench), first), old_active),
-                )| {
+                |(b, (((((((block, i), j), image), active), history), first), old_active))| {
                     BlockTask {
                         first_particle: b * BLOCK,
                         base: bounds[b],
@@ -379,7 +339,6 @@ impl NeighbourBuilder {
                         image,
                         active,
                         history,
-                        wrench,
                         first,
                         old_active,
                     }
@@ -387,31 +346,12 @@ impl NeighbourBuilder {
             )
             .collect();
         tasks.into_par_iter().for_each(|task| task.run(&old));
-
-        // Transposed index: pairs by second particle, in increasing first particle.
-        out.second_start.clear();
-        out.second_start.resize(n + 1, 0);
-        for &j in &out.j {
-            out.second_start[j as usize + 1] += 1;
-        }
-        for j in 0..n {
-            out.second_start[j + 1] += out.second_start[j];
-        }
-        out.second.clear();
-        out.second.resize(m, 0);
-        self.fill.clear();
-        self.fill.extend_from_slice(&out.second_start[..n]);
-        for p in 0..m {
-            let j = out.j[p] as usize;
-            out.second[self.fill[j] as usize] = p as u32;
-            self.fill[j] += 1;
-        }
     }
 }
 
 /// `slice` cut at `bounds` (increasing, starting at 0): the parts
 /// `bounds[k]..bounds[k + 1]`.
-fn split_at_bounds<'a, T>(mut slice: &'a mut [T], bounds: &[usize]) -> Vec<&'a mut [T]> {
+pub(crate) fn split_at_bounds<'a, T>(mut slice: &'a mut [T], bounds: &[usize]) -> Vec<&'a mut [T]> {
     let mut parts = Vec::with_capacity(bounds.len().saturating_sub(1));
     for w in bounds.windows(2) {
         let (head, tail) = std::mem::take(&mut slice).split_at_mut(w[1] - w[0]);
@@ -427,7 +367,6 @@ struct OldPairs<'a, H> {
     j: &'a [u32],
     image: &'a [u8],
     history: &'a [H],
-    wrench: &'a [PairWrench],
 }
 
 /// One search block's share of the new list, and its old pairs' `active` flags.
@@ -444,8 +383,6 @@ struct BlockTask<'a, H> {
     image: &'a mut [u8],
     active: &'a mut [bool],
     history: &'a mut [H],
-    /// `None` when the list keeps no wrenches.
-    wrench: Option<&'a mut [PairWrench]>,
     /// `first[i + 1]` of the block's particles.
     first: &'a mut [u32],
     old_active: &'a mut [bool],
@@ -465,7 +402,6 @@ impl<H: Clone> BlockTask<'_, H> {
             }
             self.first[di] = (self.base + p) as u32;
         }
-        let mut wrench = self.wrench;
         let old_base = self.old_range.start;
         let old_key = |q: usize| (old.i[q], old.j[q], old.image[q]);
         let mut q = self.old_range.start;
@@ -481,13 +417,6 @@ impl<H: Clone> BlockTask<'_, H> {
             self.active[p] = carried;
             if carried {
                 self.history[p].clone_from(&old.history[q]);
-            }
-            if let Some(w) = wrench.as_deref_mut() {
-                w[p] = if carried {
-                    old.wrench[q]
-                } else {
-                    PairWrench::default()
-                };
             }
         }
     }
@@ -573,10 +502,6 @@ mod tests {
             for i in 0..x.len() {
                 let first = list.first[i] as usize..list.first[i + 1] as usize;
                 assert!(list.i[first].iter().all(|&k| k as usize == i));
-                let second = list.second_start[i] as usize..list.second_start[i + 1] as usize;
-                assert!(list.second[second]
-                    .iter()
-                    .all(|&p| list.j[p as usize] as usize == i));
             }
         }
     }

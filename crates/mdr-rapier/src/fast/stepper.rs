@@ -12,18 +12,18 @@
 //! 3. every sphere–sphere candidate, in two passes per chunk of the list: the exact overlap test
 //!    alone (branch-free, collecting the touching pairs), then, per block of touching pairs, their
 //!    geometry ([`crate::geometry::sphere_sphere`]) and the same kernel on the history
-//!    stored next to each touching pair (parallel, each pair's wrench stored for the gather of
-//!    step 4; with one thread each wrench is added to both particles' force and torque sums
-//!    right away and not stored);
-//! 4. per particle, in a fixed order (surfaces, then partners by increasing index), sum the
-//!    wrenches (gathered per particle with several threads; already summed in that order with
-//!    one) and integrate as rapier does with one solver iteration: `v += (F + m g)/m · dt`,
+//!    stored next to each touching pair; each wrench is added to both particles' force and
+//!    torque sums right away (after their surface wrenches), per block of particles: blocks of
+//!    alternate colours in parallel, each owning its own and the next block's sums, and the rare
+//!    share for a particle further on added after them (parallel);
+//! 4. per particle, integrate as rapier does with one solver iteration: `v += (F + m g)/m · dt`,
 //!    `ω += τ/I · dt`, `x += v dt`, the orientation by rapier's linearised update unless switched
 //!    off with [`FastForceStepper::track_orientation`] (parallel);
 //! 5. reaction forces on dynamic rapier bodies, in key order, through `add_force`/`add_torque`;
 //!    then `PhysicsWorld::step` moves the rapier bodies.
 //!
-//! Every sum has a fixed order, so results do not depend on the number of threads.
+//! Every sum has an order fixed by the particle count and the lists, so results do not depend on
+//! the number of threads.
 //!
 //! The stepper's parts: its type, builders, accessors and the two halves of a step here; the
 //! neighbour-list builds in `rebuild`, the force passes in `forces`, the integration and the
@@ -171,8 +171,11 @@ pub struct FastForceStepper<
     surface_candidates: Vec<(u32, u32)>,
     /// Reaction wrench per surface body, reduced in key order.
     reactions: Vec<(RigidBodyHandle, Vector3<f64>, Vector3<f64>)>,
-    /// Per-particle force and torque sums of the one-thread path (see [`FastForceStepper::step`]).
+    /// Per-particle force and torque sums of the step (see [`FastForceStepper::step`]).
     sums: Vec<(Vector3<f64>, Vector3<f64>)>,
+    /// Per particle block of the pair loop: the shares deferred for particles beyond the next
+    /// block.
+    cross: Vec<Vec<forces::CrossShare>>,
     /// Whether orientations are integrated (see [`FastForceStepper::track_orientation`]).
     orientation: bool,
     needs_build: bool,
@@ -190,8 +193,6 @@ pub struct FastForceStepper<
 #[derive(Debug, Clone, Copy)]
 struct Pending {
     rebuilt: bool,
-    /// The sums were accumulated in `sums` (one-thread path) rather than stored per pair.
-    serial: bool,
     sphere_contacts: usize,
     surface_contacts: usize,
 }
@@ -250,6 +251,7 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> FastForceStepper<N, T,
             surface_candidates: Vec::new(),
             reactions: Vec::new(),
             sums: Vec::new(),
+            cross: Vec::new(),
             orientation: true,
             needs_build: true,
             max_displacement: 0.0,
@@ -354,6 +356,7 @@ where
             surface_candidates: self.surface_candidates,
             reactions: self.reactions,
             sums: self.sums,
+            cross: self.cross,
             orientation: self.orientation,
             needs_build: self.needs_build || fresh,
             max_displacement: self.max_displacement,
@@ -674,9 +677,9 @@ where
     /// touching pair's law (which updates its history and work books) and its wrench. Between
     /// this call and [`FastForceStepper::advance`], positions, velocities, histories and the
     /// surface contacts all describe step `k`: the place to read energies and contacts.
-    /// `keep_wrenches` stores every sphere pair's wrench in [`PairList::wrench`] even with one
-    /// thread (a contact-network frame needs them); the particles' force sums, hence the
-    /// trajectory, are the same bits either way.
+    /// `keep_wrenches` also stores every sphere pair's wrench in [`PairList::wrench`] (a
+    /// contact-network frame needs them); the particles' force sums, hence the trajectory, are
+    /// the same bits either way.
     pub fn compute_forces(&mut self, world: &PhysicsWorld, keep_wrenches: bool) -> Result<()> {
         let dt = world.integration_parameters.dt;
         positive("dt", dt)?;
@@ -692,19 +695,10 @@ where
         if rebuilt {
             self.rebuild(&world.bodies, &world.colliders)?;
         }
-        // One worker thread: the sphere pair loop adds each wrench to both particles' sums as it
-        // goes (LAMMPS's scatter), in pair order after the surface wrenches, which is exactly
-        // the order in which the parallel path gathers them per particle; both give the same
-        // sums for any number of threads.
-        let serial = rayon::current_num_threads() == 1 && !keep_wrenches;
         let surface_contacts = self.surface_wrenches(&world.bodies, &world.colliders, dt);
-        if serial {
-            self.surface_sums();
-        }
-        let sphere_contacts = self.sphere_wrenches(dt, serial);
+        let sphere_contacts = self.sphere_wrenches(dt, keep_wrenches);
         self.pending = Some(Pending {
             rebuilt,
-            serial,
             sphere_contacts,
             surface_contacts,
         });
@@ -725,7 +719,7 @@ where
         };
         let dt = world.integration_parameters.dt;
         let gravity = to_na(world.gravity);
-        self.max_displacement = self.integrate(&gravity, dt, pending.serial).sqrt();
+        self.max_displacement = self.integrate(&gravity, dt).sqrt();
         self.apply_reactions(&mut world.bodies);
         world.step();
         self.report = FastStepReport {

@@ -1,7 +1,8 @@
 //! The force passes of a step: particle–surface pairs, then sphere–sphere pairs in two passes
-//! per chunk, and the fixed-order per-particle gather.
+//! per chunk, summed per particle block in an order fixed by the particle count alone.
 
 use super::*;
+use crate::fast::neighbours::split_at_bounds;
 
 impl<N, T, D, R, B> FastForceStepper<N, T, D, R, B>
 where
@@ -15,32 +16,25 @@ where
     D::Law: Clone,
     R::Law: Clone,
 {
-    /// One-thread path: start each particle's sums with its surface wrenches, in the order the
-    /// parallel path's gather adds them.
-    pub(super) fn surface_sums(&mut self) {
-        let sp = &self.surface_pairs;
-        let n = self.particles.len();
-        self.sums.clear();
-        self.sums.extend((0..n).map(|i| {
-            let mut force = Vector3::zeros();
-            let mut torque = Vector3::zeros();
-            for w in &sp.wrench[sp.start[i] as usize..sp.start[i + 1] as usize] {
-                force += w.force;
-                torque += w.torque1;
-            }
-            (force, torque)
-        }));
-    }
-
-    /// Step 3: sphere–sphere pairs. Returns the number of touching pairs. With `serial`, each
-    /// wrench is also added to both particles' sums (`self.sums`, started by
-    /// [`Self::surface_sums`]) in pair order.
-    pub(super) fn sphere_wrenches(&mut self, dt: f64, serial: bool) -> usize {
+    /// Step 3: sphere–sphere pairs, one work item per block of particles ([`particle_block`]),
+    /// with the per-particle sums of forces and torques, LAMMPS's scatter made parallel without
+    /// atomics: a block's pairs (those whose first particle is in it) add each wrench to both
+    /// particles as they are met, in pair order, into the block's window, its own particles'
+    /// sums and the next block's. Windows of blocks of one colour (even or odd index) do not
+    /// overlap, so all blocks of one colour run in parallel, then those of the other; an even
+    /// block first starts its window's sums with their surface wrenches. A share for a particle
+    /// beyond the next block is deferred and added after both colours, in block and pair order.
+    /// Every sum so has one order, fixed by the particle count and the list, whatever the number
+    /// of threads. With `keep`, every pair's wrench is also stored in [`PairList::wrench`] (zero
+    /// where the pair does not touch). Returns the number of touching pairs.
+    pub(super) fn sphere_wrenches(&mut self, dt: f64, keep: bool) -> usize {
         let offsets = self.boundary.offsets();
         let p = &self.particles;
+        let n = p.len();
         let laws = &self.sphere_laws;
         let ns = self.laws_species;
         let record = self.ended.is_some();
+        let sp = &self.surface_pairs;
         let PairList {
             i: pi,
             j: pj,
@@ -48,17 +42,31 @@ where
             active,
             history,
             wrench,
+            first,
             ..
         } = &mut self.pairs;
         let (pi, pj, image) = (&*pi, &*pj, &*image);
-        let chunk = |c: usize,
+        let block_len = particle_block(n);
+        let nblocks = n.div_ceil(block_len);
+        let bounds: Vec<usize> = (0..=nblocks)
+            .map(|b| first[(b * block_len).min(n)] as usize)
+            .collect();
+        wrench.clear();
+        if keep {
+            wrench.resize(history.len(), PairWrench::default());
+        }
+        self.sums.resize(n, (Vector3::zeros(), Vector3::zeros()));
+        self.cross.resize_with(nblocks, Vec::new);
+        // One chunk of a block's pairs (`base` is its first pair's index in the list).
+        let chunk = |base: usize,
                      history: &mut [FastHistory<N, T, R, B>],
-                     wrench: &mut [PairWrench],
                      active: &mut [bool],
-                     mut sums: Option<&mut [(Vector3<f64>, Vector3<f64>)]>|
-         -> (usize, Vec<EndedContact>) {
-            let mut ended = Vec::new();
-            let base = c * CHUNK;
+                     mut wrench: Option<&mut [PairWrench]>,
+                     window: &mut [(Vector3<f64>, Vector3<f64>)],
+                     p0: usize,
+                     far: &mut Vec<CrossShare>,
+                     ended: &mut Vec<EndedContact>|
+         -> usize {
             let len = history.len();
             let (pi, pj, image) = (
                 &pi[base..base + len],
@@ -66,9 +74,9 @@ where
                 &image[base..base + len],
             );
             // Pass 1, the overlap test alone (the exact test `sphere_sphere` makes): collect
-            // the touching pairs of the chunk without a data-dependent branch, and forget the
-            // pairs that separated. Pass 2 runs the law on the touching ones only, so the
-            // unpredictable touch/apart branch of a mixed list is not taken per pair.
+            // the touching pairs of the chunk without a data-dependent branch, and forget
+            // the pairs that separated. Pass 2 runs the law on the touching ones only, so
+            // the unpredictable touch/apart branch of a mixed list is not taken per pair.
             let mut touching_pairs = [0u16; CHUNK];
             let mut touching = 0usize;
             for k in 0..len {
@@ -82,8 +90,7 @@ where
                 if active[k] & !touch {
                     // Separated: the plain path drops the entry; this one marks the pair
                     // inactive and leaves its history as it is (a pair that touches again
-                    // starts from the default, below). The wrench of an inactive pair is kept
-                    // at zero, so that the per-particle gather need not test `active`.
+                    // starts from the default, below).
                     if record {
                         ended.push(EndedContact::of(
                             i as u32,
@@ -93,18 +100,15 @@ where
                         ));
                     }
                     active[k] = false;
-                    if let Some(w) = wrench.get_mut(k) {
-                        *w = PairWrench::default();
-                    }
                 }
             }
             // Pass 2, per block of touching pairs: first the geometry (a square root and a
-            // division per pair, independent of each other, so they overlap instead of heading
-            // each pair's dependency chain through the law), then the law.
+            // division per pair, independent of each other, so they overlap instead of
+            // heading each pair's dependency chain through the law), then the law.
             let mut geometry: Vec<(f64, Vector3<f64>)> = Vec::with_capacity(BLOCK);
-            for block in touching_pairs[..touching].chunks(BLOCK) {
+            for group in touching_pairs[..touching].chunks(BLOCK) {
                 geometry.clear();
-                geometry.extend(block.iter().map(|&k| {
+                geometry.extend(group.iter().map(|&k| {
                     let k = k as usize;
                     let (i, j) = (pi[k] as usize, pj[k] as usize);
                     let xj = p.position[j] + offsets[image[k] as usize].position;
@@ -112,13 +116,13 @@ where
                     sphere_sphere(&p.position[i], p.radius[i], &xj, p.radius[j])
                         .map_or((0.0, Vector3::zeros()), |c| (c.overlap, c.normal))
                 }));
-                for (&k, &(overlap, normal)) in block.iter().zip(&geometry) {
+                for (&k, &(overlap, normal)) in group.iter().zip(&geometry) {
                     let k = k as usize;
                     let (i, j) = (pi[k] as usize, pj[k] as usize);
                     let offset = &offsets[image[k] as usize];
                     if !active[k] {
-                        // A contact begins: from the default history (an inactive pair's entry
-                        // is stale, see `PairList::history`).
+                        // A contact begins: from the default history (an inactive pair's
+                        // entry is stale, see `PairList::history`).
                         history[k] = Default::default();
                         active[k] = true;
                     }
@@ -136,45 +140,135 @@ where
                     };
                     let (law, rolling) = &laws[p.species[i] as usize * ns + p.species[j] as usize];
                     let w = evaluate_pair(law, rolling, &mut history[k], &kinematics, dt);
-                    if let Some(sums) = sums.as_deref_mut() {
-                        sums[i].0 += w.force;
-                        sums[i].1 += w.torque1;
-                        sums[j].0 += -w.force;
-                        sums[j].1 += w.torque2;
-                    } else {
+                    if let Some(wrench) = wrench.as_deref_mut() {
                         wrench[k] = w;
+                    }
+                    // `i` is in this block and `j ≥ i`: the window holds this block and the
+                    // next, so only a partner further on is deferred (rare once a block is
+                    // thicker than the reach of a pair in index).
+                    let first = &mut window[i - p0];
+                    first.0 += w.force;
+                    first.1 += w.torque1;
+                    match window.get_mut(j.wrapping_sub(p0)) {
+                        Some(second) => {
+                            second.0 += -w.force;
+                            second.1 += w.torque2;
+                        }
+                        None => far.push(CrossShare {
+                            particle: j as u32,
+                            force: -w.force,
+                            torque: w.torque2,
+                        }),
                     }
                 }
             }
+            touching
+        };
+        // One block's pairs: its window is the block's sums and the next block's. A block of
+        // the first colour (even index) first starts both blocks' sums with their surface
+        // wrenches.
+        let block = |b: usize,
+                     history: &mut [FastHistory<N, T, R, B>],
+                     active: &mut [bool],
+                     mut wrench: Option<&mut [PairWrench]>,
+                     window: &mut [(Vector3<f64>, Vector3<f64>)],
+                     far: &mut Vec<CrossShare>|
+         -> (usize, Vec<EndedContact>) {
+            let mut ended = Vec::new();
+            far.clear();
+            let p0 = b * block_len;
+            if b % 2 == 0 {
+                for (sum, i) in window.iter_mut().zip(p0..) {
+                    let mut force = Vector3::zeros();
+                    let mut torque = Vector3::zeros();
+                    for w in &sp.wrench[sp.start[i] as usize..sp.start[i + 1] as usize] {
+                        force += w.force;
+                        torque += w.torque1;
+                    }
+                    *sum = (force, torque);
+                }
+            }
+            let mut touching = 0;
+            for sub in (0..history.len()).step_by(CHUNK) {
+                let len = (history.len() - sub).min(CHUNK);
+                touching += chunk(
+                    bounds[b] + sub,
+                    &mut history[sub..sub + len],
+                    &mut active[sub..sub + len],
+                    wrench.as_deref_mut().map(|w| &mut w[sub..sub + len]),
+                    window,
+                    p0,
+                    far,
+                    &mut ended,
+                );
+            }
             (touching, ended)
         };
-        let results: Vec<(usize, Vec<EndedContact>)> = if serial {
-            // The wrenches go straight into the sums: none is stored (72 bytes per touching
-            // pair and step less to write; the list's `wrench` stays empty).
-            wrench.clear();
-            let sums = &mut self.sums[..];
-            history
-                .chunks_mut(CHUNK)
-                .zip(active.chunks_mut(CHUNK))
-                .enumerate()
-                .map(|(c, (history, active))| chunk(c, history, &mut [], active, Some(&mut *sums)))
+        // Blocks of one colour have disjoint windows: all of one colour in parallel, then all
+        // of the other.
+        type Task<'a, H> = (
+            usize,
+            &'a mut [H],
+            &'a mut [bool],
+            Option<&'a mut [PairWrench]>,
+            &'a mut Vec<CrossShare>,
+        );
+        let wrench_parts: Vec<Option<&mut [PairWrench]>> = if keep {
+            split_at_bounds(wrench, &bounds)
+                .into_iter()
+                .map(Some)
                 .collect()
         } else {
-            if wrench.len() != history.len() {
-                // First parallel step after one-thread steps: every pair starts at zero; the
-                // touching ones are all evaluated below.
-                wrench.clear();
-                wrench.resize(history.len(), PairWrench::default());
-            }
-            history
-                .par_chunks_mut(CHUNK)
-                .zip(wrench.par_chunks_mut(CHUNK))
-                .zip(active.par_chunks_mut(CHUNK))
-                .enumerate()
-                .map(|(c, ((history, wrench), active))| chunk(c, history, wrench, active, None))
-                .collect()
+            (0..nblocks).map(|_| None).collect()
         };
-        self.collect_ended(results)
+        let tasks: Vec<Task<'_, FastHistory<N, T, R, B>>> = split_at_bounds(history, &bounds)
+            .into_iter()
+            .zip(split_at_bounds(active, &bounds))
+            .zip(wrench_parts)
+            .zip(self.cross.iter_mut())
+            .enumerate()
+            .map(|(b, (((history, active), wrench), far))| (b, history, active, wrench, far))
+            .collect();
+        let (even, odd): (Vec<_>, Vec<_>) = tasks.into_iter().partition(|t| t.0 % 2 == 0);
+        let sums = &mut self.sums;
+        let mut results: Vec<(usize, Vec<EndedContact>)> = even
+            .into_par_iter()
+            .zip(sums.par_chunks_mut(2 * block_len))
+            .map(|((b, history, active, wrench, far), window)| {
+                block(b, history, active, wrench, window, far)
+            })
+            .collect();
+        let window_start = block_len.min(n);
+        results.extend(
+            odd.into_par_iter()
+                .zip(sums[window_start..].par_chunks_mut(2 * block_len))
+                .map(|((b, history, active, wrench, far), window)| {
+                    block(b, history, active, wrench, window, far)
+                })
+                .collect::<Vec<_>>(),
+        );
+        // The shares for particles beyond the next block, in block and pair order.
+        for far in &self.cross {
+            for c in far {
+                let sum = &mut self.sums[c.particle as usize];
+                sum.0 += c.force;
+                sum.1 += c.torque;
+            }
+        }
+        // Ended contacts in block order (the colours interleave).
+        let even_count = nblocks.div_ceil(2);
+        let (even_results, odd_results) = results.split_at_mut(even_count);
+        let ordered: Vec<(usize, Vec<EndedContact>)> = (0..nblocks)
+            .map(|b| {
+                let r = if b % 2 == 0 {
+                    &mut even_results[b / 2]
+                } else {
+                    &mut odd_results[b / 2]
+                };
+                std::mem::take(r)
+            })
+            .collect();
+        self.collect_ended(ordered)
     }
 
     /// Sum the chunks' touching counts and append their ended contacts in chunk order.
@@ -279,30 +373,22 @@ where
     }
 }
 
-/// The parallel path's per-particle sum: surfaces, then the pairs where `i` is second (in
-/// increasing first particle), then the pairs where `i` is first (increasing second particle),
-/// i.e. pair order. Inactive pairs hold a zero wrench (see the pair loops): no branch on
-/// `active` here.
-#[inline]
-pub(super) fn gather<H>(
-    pairs: &PairList<H>,
-    sp: &SurfacePairs<H>,
-    i: usize,
-) -> (Vector3<f64>, Vector3<f64>) {
-    let mut force = Vector3::zeros();
-    let mut torque = Vector3::zeros();
-    for w in &sp.wrench[sp.start[i] as usize..sp.start[i + 1] as usize] {
-        force += w.force;
-        torque += w.torque1;
-    }
-    for &e in &pairs.second[pairs.second_start[i] as usize..pairs.second_start[i + 1] as usize] {
-        let w: &PairWrench = &pairs.wrench[e as usize];
-        force += -w.force;
-        torque += w.torque2;
-    }
-    for w in &pairs.wrench[pairs.first[i] as usize..pairs.first[i + 1] as usize] {
-        force += w.force;
-        torque += w.torque1;
-    }
-    (force, torque)
+/// Particles per block of the sphere pair loop: from the particle count alone (about 40
+/// blocks; never from the number of threads, so that every sum has the same order for any
+/// number of threads). At least 512 from 4,096 particles on, so that a window of two blocks
+/// spans the index distance of most pairs of a lattice-ordered bed (a layer of a 10⁴-sphere bed
+/// is about 500 spheres) and few shares are deferred; below that, eight blocks (of at least 64),
+/// so that a small system still splits between threads; at most 4,096, so that a window's sums
+/// (48 bytes each) stay in the core's cache.
+pub(super) fn particle_block(n: usize) -> usize {
+    (n / 40).clamp((n / 8).clamp(64, 512), 4096)
+}
+
+/// What a touching pair gives its second particle when that particle lies beyond the next
+/// block.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct CrossShare {
+    particle: u32,
+    force: Vector3<f64>,
+    torque: Vector3<f64>,
 }

@@ -1,7 +1,6 @@
 //! Integration of the particles (rapier's symplectic Euler with one solver iteration, written
 //! out) and the reactions on dynamic rapier bodies.
 
-use super::forces::gather;
 use super::*;
 use rapier3d_f64::math::Rotation;
 
@@ -19,11 +18,9 @@ where
 {
     /// Step 4: sum each particle's wrenches in a fixed order and integrate it. Returns the
     /// largest squared displacement since the last build.
-    pub(super) fn integrate(&mut self, gravity: &Vector3<f64>, dt: f64, serial: bool) -> f64 {
-        let pairs = &self.pairs;
+    pub(super) fn integrate(&mut self, gravity: &Vector3<f64>, dt: f64) -> f64 {
         let sums = &self.sums;
         let orientation = self.orientation;
-        let sp = &self.surface_pairs;
         let built_at = &self.built_at;
         let FastParticles {
             position,
@@ -46,11 +43,7 @@ where
                 let mut max2: f64 = 0.0;
                 for k in 0..x.len() {
                     let i = c * PCHUNK + k;
-                    let (force, torque) = if serial {
-                        sums[i]
-                    } else {
-                        gather(pairs, sp, i)
-                    };
+                    let (force, torque) = sums[i];
                     let s = &table[species[i] as usize];
                     // rapier: force = user_force + g · m; Δv = force · (1/m) · dt.
                     let total = force + gravity * s.mass;
