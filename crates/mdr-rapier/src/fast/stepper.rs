@@ -175,7 +175,7 @@ pub struct FastForceStepper<
     sums: Vec<(Vector3<f64>, Vector3<f64>)>,
     /// Per particle block of the pair loop: the shares deferred for particles beyond the next
     /// block.
-    cross: Vec<Vec<forces::CrossShare>>,
+    deferred: Vec<Vec<forces::DeferredShare>>,
     /// Whether orientations are integrated (see [`FastForceStepper::track_orientation`]).
     orientation: bool,
     needs_build: bool,
@@ -251,7 +251,7 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> FastForceStepper<N, T,
             surface_candidates: Vec::new(),
             reactions: Vec::new(),
             sums: Vec::new(),
-            cross: Vec::new(),
+            deferred: Vec::new(),
             orientation: true,
             needs_build: true,
             max_displacement: 0.0,
@@ -356,7 +356,7 @@ where
             surface_candidates: self.surface_candidates,
             reactions: self.reactions,
             sums: self.sums,
-            cross: self.cross,
+            deferred: self.deferred,
             orientation: self.orientation,
             needs_build: self.needs_build || fresh,
             max_displacement: self.max_displacement,

@@ -16,7 +16,7 @@ where
     D::Law: Clone,
     R::Law: Clone,
 {
-    /// Step 3: sphere–sphere pairs, one work item per block of particles ([`particle_block`]),
+    /// Step 3: sphere–sphere pairs, one parallel task per block of particles ([`particle_block`]),
     /// with the per-particle sums of forces and torques, LAMMPS's scatter made parallel without
     /// atomics: a block's pairs (those whose first particle is in it) add each wrench to both
     /// particles as they are met, in pair order, into the block's window, its own particles'
@@ -56,7 +56,7 @@ where
             wrench.resize(history.len(), PairWrench::default());
         }
         self.sums.resize(n, (Vector3::zeros(), Vector3::zeros()));
-        self.cross.resize_with(nblocks, Vec::new);
+        self.deferred.resize_with(nblocks, Vec::new);
         // One chunk of a block's pairs (`base` is its first pair's index in the list).
         let chunk = |base: usize,
                      history: &mut [FastHistory<N, T, R, B>],
@@ -64,7 +64,7 @@ where
                      mut wrench: Option<&mut [PairWrench]>,
                      window: &mut [(Vector3<f64>, Vector3<f64>)],
                      p0: usize,
-                     far: &mut Vec<CrossShare>,
+                     deferred: &mut Vec<DeferredShare>,
                      ended: &mut Vec<EndedContact>|
          -> usize {
             let len = history.len();
@@ -154,7 +154,7 @@ where
                             second.0 += -w.force;
                             second.1 += w.torque2;
                         }
-                        None => far.push(CrossShare {
+                        None => deferred.push(DeferredShare {
                             particle: j as u32,
                             force: -w.force,
                             torque: w.torque2,
@@ -172,10 +172,10 @@ where
                      active: &mut [bool],
                      mut wrench: Option<&mut [PairWrench]>,
                      window: &mut [(Vector3<f64>, Vector3<f64>)],
-                     far: &mut Vec<CrossShare>|
+                     deferred: &mut Vec<DeferredShare>|
          -> (usize, Vec<EndedContact>) {
             let mut ended = Vec::new();
-            far.clear();
+            deferred.clear();
             let p0 = b * block_len;
             if b % 2 == 0 {
                 for (sum, i) in window.iter_mut().zip(p0..) {
@@ -198,7 +198,7 @@ where
                     wrench.as_deref_mut().map(|w| &mut w[sub..sub + len]),
                     window,
                     p0,
-                    far,
+                    deferred,
                     &mut ended,
                 );
             }
@@ -211,7 +211,7 @@ where
             &'a mut [H],
             &'a mut [bool],
             Option<&'a mut [PairWrench]>,
-            &'a mut Vec<CrossShare>,
+            &'a mut Vec<DeferredShare>,
         );
         let wrench_parts: Vec<Option<&mut [PairWrench]>> = if keep {
             split_at_bounds(wrench, &bounds)
@@ -225,50 +225,36 @@ where
             .into_iter()
             .zip(split_at_bounds(active, &bounds))
             .zip(wrench_parts)
-            .zip(self.cross.iter_mut())
+            .zip(self.deferred.iter_mut())
             .enumerate()
-            .map(|(b, (((history, active), wrench), far))| (b, history, active, wrench, far))
-            .collect();
-        let (even, odd): (Vec<_>, Vec<_>) = tasks.into_iter().partition(|t| t.0 % 2 == 0);
-        let sums = &mut self.sums;
-        let mut results: Vec<(usize, Vec<EndedContact>)> = even
-            .into_par_iter()
-            .zip(sums.par_chunks_mut(2 * block_len))
-            .map(|((b, history, active, wrench, far), window)| {
-                block(b, history, active, wrench, window, far)
+            .map(|(b, (((history, active), wrench), deferred))| {
+                (b, history, active, wrench, deferred)
             })
             .collect();
-        let window_start = block_len.min(n);
-        results.extend(
-            odd.into_par_iter()
-                .zip(sums[window_start..].par_chunks_mut(2 * block_len))
-                .map(|((b, history, active, wrench, far), window)| {
-                    block(b, history, active, wrench, window, far)
-                })
-                .collect::<Vec<_>>(),
-        );
+        let (even, odd): (Vec<_>, Vec<_>) = tasks.into_iter().partition(|t| t.0 % 2 == 0);
+        // An even block's window starts at its own first particle, and so does an odd one's.
+        let mut results = Vec::with_capacity(nblocks);
+        for (colour, start) in [(even, 0), (odd, block_len.min(n))] {
+            results.par_extend(
+                colour
+                    .into_par_iter()
+                    .zip(self.sums[start..].par_chunks_mut(2 * block_len))
+                    .map(|((b, history, active, wrench, deferred), window)| {
+                        (b, block(b, history, active, wrench, window, deferred))
+                    }),
+            );
+        }
         // The shares for particles beyond the next block, in block and pair order.
-        for far in &self.cross {
-            for c in far {
+        for deferred in &self.deferred {
+            for c in deferred {
                 let sum = &mut self.sums[c.particle as usize];
                 sum.0 += c.force;
                 sum.1 += c.torque;
             }
         }
-        // Ended contacts in block order (the colours interleave).
-        let even_count = nblocks.div_ceil(2);
-        let (even_results, odd_results) = results.split_at_mut(even_count);
-        let ordered: Vec<(usize, Vec<EndedContact>)> = (0..nblocks)
-            .map(|b| {
-                let r = if b % 2 == 0 {
-                    &mut even_results[b / 2]
-                } else {
-                    &mut odd_results[b / 2]
-                };
-                std::mem::take(r)
-            })
-            .collect();
-        self.collect_ended(ordered)
+        // Ended contacts in block order.
+        results.sort_unstable_by_key(|r| r.0);
+        self.collect_ended(results.into_iter().map(|r| r.1).collect())
     }
 
     /// Sum the chunks' touching counts and append their ended contacts in chunk order.
@@ -387,7 +373,7 @@ pub(super) fn particle_block(n: usize) -> usize {
 /// What a touching pair gives its second particle when that particle lies beyond the next
 /// block.
 #[derive(Debug, Clone, Copy, Default)]
-pub(super) struct CrossShare {
+pub(super) struct DeferredShare {
     particle: u32,
     force: Vector3<f64>,
     torque: Vector3<f64>,
