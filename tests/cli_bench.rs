@@ -195,6 +195,30 @@ fn bench_scene_json_contract_and_bad_values() {
         assert_eq!(d["threads"].as_u64().unwrap().to_string(), threads);
         assert!(d["particles"].as_u64().unwrap() > 100);
         assert_eq!(d["path"], "neighbour_list");
+        // The timing breakdown: every part, and with the rest they make up the whole step.
+        let b = &d["breakdown_ns_per_particle_step"];
+        let parts = [
+            "pairs",
+            "builds",
+            "surfaces",
+            "integration",
+            "rapier",
+            "rest",
+        ];
+        let sum: f64 = parts
+            .iter()
+            .map(|k| {
+                let v = b[k].as_f64().unwrap_or_else(|| panic!("{k}: {d}"));
+                assert!(v >= 0.0, "{k}: {d}");
+                v
+            })
+            .sum();
+        assert!(b["pairs"].as_f64().unwrap() > 0.0, "{d}");
+        let per_step = 1e6 * d["ms_per_step"].as_f64().unwrap() / d["particles"].as_f64().unwrap();
+        assert!(
+            (sum / per_step - 1.0).abs() < 1e-9,
+            "{sum} against {per_step}: {d}"
+        );
     }
     for (flag, value) in [("--steps", "0"), ("--threads", "0")] {
         let out = mdr_dem(&["bench", "scene", scene, flag, value]);

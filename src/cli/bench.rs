@@ -282,7 +282,42 @@ struct SceneFigures {
     /// Listed sphere pairs per particle at the last step (`2 × listed pairs / particles`,
     /// neighbour-list path): what the pair loop tests each step, touching or not.
     listed_pairs_per_particle: Option<f64>,
+    /// Wall time per particle-step of each part of the timed steps (ns; neighbour-list path),
+    /// as LAMMPS's timing breakdown.
+    breakdown_ns_per_particle_step: Option<Breakdown>,
     scene: String,
+}
+
+/// Wall time per particle-step of each part of a neighbour-list step (ns): the stepper's
+/// [`mdr_sim::run::StepTimings`], and the rest of the step.
+#[derive(Debug, serde::Serialize)]
+struct Breakdown {
+    /// Sphere–sphere pairs with the per-particle sums (LAMMPS `Pair`).
+    pairs: f64,
+    /// Neighbour-list builds (LAMMPS `Neigh`).
+    builds: f64,
+    /// Particle–wall pairs.
+    surfaces: f64,
+    /// Integration of the spheres.
+    integration: f64,
+    /// Reactions on rapier bodies and rapier's step.
+    rapier: f64,
+    /// The rest: scene events, energy books, the headline tracker.
+    rest: f64,
+}
+
+impl Breakdown {
+    fn new(timings: &mdr_sim::run::StepTimings, wall_seconds: f64, particle_steps: f64) -> Self {
+        let per = |d: std::time::Duration| 1e9 * d.as_secs_f64() / particle_steps;
+        Self {
+            pairs: per(timings.pairs),
+            builds: per(timings.builds),
+            surfaces: per(timings.surfaces),
+            integration: per(timings.integration),
+            rapier: per(timings.rapier),
+            rest: (1e9 * wall_seconds / particle_steps - per(timings.total())).max(0.0),
+        }
+    }
 }
 
 fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
@@ -301,6 +336,7 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
             steps.step()?;
         }
         let rebuilds0 = steps.rebuilds();
+        steps.time_steps(true);
         let cpu0 = process_cpu_seconds();
         let start = Instant::now();
         for _ in 0..args.steps {
@@ -339,6 +375,9 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
                 .zip(rebuilds0)
                 .map(|(now, before)| now - before),
             listed_pairs_per_particle: steps.listed_pairs().map(|p| 2.0 * p as f64 / n as f64),
+            breakdown_ns_per_particle_step: steps
+                .step_timings()
+                .map(|t| Breakdown::new(&t, seconds, work)),
             scene: scene.name.clone(),
         })
     })?;
@@ -383,6 +422,13 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
                 figures.peak_rss_mb
             ),
             (None, _) => println!("  peak RSS {:.1} MB", figures.peak_rss_mb),
+        }
+        if let Some(b) = &figures.breakdown_ns_per_particle_step {
+            println!(
+                "  ns per particle-step: sphere pairs {:.1}, neighbour builds {:.1}, walls {:.1}, \
+                 integration {:.1}, rapier {:.1}, rest {:.1}",
+                b.pairs, b.builds, b.surfaces, b.integration, b.rapier, b.rest
+            );
         }
     }
     Ok(())

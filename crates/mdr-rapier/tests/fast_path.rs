@@ -562,6 +562,45 @@ fn orientation_tracking_does_not_change_sphere_trajectories() {
     }
 }
 
+/// Timing the parts of the steps reads the clock and changes no bit of the trajectory; every
+/// step is counted once, every part that ran has time, and the parts add up to no more than the
+/// steps took.
+#[test]
+fn timing_the_steps_changes_no_trajectory_and_accounts_for_every_part() {
+    let bed = lattice_bed(&BedSpec {
+        count: 300,
+        ..BedSpec::default()
+    })
+    .unwrap();
+    let plain = periodic_run(&bed, 300);
+    let (mut timed, mut world) = periodic_setup(&bed);
+    assert!(timed.step_timings().is_none(), "timing is off by default");
+    timed.time_steps(true);
+    let start = std::time::Instant::now();
+    for _ in 0..300 {
+        timed.step(&mut world).unwrap();
+    }
+    let elapsed = start.elapsed();
+    assert_eq!(plain.particles().position, timed.particles().position);
+    assert_eq!(plain.particles().linvel, timed.particles().linvel);
+    assert_eq!(plain.particles().angvel, timed.particles().angvel);
+    let t = *timed.step_timings().unwrap();
+    assert_eq!(t.steps, 300);
+    assert!(timed.rebuilds() >= 2, "the first step and later ones build");
+    for (part, d) in [
+        ("builds", t.builds),
+        ("surfaces", t.surfaces),
+        ("pairs", t.pairs),
+        ("integration", t.integration),
+        ("rapier", t.rapier),
+    ] {
+        assert!(d > std::time::Duration::ZERO, "no time for {part}: {t:?}");
+    }
+    assert!(t.total() <= elapsed, "{t:?} against {elapsed:?}");
+    timed.time_steps(false);
+    assert!(timed.step_timings().is_none());
+}
+
 #[test]
 fn dropping_the_work_books_mid_run_changes_no_trajectory() {
     // The friction and damping books are diagnostics: a stepper that drops them halfway keeps

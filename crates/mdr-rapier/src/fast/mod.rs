@@ -26,6 +26,7 @@ pub mod surfaces;
 pub use boundary::{Boundary, Image, ImageOffset};
 pub use stepper::{
     ContactPartner, EndedContact, FastForceStepper, FastHistory, FastListState, FastStepReport,
+    StepTimings,
 };
 
 /// The thread-pool crate of the parallel loops, re-exported so that programs size the pool with

@@ -90,6 +90,32 @@ pub struct FastStepReport {
     pub max_displacement: f64,
 }
 
+/// Wall-clock time a [`FastForceStepper`] spent in each part of its steps while timing was on
+/// ([`FastForceStepper::time_steps`]): LAMMPS's timing breakdown (`Pair`, `Neigh`, `Modify`) for
+/// this path. Reading the clock costs a few tens of nanoseconds per part and step.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct StepTimings {
+    /// Steps timed.
+    pub steps: u64,
+    /// Neighbour-list builds (step 1 of [`FastForceStepper::step`]; LAMMPS `Neigh`).
+    pub builds: std::time::Duration,
+    /// Particle–surface pairs (step 2).
+    pub surfaces: std::time::Duration,
+    /// Sphere–sphere pairs with the per-particle sums (step 3; LAMMPS `Pair`).
+    pub pairs: std::time::Duration,
+    /// Integration of the particles (step 4).
+    pub integration: std::time::Duration,
+    /// Reactions on rapier bodies and rapier's own step (step 5).
+    pub rapier: std::time::Duration,
+}
+
+impl StepTimings {
+    /// The sum of the parts.
+    pub fn total(&self) -> std::time::Duration {
+        self.builds + self.surfaces + self.pairs + self.integration + self.rapier
+    }
+}
+
 /// The other side of a contact whose history ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ContactPartner {
@@ -187,6 +213,8 @@ pub struct FastForceStepper<
     /// Contacts that ended since the last [`FastForceStepper::take_ended_contacts`], when
     /// recorded.
     ended: Option<Vec<EndedContact>>,
+    /// Time per part of the steps, while timed ([`FastForceStepper::time_steps`]).
+    timings: Option<StepTimings>,
 }
 
 /// What [`FastForceStepper::compute_forces`] leaves for [`FastForceStepper::advance`].
@@ -259,6 +287,7 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> FastForceStepper<N, T,
             rebuilds: 0,
             pending: None,
             ended: None,
+            timings: None,
         }
     }
 }
@@ -364,6 +393,7 @@ where
             rebuilds: self.rebuilds,
             pending: None,
             ended: self.ended,
+            timings: self.timings,
         }
     }
 
@@ -627,6 +657,32 @@ where
         self.rebuilds
     }
 
+    /// Time each part of the steps from now on (`true`, starting from zero) or stop timing
+    /// (`false`). The trajectory does not depend on it.
+    pub fn time_steps(&mut self, on: bool) {
+        self.timings = on.then(StepTimings::default);
+    }
+
+    /// Time spent per part of the steps since [`FastForceStepper::time_steps`] switched timing
+    /// on; `None` while off.
+    pub fn step_timings(&self) -> Option<&StepTimings> {
+        self.timings.as_ref()
+    }
+
+    /// The time since `*mark` added to a part of the timings, and `*mark` moved to now; nothing
+    /// while timing is off.
+    fn lap(
+        &mut self,
+        mark: &mut Option<std::time::Instant>,
+        part: fn(&mut StepTimings) -> &mut std::time::Duration,
+    ) {
+        if let (Some(timings), Some(start)) = (&mut self.timings, mark.as_mut()) {
+            let now = std::time::Instant::now();
+            *part(timings) += now - *start;
+            *start = now;
+        }
+    }
+
     /// The registered surfaces, in collider-index order (the `surface` index of
     /// [`SurfacePairs`]).
     pub fn surfaces(&self) -> &[FastSurface] {
@@ -688,6 +744,7 @@ where
             // histories twice).
             return Ok(());
         }
+        let mut mark = self.timings.is_some().then(std::time::Instant::now);
         let half_skin = 0.5 * self.skin;
         let rebuilt = self.needs_build
             || self.max_displacement > half_skin
@@ -695,8 +752,11 @@ where
         if rebuilt {
             self.rebuild(&world.bodies, &world.colliders)?;
         }
+        self.lap(&mut mark, |t| &mut t.builds);
         let surface_contacts = self.surface_wrenches(&world.bodies, &world.colliders, dt);
+        self.lap(&mut mark, |t| &mut t.surfaces);
         let sphere_contacts = self.sphere_wrenches(dt, keep_wrenches);
+        self.lap(&mut mark, |t| &mut t.pairs);
         self.pending = Some(Pending {
             rebuilt,
             sphere_contacts,
@@ -719,9 +779,15 @@ where
         };
         let dt = world.integration_parameters.dt;
         let gravity = to_na(world.gravity);
+        let mut mark = self.timings.is_some().then(std::time::Instant::now);
         self.max_displacement = self.integrate(&gravity, dt).sqrt();
+        self.lap(&mut mark, |t| &mut t.integration);
         self.apply_reactions(&mut world.bodies);
         world.step();
+        self.lap(&mut mark, |t| &mut t.rapier);
+        if let Some(timings) = &mut self.timings {
+            timings.steps += 1;
+        }
         self.report = FastStepReport {
             sphere_contacts: pending.sphere_contacts,
             surface_contacts: pending.surface_contacts,

@@ -17,7 +17,7 @@ use mdr_contact::rolling::{EpsdRolling, NoRolling};
 use mdr_contact::tangential::Mindlin;
 use mdr_rapier::convert::to_glam;
 use mdr_rapier::fast::particles::FastParticles;
-use mdr_rapier::fast::{Boundary, FastForceStepper, FastStepReport};
+use mdr_rapier::fast::{Boundary, FastForceStepper, FastStepReport, StepTimings};
 use mdr_rapier::geometry::SurfaceOfRevolution;
 use mdr_rapier::particles::{MaterialHandle, SphereBuilder};
 use mdr_rapier::{ForceModeStepper, RestitutionHooks};
@@ -95,6 +95,16 @@ impl FastScene {
     /// Build the neighbour lists at the next step (after particles jumped).
     pub fn request_rebuild(&mut self) {
         with_fast!(self, s => s.request_rebuild())
+    }
+
+    /// Time each part of the steps from now on, or stop ([`FastForceStepper::time_steps`]).
+    pub fn time_steps(&mut self, on: bool) {
+        with_fast!(self, s => s.time_steps(on))
+    }
+
+    /// Time per part of the steps while timed.
+    pub fn step_timings(&self) -> Option<StepTimings> {
+        with_fast!(self, s => s.step_timings().copied())
     }
 }
 

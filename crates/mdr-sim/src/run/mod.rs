@@ -19,6 +19,7 @@ mod outputs;
 mod state;
 mod steps;
 
+pub use mdr_rapier::fast::StepTimings;
 pub use state::{BodyRecord, CheckpointData};
 pub use steps::{ContactCounts, SceneSteps};
 

@@ -76,6 +76,24 @@ impl<'a> SceneSteps<'a> {
         matches!(self.sim.built.coupling, Coupling::Fast(_))
     }
 
+    /// Time each part of the neighbour-list path's steps from now on (from zero), or stop
+    /// (`false`); nothing on rapier's paths. The trajectory does not depend on it.
+    pub fn time_steps(&mut self, on: bool) {
+        if let Coupling::Fast(stepper) = &mut self.sim.built.coupling {
+            stepper.time_steps(on);
+        }
+    }
+
+    /// Time per part of the steps since [`SceneSteps::time_steps`] switched timing on
+    /// (neighbour-list path; `None` otherwise or while off). What a step spends outside these
+    /// parts (scene events, energy books, the headline tracker) is the rest of its wall time.
+    pub fn step_timings(&self) -> Option<StepTimings> {
+        match &self.sim.built.coupling {
+            Coupling::Fast(stepper) => stepper.step_timings(),
+            _ => None,
+        }
+    }
+
     /// Neighbour-list builds so far (neighbour-list path only).
     pub fn rebuilds(&self) -> Option<u64> {
         match &self.sim.built.coupling {
