@@ -425,6 +425,39 @@ fn scrambled_order_moves_like_lattice_order() {
     );
 }
 
+/// Steps run with the pool's other threads kept awake move exactly as steps whose workers sleep
+/// between the passes, on one and two threads.
+#[test]
+fn workers_kept_awake_change_no_trajectory() {
+    let bed = lattice_bed(&BedSpec {
+        count: 3000,
+        ..BedSpec::default()
+    })
+    .unwrap();
+    let run = |threads: usize, awake: bool| {
+        ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| {
+                let steps = || periodic_run(&bed, 200);
+                if awake {
+                    mdr_rapier::fast::with_workers_awake(steps)
+                } else {
+                    steps()
+                }
+            })
+    };
+    let reference = run(1, false);
+    assert!(reference.last_report().sphere_contacts > 1000);
+    for (threads, awake) in [(1, true), (2, false), (2, true)] {
+        let other = run(threads, awake);
+        assert_eq!(reference.particles().position, other.particles().position);
+        assert_eq!(reference.particles().linvel, other.particles().linvel);
+        assert_eq!(reference.particles().angvel, other.particles().angvel);
+    }
+}
+
 /// Switching the number of threads mid-run (and rebuilding the list with either) must not
 /// change a bit; no step stores a per-pair wrench unless asked to.
 #[test]

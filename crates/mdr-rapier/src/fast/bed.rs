@@ -636,20 +636,25 @@ where
     N::Law: Clone,
     B: WorkBooks,
 {
-    for _ in 0..s.warmup {
-        stepper.step(&mut world)?;
-    }
-    let rebuilds0 = stepper.rebuilds();
-    let cpu0 = process_cpu_seconds();
-    let start = std::time::Instant::now();
-    for _ in 0..s.steps {
-        stepper.step(&mut world)?;
-    }
-    let wall_seconds = start.elapsed().as_secs_f64();
-    let cpu_seconds = match (cpu0, process_cpu_seconds()) {
-        (Some(a), Some(b)) => b - a,
-        _ => f64::NAN,
-    };
+    // The pool's other threads wait for each pass awake (`workers`), as a scene run's do.
+    let (rebuilds0, wall_seconds, cpu_seconds) =
+        super::workers::with_workers_awake(|| -> Result<_, BedError> {
+            for _ in 0..s.warmup {
+                stepper.step(&mut world)?;
+            }
+            let rebuilds0 = stepper.rebuilds();
+            let cpu0 = process_cpu_seconds();
+            let start = std::time::Instant::now();
+            for _ in 0..s.steps {
+                stepper.step(&mut world)?;
+            }
+            let wall_seconds = start.elapsed().as_secs_f64();
+            let cpu_seconds = match (cpu0, process_cpu_seconds()) {
+                (Some(a), Some(b)) => b - a,
+                _ => f64::NAN,
+            };
+            Ok((rebuilds0, wall_seconds, cpu_seconds))
+        })?;
     let report = stepper.last_report();
     let n = stepper.particles().len();
     let pairs = stepper.pairs();

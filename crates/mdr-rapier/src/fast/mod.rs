@@ -14,7 +14,9 @@
 //! - [`surfaces`]: particles against rapier colliders;
 //! - [`stepper`]: the step;
 //! - [`bed`]: LAMMPS data files, a settled-bed generator and the settled-bed benchmark's timing
-//!   loop ([`bed::bench_bed`], shared by `mdr-dem bench bed` and the Python package).
+//!   loop ([`bed::bench_bed`], shared by `mdr-dem bench bed` and the Python package);
+//! - [`workers`]: the pool's other threads kept awake through a run of steps
+//!   ([`workers::with_workers_awake`]).
 
 pub mod bed;
 pub mod boundary;
@@ -22,12 +24,14 @@ pub mod neighbours;
 pub mod particles;
 pub mod stepper;
 pub mod surfaces;
+pub mod workers;
 
 pub use boundary::{Boundary, Image, ImageOffset};
 pub use stepper::{
     ContactPartner, EndedContact, FastForceStepper, FastHistory, FastListState, FastStepReport,
     StepTimings,
 };
+pub use workers::with_workers_awake;
 
 /// The thread-pool crate of the parallel loops, re-exported so that programs size the pool with
 /// the same version (`rayon::ThreadPoolBuilder::new().num_threads(t).build()?.install(…)`).
