@@ -11,8 +11,8 @@
 # `bed_hopper_law.toml` and `bed_drum_law.toml`, written into OUT_DIR from scenes/bed.toml, so that
 # each scene is also compared with the resting bed under its own law.
 # Prints one table: particle-steps per wall second and per CPU second, the ratio of the bed's
-# one-thread rate to the scene's, and the two-thread speed-up; then each scene against the bed
-# scene with its law.
+# one-thread rate to the scene's, and the two-thread speed-up; where each scene's step goes (the
+# breakdown of `bench scene`); then each scene against the bed scene with its law.
 #
 # Usage: benches/scene_throughput.sh [OUT_DIR]   (JSON lines in OUT_DIR/scene_throughput.jsonl;
 # default target/scene-throughput). Environment: MDR_DEM (the binary; default
@@ -73,6 +73,13 @@ for case, r in one.items():
           f"{r.get('cpu_particle_steps_per_s', r.get('particle_steps_per_cpu_s')) / 1e6:10.3f} "
           f"{bed / r['particle_steps_per_s']:9.2f} {s2 / 1e6:10.3f} "
           f"{s2 / r['particle_steps_per_s']:8.2f}")
+print("where a step goes, one thread, ns per particle-step (bench scene's breakdown):")
+print(f"  {'case':20} {'pairs':>7} {'builds':>7} {'walls':>7} {'integr.':>7} {'rapier':>7} {'rest':>7}")
+for case, r in one.items():
+    b = r.get("breakdown_ns_per_particle_step")
+    if b:
+        print(f"  {case:20} {b['pairs']:7.1f} {b['builds']:7.1f} {b['surfaces']:7.1f} "
+              f"{b['integration']:7.1f} {b['rapier']:7.1f} {b['rest']:7.1f}")
 print("each scene against the bed scene with its contact sub-models (one thread):")
 for case, law in (("hopper.toml", "bed_hopper_law.toml"), ("drum.toml", "bed_drum_law.toml")):
     if case in one and law in one:

@@ -255,7 +255,8 @@ impl serde::Serialize for BedJson<'_> {
 #[derive(Debug, serde::Serialize)]
 struct SceneFigures {
     particle_steps_per_s: f64,
-    /// Particle-steps per CPU second of the timed loop (all threads).
+    /// Particle-steps per CPU second of the timed loop (all threads, their busy waits between
+    /// the parallel passes included).
     cpu_particle_steps_per_s: f64,
     ms_per_step: f64,
     /// Sphere–sphere contacts per particle at the last step (`2 × pairs / particles`, as
