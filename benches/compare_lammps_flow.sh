@@ -138,7 +138,9 @@ ours_rate = ours_window["cpu_particle_steps_per_s"]
 ours_bed_rate = ours_bed.get("cpu_particle_steps_per_s", ours_bed["particle_steps_per_s"])
 headline = open(f"{out}/mdr-dem/{scene_name}_headline.toml").read()
 def value_of(key):
-    return float(re.search(rf'name = "{key}"\nvalue = ([0-9.eE+-]+)', headline).group(1))
+    """A headline value of mdr-dem's run (NaN where the run was too short to measure it)."""
+    m = re.search(rf'name = "{key}"\nvalue = ([0-9.eE+-]+)', headline)
+    return float(m.group(1)) if m else math.nan
 
 print(f"{case}: {rows[steps[0]][1]} spheres in LAMMPS, {ours_window['particles']} in mdr-dem, "
       f"{steps[-1]} steps")
