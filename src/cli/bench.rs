@@ -321,6 +321,63 @@ impl Breakdown {
     }
 }
 
+/// `bench scene`'s figures: the scene's warm-up and timed steps on the current thread.
+fn time_scene(args: &SceneArgs, scene: &mdr_sim::scene::Scene) -> anyhow::Result<SceneFigures> {
+    let mut steps = match &args.resume {
+        Some(path) => mdr_sim::run::SceneSteps::resume(scene, path)?,
+        None => mdr_sim::run::SceneSteps::new(scene)?,
+    };
+    let start_step = steps.steps_done();
+    for _ in 0..args.warmup {
+        steps.step()?;
+    }
+    let rebuilds0 = steps.rebuilds();
+    steps.time_steps(true);
+    let cpu0 = process_cpu_seconds();
+    let start = Instant::now();
+    for _ in 0..args.steps {
+        steps.step()?;
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    let cpu_seconds = match (cpu0, process_cpu_seconds()) {
+        (Some(a), Some(b)) => b - a,
+        _ => f64::NAN,
+    };
+    let n = steps.particles();
+    let contacts = steps.contacts();
+    let work = (n as u64 * args.steps) as f64;
+    Ok(SceneFigures {
+        particle_steps_per_s: work / seconds,
+        cpu_particle_steps_per_s: work / cpu_seconds,
+        ms_per_step: 1e3 * seconds / args.steps as f64,
+        contacts_per_particle: 2.0 * contacts.sphere as f64 / n as f64,
+        wall_contacts: contacts.wall,
+        peak_rss_mb: peak_rss_mb(),
+        threads: args.threads,
+        particles: n,
+        steps: args.steps,
+        warmup: args.warmup,
+        cpu_seconds,
+        wall_seconds: seconds,
+        path: match (scene.coupling, scene.force_path) {
+            (mdr_sim::scene::CouplingMode::Restitution, _) => "restitution",
+            (_, mdr_sim::scene::ForcePath::Rapier) => "rapier",
+            (_, mdr_sim::scene::ForcePath::NeighbourList) => "neighbour_list",
+        },
+        start_step,
+        max_speed_m_per_s: steps.max_speed(),
+        rebuilds: steps
+            .rebuilds()
+            .zip(rebuilds0)
+            .map(|(now, before)| now - before),
+        listed_pairs_per_particle: steps.listed_pairs().map(|p| 2.0 * p as f64 / n as f64),
+        breakdown_ns_per_particle_step: steps
+            .step_timings()
+            .map(|t| Breakdown::new(&t, seconds, work)),
+        scene: scene.name.clone(),
+    })
+}
+
 fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
     if args.steps == 0 {
         bail!("--steps = 0 is outside the allowed range [1, inf) (timed steps)");
@@ -328,63 +385,8 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
     let pool = super::rayon_pool(args.threads)?;
     let scene = mdr_sim::scene::load_scene(&args.scene).map_err(|p| anyhow::anyhow!("{p}"))?;
     // The run's steps with the pool's other threads awake between passes, as `sim run` has them.
-    let figures = pool.install(|| {
-        mdr_rapier::fast::with_workers_awake(|| -> anyhow::Result<SceneFigures> {
-            let mut steps = match &args.resume {
-                Some(path) => mdr_sim::run::SceneSteps::resume(&scene, path)?,
-                None => mdr_sim::run::SceneSteps::new(&scene)?,
-            };
-            let start_step = steps.steps_done();
-            for _ in 0..args.warmup {
-                steps.step()?;
-            }
-            let rebuilds0 = steps.rebuilds();
-            steps.time_steps(true);
-            let cpu0 = process_cpu_seconds();
-            let start = Instant::now();
-            for _ in 0..args.steps {
-                steps.step()?;
-            }
-            let seconds = start.elapsed().as_secs_f64();
-            let cpu_seconds = match (cpu0, process_cpu_seconds()) {
-                (Some(a), Some(b)) => b - a,
-                _ => f64::NAN,
-            };
-            let n = steps.particles();
-            let contacts = steps.contacts();
-            let work = (n as u64 * args.steps) as f64;
-            Ok(SceneFigures {
-                particle_steps_per_s: work / seconds,
-                cpu_particle_steps_per_s: work / cpu_seconds,
-                ms_per_step: 1e3 * seconds / args.steps as f64,
-                contacts_per_particle: 2.0 * contacts.sphere as f64 / n as f64,
-                wall_contacts: contacts.wall,
-                peak_rss_mb: peak_rss_mb(),
-                threads: args.threads,
-                particles: n,
-                steps: args.steps,
-                warmup: args.warmup,
-                cpu_seconds,
-                wall_seconds: seconds,
-                path: match (scene.coupling, scene.force_path) {
-                    (mdr_sim::scene::CouplingMode::Restitution, _) => "restitution",
-                    (_, mdr_sim::scene::ForcePath::Rapier) => "rapier",
-                    (_, mdr_sim::scene::ForcePath::NeighbourList) => "neighbour_list",
-                },
-                start_step,
-                max_speed_m_per_s: steps.max_speed(),
-                rebuilds: steps
-                    .rebuilds()
-                    .zip(rebuilds0)
-                    .map(|(now, before)| now - before),
-                listed_pairs_per_particle: steps.listed_pairs().map(|p| 2.0 * p as f64 / n as f64),
-                breakdown_ns_per_particle_step: steps
-                    .step_timings()
-                    .map(|t| Breakdown::new(&t, seconds, work)),
-                scene: scene.name.clone(),
-            })
-        })
-    })?;
+    let figures =
+        pool.install(|| mdr_rapier::fast::with_workers_awake(|| time_scene(args, &scene)))?;
     if args.json {
         println!("{}", serde_json::to_string(&figures)?);
     } else {
