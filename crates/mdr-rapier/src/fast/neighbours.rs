@@ -252,22 +252,37 @@ impl NeighbourBuilder {
                     // The three cells of a stencil row are adjacent in cell order, so their
                     // points are one run of `sorted`.
                     let (x_lo, x_hi) = (c[0].saturating_sub(1), (c[0] + 1).min(d[0] - 1));
+                    let mut runs = [(0, 0); 9];
+                    let mut total = 0;
+                    let mut rows = 0;
                     for cz in c[2].saturating_sub(1)..(c[2] + 2).min(d[2]) {
                         for cy in c[1].saturating_sub(1)..(c[1] + 2).min(d[1]) {
                             let row = (cz * d[1] + cy) * d[0];
-                            let run = cell_start[row + x_lo] as usize
-                                ..cell_start[row + x_hi + 1] as usize;
-                            for (s, &(j, code)) in
-                                sorted[run.clone()].iter().zip(&sorted_owner[run])
-                            {
-                                let reach = ri + s[3] + skin;
-                                let (dx, dy, dz) = (xi.x - s[0], xi.y - s[1], xi.z - s[2]);
-                                if (j as usize) > i && dx * dx + dy * dy + dz * dz < reach * reach {
-                                    cands.push((u64::from(j) << 8) | u64::from(code));
-                                }
-                            }
+                            let run = (
+                                cell_start[row + x_lo] as usize,
+                                cell_start[row + x_hi + 1] as usize,
+                            );
+                            total += run.1 - run.0;
+                            runs[rows] = run;
+                            rows += 1;
                         }
                     }
+                    // Every point of the stencil is written at the cursor, which advances only
+                    // past a partner: no branch on whether a point is one (a third or so are,
+                    // at random in a packing, so a branch would mispredict often).
+                    let mut len = start;
+                    cands.resize(start + total, 0);
+                    for &(a, b) in &runs[..rows] {
+                        for (s, &(j, code)) in sorted[a..b].iter().zip(&sorted_owner[a..b]) {
+                            let reach = ri + s[3] + skin;
+                            let (dx, dy, dz) = (xi.x - s[0], xi.y - s[1], xi.z - s[2]);
+                            let partner =
+                                (j as usize > i) & (dx * dx + dy * dy + dz * dz < reach * reach);
+                            cands[len] = (u64::from(j) << 8) | u64::from(code);
+                            len += usize::from(partner);
+                        }
+                    }
+                    cands.truncate(len);
                     cands[start..].sort_unstable();
                     counts.push((cands.len() - start) as u32);
                 }
