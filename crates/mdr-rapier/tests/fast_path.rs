@@ -458,6 +458,60 @@ fn workers_kept_awake_change_no_trajectory() {
     }
 }
 
+/// The skin decides only how often the lists are rebuilt and how many pairs they hold beyond the
+/// touching ones: in open space (no periodic wrap at a rebuild) the touching pairs, their order in
+/// the list and so every sum are the same for any skin, and so is every bit of the trajectory.
+#[test]
+fn the_skin_changes_no_trajectory_in_open_space() {
+    let bed = lattice_bed(&BedSpec {
+        count: 2000,
+        ..BedSpec::default()
+    })
+    .unwrap();
+    let run = |skin: f64| {
+        let mut fast = FastForceStepper::new(model(), Boundary::Open)
+            .skin(skin)
+            .unwrap();
+        let m = fast.insert_material(grain());
+        let mut world = PhysicsWorld {
+            gravity: Vector::new(0.0, 0.0, -1.0),
+            ..PhysicsWorld::default()
+        };
+        fast.configure(&mut world.integration_parameters, 1e-4)
+            .unwrap();
+        fast.insert_surface(
+            &mut world,
+            ColliderBuilder::new(SharedShape::halfspace(Vector::Z)),
+            None,
+            m,
+        )
+        .unwrap();
+        for (k, p) in bed.position.iter().enumerate() {
+            fast.insert_sphere(
+                SphereBuilder::new(0.5, m)
+                    .translation(Vector::new(p.x, p.y, 0.49 + (p.z - 0.55) * 0.9))
+                    .linvel(Vector::new(
+                        0.3 * ((k * 7919) % 13) as f64 / 13.0 - 0.15,
+                        0.3 * ((k * 104729) % 11) as f64 / 11.0 - 0.15,
+                        -0.5,
+                    )),
+            )
+            .unwrap();
+        }
+        for _ in 0..300 {
+            fast.step(&mut world).unwrap();
+        }
+        fast
+    };
+    let (thin, thick) = (run(0.02), run(0.2));
+    assert!(thin.last_report().sphere_contacts > 1000);
+    assert!(thin.rebuilds() > thick.rebuilds(), "{} vs {}", thin.rebuilds(), thick.rebuilds());
+    assert!(thin.pairs().len() < thick.pairs().len());
+    assert_eq!(thin.particles().position, thick.particles().position);
+    assert_eq!(thin.particles().linvel, thick.particles().linvel);
+    assert_eq!(thin.particles().angvel, thick.particles().angvel);
+}
+
 /// Switching the number of threads mid-run (and rebuilding the list with either) must not
 /// change a bit; no step stores a per-pair wrench unless asked to.
 #[test]
