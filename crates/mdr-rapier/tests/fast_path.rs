@@ -505,7 +505,12 @@ fn the_skin_changes_no_trajectory_in_open_space() {
     };
     let (thin, thick) = (run(0.02), run(0.2));
     assert!(thin.last_report().sphere_contacts > 1000);
-    assert!(thin.rebuilds() > thick.rebuilds(), "{} vs {}", thin.rebuilds(), thick.rebuilds());
+    assert!(
+        thin.rebuilds() > thick.rebuilds(),
+        "{} vs {}",
+        thin.rebuilds(),
+        thick.rebuilds()
+    );
     assert!(thin.pairs().len() < thick.pairs().len());
     assert_eq!(thin.particles().position, thick.particles().position);
     assert_eq!(thin.particles().linvel, thick.particles().linvel);
