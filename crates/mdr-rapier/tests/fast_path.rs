@@ -284,14 +284,18 @@ fn periodic_setup(
     FastForceStepper<Hertz, Mindlin, HertzianViscous>,
     PhysicsWorld,
 ) {
-    periodic_setup_with(bed, |k| {
-        let linvel = Vector::new(
-            0.3 * ((k * 7919) % 13) as f64 / 13.0 - 0.15,
-            0.3 * ((k * 104729) % 11) as f64 / 11.0 - 0.15,
-            -0.5,
-        );
-        (linvel, Vector::ZERO)
-    })
+    periodic_setup_with(bed, kick)
+}
+
+/// The starting velocity of sphere `k` in the beds of these tests: down at 0.5, and sideways
+/// by up to 0.15 each way, varying from sphere to sphere; no spin.
+fn kick(k: usize) -> (Vector, Vector) {
+    let linvel = Vector::new(
+        0.3 * ((k * 7919) % 13) as f64 / 13.0 - 0.15,
+        0.3 * ((k * 104729) % 11) as f64 / 11.0 - 0.15,
+        -0.5,
+    );
+    (linvel, Vector::ZERO)
 }
 
 /// The periodic bed of [`periodic_setup`] with sphere `k` starting at the velocity and angular
@@ -304,7 +308,21 @@ fn periodic_setup_with(
     PhysicsWorld,
 ) {
     let boundary = Boundary::periodic_xy((bed.lo[0], bed.hi[0]), (bed.lo[1], bed.hi[1])).unwrap();
-    let mut fast = FastForceStepper::new(model(), boundary).skin(0.1).unwrap();
+    bed_setup(bed, boundary, 0.1, kick)
+}
+
+/// The spheres of `bed` in `boundary` on a floor, with neighbour skin `skin`, sphere `k`
+/// starting at the velocity and angular velocity `kick(k)`.
+fn bed_setup(
+    bed: &Bed,
+    boundary: Boundary,
+    skin: f64,
+    kick: impl Fn(usize) -> (Vector, Vector),
+) -> (
+    FastForceStepper<Hertz, Mindlin, HertzianViscous>,
+    PhysicsWorld,
+) {
+    let mut fast = FastForceStepper::new(model(), boundary).skin(skin).unwrap();
     let m = fast.insert_material(grain());
     let mut world = PhysicsWorld {
         gravity: Vector::new(0.0, 0.0, -1.0),
@@ -469,35 +487,7 @@ fn the_skin_changes_no_trajectory_in_open_space() {
     })
     .unwrap();
     let run = |skin: f64| {
-        let mut fast = FastForceStepper::new(model(), Boundary::Open)
-            .skin(skin)
-            .unwrap();
-        let m = fast.insert_material(grain());
-        let mut world = PhysicsWorld {
-            gravity: Vector::new(0.0, 0.0, -1.0),
-            ..PhysicsWorld::default()
-        };
-        fast.configure(&mut world.integration_parameters, 1e-4)
-            .unwrap();
-        fast.insert_surface(
-            &mut world,
-            ColliderBuilder::new(SharedShape::halfspace(Vector::Z)),
-            None,
-            m,
-        )
-        .unwrap();
-        for (k, p) in bed.position.iter().enumerate() {
-            fast.insert_sphere(
-                SphereBuilder::new(0.5, m)
-                    .translation(Vector::new(p.x, p.y, 0.49 + (p.z - 0.55) * 0.9))
-                    .linvel(Vector::new(
-                        0.3 * ((k * 7919) % 13) as f64 / 13.0 - 0.15,
-                        0.3 * ((k * 104729) % 11) as f64 / 11.0 - 0.15,
-                        -0.5,
-                    )),
-            )
-            .unwrap();
-        }
+        let (mut fast, mut world) = bed_setup(&bed, Boundary::Open, skin, kick);
         for _ in 0..300 {
             fast.step(&mut world).unwrap();
         }
