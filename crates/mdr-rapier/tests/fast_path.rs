@@ -3,6 +3,7 @@
 //! determinism for 1 and 2 threads; periodic images; LAMMPS data files.
 
 use mdr_rapier::fast::bed::{lattice_bed, Bed, BedSpec};
+use mdr_rapier::fast::particles::FastParticles;
 use mdr_rapier::fast::rayon::ThreadPoolBuilder;
 use mdr_rapier::fast::{Boundary, ContactPartner, FastForceStepper};
 use mdr_rapier::geometry::SurfaceOfRevolution;
@@ -270,6 +271,13 @@ fn fast_path_reproduces_plain_path_with_hertz_and_rolling() {
     assert_round_off(&compare_paths(model, EpsdRolling::new(0.2).unwrap(), 3000));
 }
 
+/// Two runs' spheres are in the same place with the same velocities and spins, to the bit.
+fn assert_same_motion(a: &FastParticles, b: &FastParticles) {
+    assert_eq!(a.position, b.position);
+    assert_eq!(a.linvel, b.linvel);
+    assert_eq!(a.angvel, b.angvel);
+}
+
 fn periodic_run(bed: &Bed, steps: usize) -> FastForceStepper<Hertz, Mindlin, HertzianViscous> {
     let (mut fast, mut world) = periodic_setup(bed);
     for _ in 0..steps {
@@ -392,9 +400,7 @@ fn fast_path_is_deterministic_for_one_and_two_threads() {
         );
         for threads in [2, 3] {
             let other = run(threads);
-            assert_eq!(one.particles().position, other.particles().position);
-            assert_eq!(one.particles().linvel, other.particles().linvel);
-            assert_eq!(one.particles().angvel, other.particles().angvel);
+            assert_same_motion(one.particles(), other.particles());
         }
     }
 }
@@ -470,9 +476,7 @@ fn workers_kept_awake_change_no_trajectory() {
     assert!(reference.last_report().sphere_contacts > 1000);
     for (threads, awake) in [(1, true), (2, false), (2, true)] {
         let other = run(threads, awake);
-        assert_eq!(reference.particles().position, other.particles().position);
-        assert_eq!(reference.particles().linvel, other.particles().linvel);
-        assert_eq!(reference.particles().angvel, other.particles().angvel);
+        assert_same_motion(reference.particles(), other.particles());
     }
 }
 
@@ -502,9 +506,7 @@ fn the_skin_changes_no_trajectory_in_open_space() {
         thick.rebuilds()
     );
     assert!(thin.pairs().len() < thick.pairs().len());
-    assert_eq!(thin.particles().position, thick.particles().position);
-    assert_eq!(thin.particles().linvel, thick.particles().linvel);
-    assert_eq!(thin.particles().angvel, thick.particles().angvel);
+    assert_same_motion(thin.particles(), thick.particles());
 }
 
 /// Switching the number of threads mid-run (and rebuilding the list with either) must not
@@ -532,9 +534,7 @@ fn switching_thread_counts_mid_run_changes_nothing() {
         rebuilds_in[0] > 1 && rebuilds_in[1] > 1,
         "rebuilds in both modes: {rebuilds_in:?}"
     );
-    assert_eq!(reference.particles().position, fast.particles().position);
-    assert_eq!(reference.particles().linvel, fast.particles().linvel);
-    assert_eq!(reference.particles().angvel, fast.particles().angvel);
+    assert_same_motion(reference.particles(), fast.particles());
 }
 
 #[test]
@@ -628,9 +628,7 @@ fn orientation_tracking_does_not_change_sphere_trajectories() {
         let on = run(threads, true);
         let off = run(threads, false);
         assert!(on.last_report().sphere_contacts > 50);
-        assert_eq!(on.particles().position, off.particles().position);
-        assert_eq!(on.particles().linvel, off.particles().linvel);
-        assert_eq!(on.particles().angvel, off.particles().angvel);
+        assert_same_motion(on.particles(), off.particles());
         // The tracked orientations turned; the untracked ones did not.
         let turned = |f: &FastForceStepper<Hertz, Mindlin, HertzianViscous>| {
             f.particles()
@@ -663,9 +661,7 @@ fn timing_the_steps_changes_no_trajectory_and_accounts_for_every_part() {
         timed.step(&mut world).unwrap();
     }
     let elapsed = start.elapsed();
-    assert_eq!(plain.particles().position, timed.particles().position);
-    assert_eq!(plain.particles().linvel, timed.particles().linvel);
-    assert_eq!(plain.particles().angvel, timed.particles().angvel);
+    assert_same_motion(plain.particles(), timed.particles());
     let t = *timed.step_timings().unwrap();
     assert_eq!(t.steps, 300);
     assert!(timed.rebuilds() >= 2, "the first step and later ones build");
@@ -730,9 +726,7 @@ fn dropping_the_work_books_mid_run_changes_no_trajectory() {
                 fast.step(&mut world).unwrap();
             }
         });
-        assert_eq!(reference.particles().position, fast.particles().position);
-        assert_eq!(reference.particles().linvel, fast.particles().linvel);
-        assert_eq!(reference.particles().angvel, fast.particles().angvel);
+        assert_same_motion(reference.particles(), fast.particles());
         let pairs = fast.pairs();
         let q = (0..pairs.len()).find(|&q| pairs.active[q]).unwrap();
         let law = fast.sphere_law(pairs.i[q] as usize, pairs.j[q] as usize);
