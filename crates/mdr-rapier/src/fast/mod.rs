@@ -16,7 +16,8 @@
 //! - [`bed`]: LAMMPS data files, a settled-bed generator and the settled-bed benchmark's timing
 //!   loop ([`bed::bench_bed`], shared by `mdr-dem bench bed` and the Python package);
 //! - [`workers`]: the pool's other threads kept awake through a run of steps
-//!   ([`workers::with_workers_awake`]).
+//!   ([`workers::with_workers_awake`]), and the parallel passes' blocks handed to the same
+//!   thread in every pass ([`workers::map_tasks`]).
 
 pub mod bed;
 pub mod boundary;

@@ -13,9 +13,9 @@
 //! transposed index are serial.
 
 use super::boundary::{Boundary, Image};
+use super::workers::map_tasks;
 use crate::kernel::PairWrench;
 use nalgebra::Vector3;
-use rayon::prelude::*;
 
 /// Particles per block of the parallel neighbour search.
 const BLOCK: usize = 512;
@@ -238,55 +238,53 @@ impl NeighbourBuilder {
         let sorted = &self.sorted;
         let sorted_owner = &self.sorted_owner;
         let cell_start = &self.cell_start;
-        self.blocks[..nblocks]
-            .par_iter_mut()
-            .enumerate()
-            .for_each(|(b, (cands, counts))| {
-                cands.clear();
-                counts.clear();
-                for i in b * BLOCK..((b + 1) * BLOCK).min(n) {
-                    let start = cands.len();
-                    let xi = &points[i];
-                    let ri = r[i];
-                    let c = cell_index(xi);
-                    // The three cells of a stencil row are adjacent in cell order, so their
-                    // points are one run of `sorted`.
-                    let (x_lo, x_hi) = (c[0].saturating_sub(1), (c[0] + 1).min(d[0] - 1));
-                    let mut runs = [(0, 0); 9];
-                    let mut total = 0;
-                    let mut rows = 0;
-                    for cz in c[2].saturating_sub(1)..(c[2] + 2).min(d[2]) {
-                        for cy in c[1].saturating_sub(1)..(c[1] + 2).min(d[1]) {
-                            let row = (cz * d[1] + cy) * d[0];
-                            let run = (
-                                cell_start[row + x_lo] as usize,
-                                cell_start[row + x_hi + 1] as usize,
-                            );
-                            total += run.1 - run.0;
-                            runs[rows] = run;
-                            rows += 1;
-                        }
+        let search: Vec<_> = self.blocks[..nblocks].iter_mut().enumerate().collect();
+        map_tasks(search, |(b, (cands, counts))| {
+            cands.clear();
+            counts.clear();
+            for i in b * BLOCK..((b + 1) * BLOCK).min(n) {
+                let start = cands.len();
+                let xi = &points[i];
+                let ri = r[i];
+                let c = cell_index(xi);
+                // The three cells of a stencil row are adjacent in cell order, so their
+                // points are one run of `sorted`.
+                let (x_lo, x_hi) = (c[0].saturating_sub(1), (c[0] + 1).min(d[0] - 1));
+                let mut runs = [(0, 0); 9];
+                let mut total = 0;
+                let mut rows = 0;
+                for cz in c[2].saturating_sub(1)..(c[2] + 2).min(d[2]) {
+                    for cy in c[1].saturating_sub(1)..(c[1] + 2).min(d[1]) {
+                        let row = (cz * d[1] + cy) * d[0];
+                        let run = (
+                            cell_start[row + x_lo] as usize,
+                            cell_start[row + x_hi + 1] as usize,
+                        );
+                        total += run.1 - run.0;
+                        runs[rows] = run;
+                        rows += 1;
                     }
-                    // Every point of the stencil is written at the cursor, which advances only
-                    // past a partner: no branch on whether a point is one (a third or so are,
-                    // at random in a packing, so a branch would mispredict often).
-                    let mut len = start;
-                    cands.resize(start + total, 0);
-                    for &(a, b) in &runs[..rows] {
-                        for (s, &(j, code)) in sorted[a..b].iter().zip(&sorted_owner[a..b]) {
-                            let reach = ri + s[3] + skin;
-                            let (dx, dy, dz) = (xi.x - s[0], xi.y - s[1], xi.z - s[2]);
-                            let partner =
-                                (j as usize > i) & (dx * dx + dy * dy + dz * dz < reach * reach);
-                            cands[len] = (u64::from(j) << 8) | u64::from(code);
-                            len += usize::from(partner);
-                        }
-                    }
-                    cands.truncate(len);
-                    cands[start..].sort_unstable();
-                    counts.push((cands.len() - start) as u32);
                 }
-            });
+                // Every point of the stencil is written at the cursor, which advances only
+                // past a partner: no branch on whether a point is one (a third or so are,
+                // at random in a packing, so a branch would mispredict often).
+                let mut len = start;
+                cands.resize(start + total, 0);
+                for &(a, b) in &runs[..rows] {
+                    for (s, &(j, code)) in sorted[a..b].iter().zip(&sorted_owner[a..b]) {
+                        let reach = ri + s[3] + skin;
+                        let (dx, dy, dz) = (xi.x - s[0], xi.y - s[1], xi.z - s[2]);
+                        let partner =
+                            (j as usize > i) & (dx * dx + dy * dy + dz * dz < reach * reach);
+                        cands[len] = (u64::from(j) << 8) | u64::from(code);
+                        len += usize::from(partner);
+                    }
+                }
+                cands.truncate(len);
+                cands[start..].sort_unstable();
+                counts.push((cands.len() - start) as u32);
+            }
+        });
 
         // Each block's range in the new list (its candidates, in block order) and in the old
         // one (the old pairs whose first particle is in the block: the old list is sorted by
@@ -360,7 +358,7 @@ impl NeighbourBuilder {
                 },
             )
             .collect();
-        tasks.into_par_iter().for_each(|task| task.run(&old));
+        map_tasks(tasks, |task| task.run(&old));
     }
 }
 

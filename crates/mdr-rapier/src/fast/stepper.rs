@@ -33,6 +33,7 @@ use super::boundary::Boundary;
 use super::neighbours::{NeighbourBuilder, PairList};
 use super::particles::{FastParticles, Species};
 use super::surfaces::{surface_displacement, FastSurface, SurfacePairs};
+use super::workers::map_tasks;
 use crate::convert::{to_glam, to_na};
 use crate::error::{positive, CouplingError, Result};
 use crate::geometry::{sphere_sphere, ConvexFaces, SurfaceContact, SurfaceOfRevolution};
@@ -52,7 +53,6 @@ use mdr_contact::{ContactPair, Material};
 use nalgebra::Vector3;
 use rapier3d_f64::parry::mass_properties::MassProperties;
 use rapier3d_f64::prelude::*;
-use rayon::prelude::*;
 use std::sync::Arc;
 
 mod forces;

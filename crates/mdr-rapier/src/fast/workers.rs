@@ -1,4 +1,6 @@
-//! The pool's other threads kept awake through a run of steps.
+//! How a run of steps uses its pool's threads: kept awake between passes
+//! ([`with_workers_awake`]), and each pass's blocks handed to the same threads pass after pass
+//! ([`map_tasks`]).
 //!
 //! A step of the neighbour-list path makes several parallel passes (the surfaces, the two
 //! colours of the pair loop, the integration) with short serial parts between them. rayon puts
@@ -12,8 +14,8 @@
 //! the stepper (every sum has an order fixed by the particle count and the lists).
 
 use std::cell::Cell;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex, PoisonError};
 
 thread_local! {
     /// How many [`with_workers_awake`] closures run on this thread (nested, or one run that a
@@ -64,4 +66,174 @@ pub fn with_workers_awake<R>(f: impl FnOnce() -> R) -> R {
     RUNS.with(|runs| runs.set(runs.get() + 1));
     let _release = Release(stop);
     f()
+}
+
+/// Run `f` on every task, spread over the threads of the current rayon pool (outside a pool,
+/// the calling thread and the global pool's), and return the results in task order (which
+/// thread ran a task changes no result). The parallel passes of the neighbour-list stepper run
+/// their blocks of particles and pairs through it.
+///
+/// The tasks are cut into one part per thread, and each thread takes the tasks of its own part
+/// first, one at a time, then what is left of the others'. A thread's part is set by its place
+/// in the pool relative to the caller, so in a run of steps (one caller) a thread works on the
+/// same particles pass after pass and step after step, and finds their sums, positions and
+/// velocities in its own core's cache: handing them from core to core costs more than the work
+/// on them. Once no task is left to take, the caller busy-waits for the others to finish theirs,
+/// where a rayon `join` would let it sleep after a few dozen yields, and waking it would cost the
+/// pass tens of microseconds on a virtual machine. With [`with_workers_awake`] no thread of a
+/// run sleeps between its passes. docs/performance.md has the measurements.
+///
+/// A task must not wait for other pool work (the caller's busy wait runs no other work).
+pub fn map_tasks<T: Send, R: Send>(tasks: Vec<T>, f: impl Fn(T) -> R + Sync) -> Vec<R> {
+    let n = tasks.len();
+    let pool = rayon::current_num_threads();
+    let threads = pool.min(n);
+    if threads < 2 {
+        return tasks.into_iter().map(f).collect();
+    }
+    let tasks: Vec<Mutex<Option<T>>> = tasks.into_iter().map(|t| Mutex::new(Some(t))).collect();
+    let results: Vec<Mutex<Option<R>>> = (0..n).map(|_| Mutex::new(None)).collect();
+    // Part `p` of the tasks, `bounds[p]..bounds[p + 1]`, is first taken by the thread `p`
+    // places after the caller in the pool (the same thread in every call of a run), so that a
+    // thread works on the same particles in pass after pass and finds them in its own cache.
+    let bounds: Vec<usize> = (0..=threads).map(|p| p * n / threads).collect();
+    let cursors: Vec<AtomicUsize> = bounds[..threads]
+        .iter()
+        .map(|&b| AtomicUsize::new(b))
+        .collect();
+    let done = AtomicUsize::new(0);
+    let caller = rayon::current_thread_index();
+    // A thread's place after the caller (outside a pool, the caller comes first).
+    let place = |thread: Option<usize>| match (thread, caller) {
+        (Some(t), Some(c)) => (t + pool - c) % pool,
+        (Some(t), None) => t + 1,
+        (None, _) => 0,
+    };
+    /// Counts a task as done when it returns or unwinds, so that the caller's wait ends either
+    /// way (the scope then passes the panic on).
+    struct Done<'a>(&'a AtomicUsize);
+    impl Drop for Done<'_> {
+        fn drop(&mut self) {
+            self.0.fetch_add(1, Ordering::Release);
+        }
+    }
+    let work = || {
+        let own = place(rayon::current_thread_index()) % threads;
+        // Its own part first, then what is left of the others'.
+        for p in (own..threads).chain(0..own) {
+            loop {
+                let k = cursors[p].fetch_add(1, Ordering::Relaxed);
+                if k >= bounds[p + 1] {
+                    break;
+                }
+                let _done = Done(&done);
+                let task = lock(&tasks[k]).take().expect("each task is taken once");
+                let result = f(task);
+                *lock(&results[k]) = Some(result);
+            }
+        }
+    };
+    rayon::in_place_scope(|scope| {
+        for _ in 1..threads {
+            scope.spawn(|_| work());
+        }
+        work();
+        while done.load(Ordering::Acquire) < n {
+            std::hint::spin_loop();
+        }
+    });
+    results
+        .into_iter()
+        .map(|r| {
+            r.into_inner()
+                .unwrap_or_else(PoisonError::into_inner)
+                .expect("every task ran")
+        })
+        .collect()
+}
+
+/// The value behind `m`, also after a task panicked while holding it (the panic is passed on).
+fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashSet;
+
+    fn pool(threads: usize) -> rayon::ThreadPool {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+    }
+
+    /// Every task runs once, its result comes back in its place, and tasks of both halves run
+    /// on both threads when they are slow enough for the other thread to join in.
+    #[test]
+    fn tasks_run_once_each_and_come_back_in_order() {
+        let expected: Vec<u64> = (0..1000u64).map(|k| k * k).collect();
+        let runs = AtomicUsize::new(0);
+        let square = |k: u64| {
+            runs.fetch_add(1, Ordering::Relaxed);
+            k * k
+        };
+        // Outside a pool, in pools of one, two and four threads, with the workers awake or not.
+        assert_eq!(map_tasks((0..1000).collect(), square), expected);
+        for threads in [1, 2, 4] {
+            let pool = pool(threads);
+            let plain = pool.install(|| map_tasks((0..1000).collect(), square));
+            let awake =
+                pool.install(|| with_workers_awake(|| map_tasks((0..1000).collect(), square)));
+            assert_eq!(plain, expected, "{threads} threads");
+            assert_eq!(awake, expected, "{threads} threads, workers awake");
+        }
+        assert_eq!(runs.load(Ordering::Relaxed), 7 * 1000);
+        // Fewer tasks than threads, and none.
+        let pool = pool(4);
+        assert_eq!(
+            pool.install(|| map_tasks(vec![3, 4], |k| k + 1)),
+            vec![4, 5]
+        );
+        assert!(pool
+            .install(|| map_tasks(Vec::<u8>::new(), |k| k))
+            .is_empty());
+        // Tasks that take a while: both threads take part.
+        let threads: Vec<usize> = pool.install(|| {
+            with_workers_awake(|| {
+                map_tasks((0..64).collect(), |_: usize| {
+                    std::thread::sleep(std::time::Duration::from_millis(2));
+                    rayon::current_thread_index().unwrap()
+                })
+            })
+        });
+        let distinct: HashSet<usize> = threads.iter().copied().collect();
+        assert!(distinct.len() > 1, "one thread ran every task: {threads:?}");
+    }
+
+    /// A task's panic reaches the caller once the other tasks are done, and the pool goes on.
+    #[test]
+    fn a_panicking_task_panics_the_caller() {
+        let pool = pool(2);
+        let finished = AtomicUsize::new(0);
+        let outcome = pool.install(|| {
+            std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                with_workers_awake(|| {
+                    map_tasks((0..200).collect(), |k: usize| {
+                        if k == 150 {
+                            panic!("task {k}");
+                        }
+                        finished.fetch_add(1, Ordering::Relaxed);
+                    })
+                })
+            }))
+        });
+        assert!(outcome.is_err());
+        assert!(finished.load(Ordering::Relaxed) <= 199);
+        assert_eq!(
+            pool.install(|| map_tasks(vec![1, 2, 3], |k| 2 * k)),
+            vec![2, 4, 6]
+        );
+    }
 }

@@ -235,14 +235,16 @@ where
         // An even block's window starts at its own first particle, and so does an odd one's.
         let mut results = Vec::with_capacity(nblocks);
         for (colour, start) in [(even, 0), (odd, block_len.min(n))] {
-            results.par_extend(
-                colour
-                    .into_par_iter()
-                    .zip(self.sums[start..].par_chunks_mut(2 * block_len))
-                    .map(|((b, history, active, wrench, deferred), window)| {
-                        (b, block(b, history, active, wrench, window, deferred))
-                    }),
-            );
+            let tasks: Vec<_> = colour
+                .into_iter()
+                .zip(self.sums[start..].chunks_mut(2 * block_len))
+                .collect();
+            results.extend(map_tasks(
+                tasks,
+                |((b, history, active, wrench, deferred), window)| {
+                    (b, block(b, history, active, wrench, window, deferred))
+                },
+            ));
         }
         // The shares for particles beyond the next block, in block and pair order.
         for deferred in &self.deferred {
@@ -293,13 +295,15 @@ where
         let (particle, surface) = (&*particle, &*surface);
         // Smaller chunks than the sphere pairs': a scene's wall contacts are few (a floor
         // under a column, a hopper's rim), and one or two chunks would leave a thread idle.
-        let results: Vec<(usize, Vec<EndedContact>)> = history
-            .par_chunks_mut(SURFACE_CHUNK)
-            .zip(wrench.par_chunks_mut(SURFACE_CHUNK))
-            .zip(active.par_chunks_mut(SURFACE_CHUNK))
-            .zip(contacts.par_chunks_mut(SURFACE_CHUNK))
+        let chunks: Vec<_> = history
+            .chunks_mut(SURFACE_CHUNK)
+            .zip(wrench.chunks_mut(SURFACE_CHUNK))
+            .zip(active.chunks_mut(SURFACE_CHUNK))
+            .zip(contacts.chunks_mut(SURFACE_CHUNK))
             .enumerate()
-            .map(|(c, (((history, wrench), active), contacts))| {
+            .collect();
+        let results: Vec<(usize, Vec<EndedContact>)> =
+            map_tasks(chunks, |(c, (((history, wrench), active), contacts))| {
                 let base = c * SURFACE_CHUNK;
                 let mut touching = 0;
                 let mut ended = Vec::new();
@@ -353,8 +357,7 @@ where
                     contacts[k] = contact;
                 }
                 (touching, ended)
-            })
-            .collect();
+            });
         self.collect_ended(results)
     }
 }

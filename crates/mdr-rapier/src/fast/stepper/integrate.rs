@@ -33,34 +33,36 @@ where
         } = &mut self.particles;
         let (species, table) = (&*species, &*species_table);
         const PCHUNK: usize = 1024;
-        position
-            .par_chunks_mut(PCHUNK)
-            .zip(linvel.par_chunks_mut(PCHUNK))
-            .zip(angvel.par_chunks_mut(PCHUNK))
-            .zip(rotation.par_chunks_mut(PCHUNK))
+        let chunks: Vec<_> = position
+            .chunks_mut(PCHUNK)
+            .zip(linvel.chunks_mut(PCHUNK))
+            .zip(angvel.chunks_mut(PCHUNK))
+            .zip(rotation.chunks_mut(PCHUNK))
             .enumerate()
-            .map(|(c, (((x, v), w), q))| {
-                let mut max2: f64 = 0.0;
-                for k in 0..x.len() {
-                    let i = c * PCHUNK + k;
-                    let (force, torque) = sums[i];
-                    let s = &table[species[i] as usize];
-                    // rapier: force = user_force + g · m; Δv = force · (1/m) · dt.
-                    let total = force + gravity * s.mass;
-                    v[k] += total * s.inv_mass * dt;
-                    w[k] += torque * s.inv_inertia * dt;
-                    x[k] += v[k] * dt;
-                    // rapier's linearised rotation update.
-                    if orientation {
-                        let half = w[k] * (dt * 0.5);
-                        let id_plus_half = Rotation::from_xyzw(half.x, half.y, half.z, 1.0);
-                        q[k] = renormalize(id_plus_half * q[k]);
-                    }
-                    max2 = max2.max((x[k] - built_at[i]).norm_squared());
+            .collect();
+        map_tasks(chunks, |(c, (((x, v), w), q))| {
+            let mut max2: f64 = 0.0;
+            for k in 0..x.len() {
+                let i = c * PCHUNK + k;
+                let (force, torque) = sums[i];
+                let s = &table[species[i] as usize];
+                // rapier: force = user_force + g · m; Δv = force · (1/m) · dt.
+                let total = force + gravity * s.mass;
+                v[k] += total * s.inv_mass * dt;
+                w[k] += torque * s.inv_inertia * dt;
+                x[k] += v[k] * dt;
+                // rapier's linearised rotation update.
+                if orientation {
+                    let half = w[k] * (dt * 0.5);
+                    let id_plus_half = Rotation::from_xyzw(half.x, half.y, half.z, 1.0);
+                    q[k] = renormalize(id_plus_half * q[k]);
                 }
-                max2
-            })
-            .reduce(|| 0.0, f64::max)
+                max2 = max2.max((x[k] - built_at[i]).norm_squared());
+            }
+            max2
+        })
+        .into_iter()
+        .fold(0.0, f64::max)
     }
 
     /// Step 5: reaction wrenches on the surfaces' dynamic bodies, in key order.

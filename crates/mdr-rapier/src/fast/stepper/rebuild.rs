@@ -165,28 +165,25 @@ where
         // come out in particle order whatever the number of threads.
         const SEARCH_BLOCK: usize = 1024;
         let (position, radius, surfaces) = (&p.position, &p.radius, &self.surfaces);
-        let found: Vec<Vec<(u32, u32)>> = (0..n.div_ceil(SEARCH_BLOCK))
-            .into_par_iter()
-            .map(|b| {
-                let mut found = Vec::new();
-                for i in b * SEARCH_BLOCK..((b + 1) * SEARCH_BLOCK).min(n) {
-                    let x = to_glam(&position[i]);
-                    let reach = radius[i] + skin;
-                    for &k in grid.surfaces_near(&position[i]) {
-                        let k = k as usize;
-                        let Some((co, aabb)) = &aabbs[k] else {
-                            continue;
-                        };
-                        let inside = (0..3)
-                            .all(|d| x[d] >= aabb.mins[d] - reach && x[d] <= aabb.maxs[d] + reach);
-                        if inside && surfaces[k].within(co, &position[i], reach) {
-                            found.push((i as u32, k as u32));
-                        }
+        let found: Vec<Vec<(u32, u32)>> = map_tasks((0..n.div_ceil(SEARCH_BLOCK)).collect(), |b| {
+            let mut found = Vec::new();
+            for i in b * SEARCH_BLOCK..((b + 1) * SEARCH_BLOCK).min(n) {
+                let x = to_glam(&position[i]);
+                let reach = radius[i] + skin;
+                for &k in grid.surfaces_near(&position[i]) {
+                    let k = k as usize;
+                    let Some((co, aabb)) = &aabbs[k] else {
+                        continue;
+                    };
+                    let inside = (0..3)
+                        .all(|d| x[d] >= aabb.mins[d] - reach && x[d] <= aabb.maxs[d] + reach);
+                    if inside && surfaces[k].within(co, &position[i], reach) {
+                        found.push((i as u32, k as u32));
                     }
                 }
-                found
-            })
-            .collect();
+            }
+            found
+        });
         for block in &found {
             self.surface_candidates.extend_from_slice(block);
         }
