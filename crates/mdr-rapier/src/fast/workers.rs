@@ -78,7 +78,8 @@ pub fn with_workers_awake<R>(f: impl FnOnce() -> R) -> R {
 /// in the pool relative to the caller, so in a run of steps (one caller) a thread works on the
 /// same particles pass after pass and step after step, and finds their sums, positions and
 /// velocities in its own core's cache: handing them from core to core costs more than the work
-/// on them. Once no task is left to take, the caller busy-waits for the others to finish theirs,
+/// on them. Once no task is left to take, the caller busy-waits for the others to finish theirs
+/// (yielding its core after a few thousand spins, in case the thread it waits for needs it),
 /// where a rayon `join` would let it sleep after a few dozen yields, and waking it would cost the
 /// pass tens of microseconds on a virtual machine. With [`with_workers_awake`] no thread of a
 /// run sleeps between its passes. docs/performance.md has the measurements.
@@ -138,8 +139,16 @@ pub fn map_tasks<T: Send, R: Send>(tasks: Vec<T>, f: impl Fn(T) -> R + Sync) -> 
             scope.spawn(|_| work());
         }
         work();
+        // Spin, then also yield: with more threads than cores, the thread whose task is
+        // awaited may need this core.
+        let mut spins = 0u32;
         while done.load(Ordering::Acquire) < n {
-            std::hint::spin_loop();
+            if spins < 4096 {
+                spins += 1;
+                std::hint::spin_loop();
+            } else {
+                std::thread::yield_now();
+            }
         }
     });
     results
