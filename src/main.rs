@@ -40,10 +40,13 @@ fn main() -> std::process::ExitCode {
         Some(Command::Verify(args)) => cli::verify::run(args),
     };
     match result {
-        Ok(()) => std::process::ExitCode::SUCCESS,
+        Ok(()) => std::process::ExitCode::from(cli::EXIT_FINISHED),
         Err(err) => {
-            eprintln!("error: {err:#}");
-            std::process::ExitCode::FAILURE
+            // `Exit` carries a status whose messages are already printed.
+            if !err.is::<cli::Exit>() {
+                eprintln!("error: {}", cli::error_text(&err));
+            }
+            std::process::ExitCode::from(cli::exit_code(&err))
         }
     }
 }

@@ -7,10 +7,88 @@ pub mod sim_ring;
 pub mod sim_run;
 pub mod verify;
 
+use mdr_sim::SimError;
+
+/// Exit status of a finished command.
+pub const EXIT_FINISHED: u8 = 0;
+/// Exit status of a command that failed while it ran (an output that could not be written).
+pub const EXIT_FAILED: u8 = 1;
+/// Exit status of refused input: a flag, a scene file, a checkpoint or an output folder.
+pub const EXIT_REFUSED: u8 = 2;
+/// Exit status of a run stopped by a guard (a non-finite state, the energy guard, a sphere
+/// through a wall), with a checkpoint where one could be written.
+pub const EXIT_GUARD: u8 = 3;
+/// Exit status of a run interrupted by Ctrl-C (SIGINT), with a checkpoint: 128 + SIGINT, as
+/// shells report it.
+pub const EXIT_INTERRUPTED: u8 = 130;
+
+/// A command that ends with a given exit status, its messages already printed.
+#[derive(Debug)]
+pub struct Exit(pub u8);
+
+impl std::fmt::Display for Exit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "exit status {}", self.0)
+    }
+}
+
+impl std::error::Error for Exit {}
+
+/// Input refused with a message (exit status [`EXIT_REFUSED`]).
+#[derive(Debug)]
+pub struct Refused(pub String);
+
+impl std::fmt::Display for Refused {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for Refused {}
+
+/// The exit status for an error that ended a command.
+pub fn exit_code(err: &anyhow::Error) -> u8 {
+    for cause in err.chain() {
+        if let Some(Exit(code)) = cause.downcast_ref::<Exit>() {
+            return *code;
+        }
+        if cause.is::<Refused>() {
+            return EXIT_REFUSED;
+        }
+        if let Some(e) = cause.downcast_ref::<SimError>() {
+            if e.is_guard() {
+                return EXIT_GUARD;
+            }
+            if e.is_refused_input() {
+                return EXIT_REFUSED;
+            }
+        }
+    }
+    EXIT_FAILED
+}
+
+/// The error's message and its causes, each cause once: a cause whose text the message already
+/// holds (an I/O error quoted by its wrapper) is not repeated.
+pub fn error_text(err: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in err.chain() {
+        let part = cause.to_string();
+        if !text.contains(&part) {
+            if !text.is_empty() {
+                text.push_str(": ");
+            }
+            text.push_str(&part);
+        }
+    }
+    text
+}
+
 /// A pool of `threads` worker threads (the `--threads` flag of `bench` and `sim run`, at least 1).
 fn rayon_pool(threads: usize) -> anyhow::Result<mdr_rapier::fast::rayon::ThreadPool> {
     if threads == 0 {
-        anyhow::bail!("--threads = 0 is outside the allowed range [1, inf)");
+        return Err(
+            Refused("--threads = 0 is outside the allowed range [1, inf)".to_owned()).into(),
+        );
     }
     Ok(mdr_rapier::fast::rayon::ThreadPoolBuilder::new()
         .num_threads(threads)

@@ -1,15 +1,18 @@
 //! `mdr-dem sim run SCENE.toml [--resume CHECKPOINT] [--quiet] [--out DIR] [--threads T]`: a
 //! granular scene from a TOML file. Checks the file, runs it with a progress bar, writes VTK
 //! frames, the energy books, plots and checkpoints; Ctrl-C writes a final checkpoint and exits
-//! cleanly.
+//! with status 130, printing the command that continues the run.
 
+use super::{Exit, Refused, EXIT_INTERRUPTED};
 use anyhow::Context;
 use clap::Args;
+use mdr_sim::output::energy::BalanceDrift;
 use mdr_sim::scene::Problems;
 use mdr_sim::{load_scene, run_scene, RunOptions};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
+use std::time::Duration;
 
 /// Flags of `sim run`.
 #[derive(Debug, Clone, Args)]
@@ -32,6 +35,9 @@ pub struct RunArgs {
     /// The trajectory does not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Replace the run(s) whose files are in the output folder (refused without it).
+    #[arg(long)]
+    pub overwrite: bool,
 }
 
 /// Run `mdr-dem sim run`.
@@ -41,20 +47,18 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         Ok(scene) => scene,
         Err(problems) => {
             print_problems(&problems);
-            anyhow::bail!(
+            return Err(Refused(format!(
                 "{} refused: {} error(s)",
                 args.scene.display(),
                 problems.errors().count()
-            );
+            ))
+            .into());
         }
     };
     for warning in &scene.warnings {
         eprintln!("{warning}");
     }
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| PathBuf::from("out").join(&scene.name));
+    let out = output_folder(args, &scene);
     eprintln!(
         "scene `{}`: {} particles, {} walls, dt = {:.3e} s{} ({:.1} steps per contact at {:.3} m/s), {} steps; output in {}",
         scene.name,
@@ -68,12 +72,101 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         out.display()
     );
     if args.check {
+        let estimate = || mdr_sim::run::estimate_run_time(&scene, Duration::from_secs(1));
+        let estimate = match &pool {
+            Some(pool) => pool.install(estimate),
+            None => estimate(),
+        }?;
+        eprintln!("{estimate}");
         return Ok(());
     }
+    prepare_output_folder(args, &scene, &out)?;
     match pool {
         Some(pool) => pool.install(|| run_checked(args, &scene, &out)),
         None => run_checked(args, &scene, &out),
     }
+}
+
+/// `--out`, else the folder of the run a resumed checkpoint belongs to (the parent of its
+/// `checkpoints/` folder), else `out/<run name>`.
+fn output_folder(args: &RunArgs, scene: &mdr_sim::Scene) -> PathBuf {
+    if let Some(out) = &args.out {
+        return out.clone();
+    }
+    args.resume
+        .as_deref()
+        .and_then(checkpoint_run_folder)
+        .unwrap_or_else(|| PathBuf::from("out").join(&scene.name))
+}
+
+/// The run folder of a checkpoint in a `checkpoints/` folder.
+fn checkpoint_run_folder(checkpoint: &Path) -> Option<PathBuf> {
+    let dir = checkpoint.parent()?;
+    (dir.file_name()? == "checkpoints").then(|| {
+        dir.parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .map_or_else(|| PathBuf::from("."), Path::to_path_buf)
+    })
+}
+
+/// The same folder, compared through the file system where both exist.
+fn same_folder(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => a == b,
+    }
+}
+
+/// An output folder holding the files of another run is refused unless `--overwrite` is given,
+/// and then those runs' files are removed. A resumed run continues its own folder (the one its
+/// checkpoint is in) without `--overwrite`; the run loop removes the files past the checkpoint.
+fn prepare_output_folder(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Result<()> {
+    let own = args
+        .resume
+        .as_deref()
+        .and_then(checkpoint_run_folder)
+        .is_some_and(|dir| same_folder(&dir, out));
+    if own {
+        return Ok(());
+    }
+    let mut folders = vec![out.to_path_buf()];
+    if let Some(sweep) = &scene.source.run.orifice_sweep_m {
+        folders.extend((0..sweep.len()).map(|i| out.join(format!("{}_D{i}", scene.name))));
+    }
+    let held: Vec<(PathBuf, String)> = folders
+        .iter()
+        .flat_map(|dir| {
+            mdr_sim::output::run_dir::runs_in(dir)
+                .into_iter()
+                .map(move |name| (dir.clone(), name))
+        })
+        .collect();
+    if held.is_empty() {
+        return Ok(());
+    }
+    if !args.overwrite {
+        let names: Vec<String> = held
+            .iter()
+            .map(|(dir, name)| format!("`{name}` in {}", dir.display()))
+            .collect();
+        return Err(Refused(format!(
+            "the output folder {} holds the files of another run ({}): pass --overwrite to replace \
+             them, or choose another folder with --out{}",
+            out.display(),
+            names.join(", "),
+            if args.resume.is_some() {
+                " (a resumed run continues in the folder its checkpoint is in)"
+            } else {
+                ""
+            }
+        ))
+        .into());
+    }
+    for (dir, name) in &held {
+        mdr_sim::output::run_dir::remove_run(dir, name)
+            .with_context(|| format!("removing run `{name}` from {}", dir.display()))?;
+    }
+    Ok(())
 }
 
 /// The run of a checked scene, on the current rayon pool.
@@ -87,12 +180,15 @@ fn run_checked(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Re
     let options = RunOptions::new(out)
         .quiet(args.quiet)
         .resume(args.resume.clone())
-        .interrupt(interrupt);
+        .interrupt(interrupt)
+        .estimate(true);
     if scene.source.run.orifice_sweep_m.is_some() {
-        anyhow::ensure!(
-            args.resume.is_none(),
-            "--resume continues one run: write its diameter into orifice_diameter_m, remove orifice_sweep_m and resume that scene"
-        );
+        if args.resume.is_some() {
+            return Err(Refused(
+                "--resume continues one run: write its diameter into orifice_diameter_m, remove orifice_sweep_m and resume that scene".to_owned(),
+            )
+            .into());
+        }
         let sweep = mdr_sim::headline::run_orifice_sweep(scene, &options)?;
         for run in &sweep.runs {
             println!("{}", run.headline.text);
@@ -101,39 +197,34 @@ fn run_checked(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Re
         return Ok(());
     }
     let summary = run_scene(scene, &options)?;
+    let ran = summary.step - summary.start_step;
+    let drift = BalanceDrift::of(&summary.energy).map_or_else(String::new, |d| {
+        format!(
+            "; energy balance drift {:.3e} J ({:.3} % of the energy scale: the largest of the initial kinetic and gravitational energies, the dissipated work and the wall work)",
+            d.joules,
+            100.0 * d.fraction
+        )
+    });
     if summary.stopped_early {
         eprintln!(
-            "interrupted at t = {:.6e} s (step {}); continue with:\n  mdr-dem sim run {} --resume {}",
-            summary.time,
-            summary.step,
-            args.scene.display(),
-            summary
-                .checkpoint
-                .as_ref()
-                .map_or("<checkpoint>".to_owned(), |p| p.display().to_string())
-        );
-        return Ok(());
-    }
-    if let (Some(first), Some(last)) = (summary.energy.first(), summary.energy.last()) {
-        // The energy the run moved around: a drum turning a bed that starts at rest near the
-        // origin has little initial energy but dissipates all the work the drum does.
-        let dissipated = last.plastic_j + last.friction_j + last.damping_j + last.rolling_j;
-        let scale = first
-            .kinetic()
-            .abs()
-            .max(first.gravitational_j.abs())
-            .max(dissipated.abs())
-            .max(last.wall_work_j.abs())
-            .max(1e-300);
-        println!(
-            "done: t = {:.6e} s, {} steps in {:.1} s; energy balance drift {:.3e} J ({:.3} % of the energy scale: the largest of the initial kinetic and gravitational energies, the dissipated work and the wall work)",
+            "interrupted at t = {:.6e} s (step {}) after {ran} steps in {:.1} s{drift}; continue with:\n  {}",
             summary.time,
             summary.step,
             summary.wall_seconds,
-            last.balance_j - first.balance_j,
-            100.0 * (last.balance_j - first.balance_j) / scale
+            resume_command(args, out, summary.checkpoint.as_deref())
         );
+        return Err(Exit(EXIT_INTERRUPTED).into());
     }
+    println!(
+        "done: t = {:.6e} s, {ran} steps in {:.1} s{}{drift}",
+        summary.time,
+        summary.wall_seconds,
+        if summary.start_step > 0 {
+            format!(" (from step {} to {})", summary.start_step, summary.step)
+        } else {
+            String::new()
+        }
+    );
     if !summary.headline.text.is_empty() {
         println!("{}", summary.headline.text);
     }
@@ -142,6 +233,47 @@ fn run_checked(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Re
         out.join(format!("{}.pvd", scene.name)).display()
     );
     Ok(())
+}
+
+/// The command that continues an interrupted run, as it can be pasted into a shell: this
+/// program as it was called, the scene, `--out`, the checkpoint, and the flags that shape the
+/// run (`--threads`, `--quiet`).
+fn resume_command(args: &RunArgs, out: &Path, checkpoint: Option<&Path>) -> String {
+    let program = std::env::args()
+        .next()
+        .unwrap_or_else(|| "mdr-dem".to_owned());
+    let mut words = vec![
+        shell_word(&program),
+        "sim run".to_owned(),
+        shell_word(&args.scene.display().to_string()),
+        "--out".to_owned(),
+        shell_word(&out.display().to_string()),
+        "--resume".to_owned(),
+        checkpoint.map_or_else(
+            || "<checkpoint>".to_owned(),
+            |p| shell_word(&p.display().to_string()),
+        ),
+    ];
+    if let Some(t) = args.threads {
+        words.push(format!("--threads {t}"));
+    }
+    if args.quiet {
+        words.push("--quiet".to_owned());
+    }
+    words.join(" ")
+}
+
+/// `word` quoted for a POSIX shell where it holds anything but letters, digits and `_./:=+-`.
+fn shell_word(word: &str) -> String {
+    let plain = !word.is_empty()
+        && word
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || "_./:=+-".contains(c));
+    if plain {
+        word.to_owned()
+    } else {
+        format!("'{}'", word.replace('\'', r"'\''"))
+    }
 }
 
 fn print_problems(problems: &Problems) {

@@ -41,6 +41,37 @@ pub enum SimError {
         /// What happened.
         reason: String,
     },
+    /// A guard stopped the run: the energy balance drifted beyond `max_energy_drift`, or a
+    /// sphere went through a wall. A checkpoint of the state was written, and the books and plots
+    /// up to it.
+    #[error("the run was stopped at t = {time:.6e} s (step {step}): {reason}; its state is in {}", checkpoint.display())]
+    Stopped {
+        /// Simulated time (s) of the check that tripped.
+        time: f64,
+        /// Step of the check.
+        step: u64,
+        /// What happened and what to do.
+        reason: String,
+        /// The checkpoint written.
+        checkpoint: PathBuf,
+    },
+}
+
+impl SimError {
+    /// Whether the run was stopped by one of its guards (a non-finite state, the energy guard,
+    /// a sphere through a wall) rather than refused before it started or failed to write.
+    pub fn is_guard(&self) -> bool {
+        matches!(self, SimError::Diverged { .. } | SimError::Stopped { .. })
+    }
+
+    /// Whether the input (scene file, checkpoint) was refused before anything ran.
+    pub fn is_refused_input(&self) -> bool {
+        match self {
+            SimError::Scene(_) | SimError::Contact(_) | SimError::Build(_) => true,
+            SimError::Checkpoint(e) => !matches!(e, CheckpointError::Encode { .. }),
+            _ => false,
+        }
+    }
 }
 
 /// Wrap an I/O error with its file.

@@ -16,6 +16,7 @@ pub mod checkpoint;
 pub mod error;
 pub mod headline;
 pub mod laws;
+pub mod mesh;
 pub mod output;
 pub mod placement;
 pub mod run;

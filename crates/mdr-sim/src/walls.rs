@@ -33,12 +33,15 @@ pub enum WallPiece {
         /// Points.
         points: Vec<Vector3<f64>>,
     },
-    /// A triangle mesh (faces' normals point to the particles' side).
+    /// A triangle mesh ([`crate::mesh`]): closed, a solid whose faces' normals point to the
+    /// particles' side; open, a sheet touched from either face.
     TriMesh {
         /// Vertices.
         vertices: Vec<Vector3<f64>>,
         /// Triangles.
         indices: Vec<[u32; 3]>,
+        /// Closed and consistently wound (one-sided); open meshes are two-sided.
+        closed: bool,
     },
 }
 
@@ -513,6 +516,21 @@ pub fn remove_due_walls(
 
 /// Read a triangle mesh from an STL (binary or ASCII) or OBJ file, scale it and move it.
 pub fn read_mesh(path: &Path, scale: f64, offset: Vector3<f64>) -> Result<WallPiece, String> {
+    read_mesh_with_notes(path, scale, offset).map(|(piece, _)| piece)
+}
+
+/// [`read_mesh`], with what the user should know about the mesh: STL facet normals that point
+/// against the winding (the winding decides), and whether the mesh is a closed solid or an open,
+/// two-sided sheet. A closed mesh wound inconsistently is refused ([`crate::mesh::topology`]).
+pub fn read_mesh_with_notes(
+    path: &Path,
+    scale: f64,
+    offset: Vector3<f64>,
+) -> Result<(WallPiece, Vec<String>), String> {
+    if std::fs::metadata(path).is_ok_and(|m| m.len() == 0) {
+        return Err(format!("{}: the file is empty (0 bytes)", path.display()));
+    }
+    let mut stored_normals = Vec::new();
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -523,6 +541,11 @@ pub fn read_mesh(path: &Path, scale: f64, offset: Vector3<f64>) -> Result<WallPi
                 .map_err(|e| format!("cannot open {}: {e}", path.display()))?;
             let mesh = stl_io::read_stl(&mut file)
                 .map_err(|e| format!("cannot read STL {}: {e}", path.display()))?;
+            stored_normals = mesh
+                .faces
+                .iter()
+                .map(|f| Vector3::new(f.normal[0] as f64, f.normal[1] as f64, f.normal[2] as f64))
+                .collect();
             let vertices = mesh
                 .vertices
                 .iter()
@@ -588,7 +611,62 @@ pub fn read_mesh(path: &Path, scale: f64, offset: Vector3<f64>) -> Result<WallPi
             path.display()
         ));
     }
-    Ok(WallPiece::TriMesh { vertices, indices })
+    let topology = crate::mesh::topology(&vertices, &indices)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut notes = Vec::new();
+    // A negative scale mirrors the mesh and turns its winding round with it.
+    if let Some((count, first)) = crate::mesh::facet_normal_disagreements(
+        &vertices,
+        &indices,
+        &stored_normals
+            .iter()
+            .map(|n| n * scale.signum())
+            .collect::<Vec<_>>(),
+    ) {
+        notes.push(format!(
+            "{}: {count} of {} facet normals (the first: facet {first}) point against their \
+             triangle's winding; the winding decides (the normal of corners a, b, c is \
+             (b − a) × (c − a)){}",
+            path.display(),
+            indices.len(),
+            if topology.closed {
+                ", and this closed mesh's particle side is the side its windings' normals point to"
+            } else {
+                "; this open mesh is two-sided, so neither changes the contacts"
+            }
+        ));
+    }
+    Ok((
+        WallPiece::TriMesh {
+            vertices,
+            indices,
+            closed: topology.closed,
+        },
+        notes,
+    ))
+}
+
+/// The collision shape of a mesh: a closed mesh is oriented (parry's pseudo-normals tell its
+/// inside from its outside, the outside being the side its faces' normals point to); an open
+/// one is not, so a point's projection is never inside it and a sphere is pushed away from the
+/// face its centre is in front of (two-sided).
+pub fn trimesh_shape(
+    vertices: &[Vector3<f64>],
+    indices: &[[u32; 3]],
+    closed: bool,
+) -> Result<rapier3d_f64::prelude::SharedShape, String> {
+    use rapier3d_f64::parry::shape::TriMeshFlags;
+    let flags = if closed {
+        TriMeshFlags::ORIENTED | TriMeshFlags::MERGE_DUPLICATE_VERTICES
+    } else {
+        TriMeshFlags::MERGE_DUPLICATE_VERTICES
+    };
+    rapier3d_f64::prelude::SharedShape::trimesh_with_flags(
+        vertices.iter().map(mdr_rapier::convert::to_glam).collect(),
+        indices.to_vec(),
+        flags,
+    )
+    .map_err(|e| format!("triangle mesh: {e}"))
 }
 
 /// A signed-distance function of a wall piece (m, negative inside).
@@ -600,6 +678,25 @@ impl WallPiece {
     /// [`WallPiece::signed_distance`] otherwise. A slanted hull (a cone's piece) has a bounding
     /// box that reaches deep into the container, so the box bound would refuse valid placements.
     pub fn distance_fn(&self) -> DistanceFn<'_> {
+        if let WallPiece::TriMesh {
+            vertices,
+            indices,
+            closed,
+        } = self
+        {
+            if let Ok(shape) = trimesh_shape(vertices, indices, *closed) {
+                return Box::new(move |p: &Vector3<f64>| {
+                    let q = mdr_rapier::convert::to_glam(p);
+                    let proj = shape.project_local_point(q, false);
+                    let d = mdr_rapier::convert::to_na(proj.point - q).norm();
+                    if proj.is_inside {
+                        -d
+                    } else {
+                        d
+                    }
+                });
+            }
+        }
         if let WallPiece::ConvexHull { points } = self {
             let pts: Vec<_> = points.iter().map(mdr_rapier::convert::to_glam).collect();
             if let Some(shape) = rapier3d_f64::prelude::SharedShape::convex_hull(&pts) {

@@ -91,6 +91,51 @@ impl EnergyRow {
     }
 }
 
+/// How far the energy balance moved from its start: `balance_j` now less its first value, and
+/// that as a fraction of the energy the run moves around (the largest of the initial kinetic
+/// and gravitational energies, the work dissipated so far and the kinematic walls' work). The
+/// energy guard (`[run] max_energy_drift`) and every run's summary use it.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct BalanceDrift {
+    /// `balance_j` now minus its first value (J).
+    pub joules: f64,
+    /// The energy scale (J).
+    pub scale_j: f64,
+    /// `joules / scale_j` (0 when both are 0).
+    pub fraction: f64,
+}
+
+impl BalanceDrift {
+    /// The drift from the row `first` to the row `now`.
+    pub fn between(first: &EnergyRow, now: &EnergyRow) -> Self {
+        // A drum turning a bed that starts at rest near the origin has little initial energy but
+        // dissipates all the work the drum does: the dissipated and wall work count too.
+        let dissipated = now.plastic_j + now.friction_j + now.damping_j + now.rolling_j;
+        let scale_j = first
+            .kinetic()
+            .abs()
+            .max(first.gravitational_j.abs())
+            .max(dissipated.abs())
+            .max(now.wall_work_j.abs());
+        let joules = now.balance_j - first.balance_j;
+        let fraction = if joules == 0.0 {
+            0.0
+        } else {
+            joules / scale_j.max(1e-300)
+        };
+        Self {
+            joules,
+            scale_j,
+            fraction,
+        }
+    }
+
+    /// The drift over a whole series of rows (`None` when it is empty).
+    pub fn of(rows: &[EnergyRow]) -> Option<Self> {
+        Some(Self::between(rows.first()?, rows.last()?))
+    }
+}
+
 /// Write the rows as CSV atomically.
 pub fn write_csv(path: &Path, rows: &[EnergyRow]) -> std::io::Result<()> {
     let mut writer = csv::Writer::from_writer(Vec::new());

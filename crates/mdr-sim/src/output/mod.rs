@@ -4,4 +4,5 @@
 pub mod atomic;
 pub mod energy;
 pub mod plot;
+pub mod run_dir;
 pub mod vtk;

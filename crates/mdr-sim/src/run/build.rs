@@ -21,7 +21,6 @@ use mdr_rapier::fast::{Boundary, FastForceStepper, FastStepReport, StepTimings};
 use mdr_rapier::geometry::SurfaceOfRevolution;
 use mdr_rapier::particles::{MaterialHandle, SphereBuilder};
 use mdr_rapier::{ForceModeStepper, RestitutionHooks};
-use rapier3d_f64::parry::shape::TriMeshFlags;
 use rapier3d_f64::prelude::*;
 
 /// The force-mode stepper type every scene uses.
@@ -181,6 +180,9 @@ pub struct Built {
     pub wall_of_collider: Vec<usize>,
     /// Particle index of each particle collider, by collider arena index.
     pub particle_of_collider: Vec<usize>,
+    /// Wall index of each surface of the neighbour-list path, in the stepper's surface order
+    /// (empty on the other paths).
+    pub wall_of_surface: Vec<usize>,
 }
 
 fn piece_collider(piece: &WallPiece) -> Result<ColliderBuilder, SimError> {
@@ -205,12 +207,13 @@ fn piece_collider(piece: &WallPiece) -> Result<ColliderBuilder, SimError> {
                 SimError::Build("a wall piece's convex hull is degenerate".to_owned())
             })?
         }
-        WallPiece::TriMesh { vertices, indices } => ColliderBuilder::trimesh_with_flags(
-            vertices.iter().map(to_glam).collect(),
-            indices.clone(),
-            TriMeshFlags::ORIENTED | TriMeshFlags::MERGE_DUPLICATE_VERTICES,
-        )
-        .map_err(|e| SimError::Build(format!("triangle mesh: {e}")))?,
+        WallPiece::TriMesh {
+            vertices,
+            indices,
+            closed,
+        } => ColliderBuilder::new(
+            crate::walls::trimesh_shape(vertices, indices, *closed).map_err(SimError::Build)?,
+        ),
     })
 }
 
@@ -319,6 +322,7 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
 
     let mut wall_bodies = Vec::new();
     let mut wall_of_collider = Vec::new();
+    let mut wall_of_surface = Vec::new();
     for (j, wall) in scene.walls.iter().enumerate() {
         let body = match wall.angular_velocity {
             Some(omega) => RigidBodyBuilder::kinematic_velocity_based()
@@ -349,6 +353,7 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
                 materials[wall.material],
                 surface,
             ))?;
+            wall_of_surface.push(j);
             let i = c.into_raw_parts().0 as usize;
             if wall_of_collider.len() <= i {
                 wall_of_collider.resize(i + 1, usize::MAX);
@@ -363,9 +368,12 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
                 Inserter::Force(s) => {
                     s.insert_surface(&mut world, collider, Some(handle), material)?
                 }
-                Inserter::Fast(s) => with_fast!(s, s => {
-                    s.insert_surface(&mut world, collider, Some(handle), material)
-                })?,
+                Inserter::Fast(s) => {
+                    wall_of_surface.push(j);
+                    with_fast!(s, s => {
+                        s.insert_surface(&mut world, collider, Some(handle), material)
+                    })?
+                }
                 Inserter::Restitution(h) => {
                     h.insert_surface(&mut world, collider, Some(handle), material)?
                 }
@@ -439,5 +447,6 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
         wall_bodies,
         wall_of_collider,
         particle_of_collider,
+        wall_of_surface,
     })
 }

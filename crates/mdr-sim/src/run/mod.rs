@@ -27,7 +27,7 @@ use crate::checkpoint::{self, CheckpointError};
 use crate::error::{output, SimError};
 use crate::headline::{HeadlineReport, HeadlineSample, ParticleView, Tracker};
 use crate::laws::{SceneNormal, SceneRolling};
-use crate::output::energy::{self, EnergyRow};
+use crate::output::energy::{self, BalanceDrift, EnergyRow};
 use crate::output::plot;
 use crate::output::vtk::{self, CollectionEntry, ContactFrame, ParticleFrame};
 use crate::scene::Scene;
@@ -63,6 +63,8 @@ pub struct RunOptions {
     pub interrupt: Option<Arc<AtomicBool>>,
     /// Skip VTK frames (tests that look at the books only).
     pub no_frames: bool,
+    /// Print an estimate of the run's wall time to stderr once its first steps are measured.
+    pub estimate: bool,
 }
 
 impl RunOptions {
@@ -103,6 +105,69 @@ impl RunOptions {
         self.no_frames = yes;
         self
     }
+
+    /// Print a wall-time estimate once the first steps are measured.
+    pub fn estimate(mut self, yes: bool) -> Self {
+        self.estimate = yes;
+        self
+    }
+}
+
+/// A sphere–wall overlap beyond this fraction of the sphere's radius stops the run: the sphere
+/// is going through the wall (a two-sided sheet's overlap reaches the radius as the centre
+/// passes it).
+pub const CROSSING_OVERLAP: f64 = 0.75;
+
+/// Seconds of stepping after which a run prints its wall-time estimate.
+const ESTIMATE_AFTER_S: f64 = 2.0;
+
+/// The wall time of `remaining` steps at `steps_per_s`, as a sentence.
+fn estimate_text(done: u64, seconds: f64, remaining: u64) -> String {
+    let rate = done as f64 / seconds.max(1e-9);
+    let left = remaining as f64 / rate.max(1e-300);
+    format!(
+        "estimate: {rate:.3e} steps/s over the first {done} steps, so the {remaining} steps to go take about {} \
+         (more once the spheres pack and flow: contacts cost more than free flight)",
+        human_duration(left)
+    )
+}
+
+/// `seconds` as `1 h 23 min`, `4 min 5 s` or `6.7 s`.
+fn human_duration(seconds: f64) -> String {
+    if !seconds.is_finite() {
+        return "forever".to_owned();
+    }
+    let s = seconds.round() as u64;
+    match s {
+        _ if seconds < 60.0 => format!("{seconds:.1} s"),
+        0..3600 => format!("{} min {} s", s / 60, s % 60),
+        3600..172_800 => format!("{} h {} min", s / 3600, (s % 3600) / 60),
+        _ => format!("{:.1} days", seconds / 86_400.0),
+    }
+}
+
+/// Build `scene` and time its first steps for about `budget` (at least two steps, the first
+/// of which builds the neighbour lists and is not timed): an estimate of the whole run's wall
+/// time on the current rayon pool, as a sentence (`sim run --check`).
+pub fn estimate_run_time(scene: &Scene, budget: Duration) -> Result<String, SimError> {
+    rayon::scope(|_| {
+        mdr_rapier::fast::with_workers_awake(|| {
+            let total = scene.total_steps();
+            let mut steps = SceneSteps::new(scene)?;
+            steps.step()?;
+            let started = Instant::now();
+            let mut done = 0;
+            while done < total.saturating_sub(1) && (done < 1 || started.elapsed() < budget) {
+                steps.step()?;
+                done += 1;
+            }
+            Ok(estimate_text(
+                done.max(1),
+                started.elapsed().as_secs_f64(),
+                total,
+            ))
+        })
+    })
 }
 
 /// What a run did.
@@ -110,6 +175,9 @@ impl RunOptions {
 pub struct RunSummary {
     /// Last step reached.
     pub step: u64,
+    /// Step the run started from (0, or the checkpoint's step of a resumed run): it ran
+    /// `step - start_step` steps.
+    pub start_step: u64,
     /// Simulated time reached (s).
     pub time: f64,
     /// Whether the run stopped early (interrupt or `stop_at_step`).
@@ -383,12 +451,16 @@ impl<'a> Sim<'a> {
         let energy_every = every(scene.energy_interval, scene.dt);
         let checkpoint_every = scene.checkpoint_interval.map(|c| every(c, scene.dt));
         let start_step = self.step;
+        if options.resume.is_some() {
+            self.remove_stale_outputs(out)?;
+        }
         let progress = progress_bar(options.quiet, total, start_step);
         let started = Instant::now();
         let mut last_tick = Instant::now();
         let mut files = Vec::new();
         let mut stopped_early = false;
         let n = scene.particles.len() as f64;
+        let mut estimated = !options.estimate;
         loop {
             let k = self.step;
             let interrupted = options
@@ -408,6 +480,9 @@ impl<'a> Sim<'a> {
             let last = k >= total;
             let frame_due = k % frame_every == 0 || last;
             self.compute_forces(frame_due && scene.contact_network && !options.no_frames)?;
+            if let Some(reason) = self.wall_guard() {
+                return Err(self.stop(out, last, reason));
+            }
             let sampling = k % energy_every == 0 || k % frame_every == 0 || last;
             if sampling || self.tracker.needs_every_step() {
                 self.track_step();
@@ -415,6 +490,9 @@ impl<'a> Sim<'a> {
             if k % energy_every == 0 || last {
                 let row = self.energy_row();
                 self.energy.push(row);
+                if let Some(reason) = self.energy_guard() {
+                    return Err(self.stop(out, last, reason));
+                }
             }
             if k % frame_every == 0 || last {
                 self.check_state()?;
@@ -431,6 +509,12 @@ impl<'a> Sim<'a> {
             self.advance()?;
             if last_tick.elapsed() > Duration::from_millis(250) {
                 last_tick = Instant::now();
+                let seconds = started.elapsed().as_secs_f64();
+                if !estimated && seconds > ESTIMATE_AFTER_S {
+                    estimated = true;
+                    let text = estimate_text(self.step - start_step, seconds, total - self.step);
+                    progress.suspend(|| eprintln!("{text}"));
+                }
                 let done = (self.step - start_step) as f64;
                 let rate = done * n / started.elapsed().as_secs_f64().max(1e-9);
                 progress.set_position(self.step);
@@ -457,6 +541,7 @@ impl<'a> Sim<'a> {
         files.push(out.join(format!("{}.pvd", scene.name)));
         Ok(RunSummary {
             step: self.step,
+            start_step,
             time: self.time(),
             stopped_early,
             checkpoint: self.checkpoints.last().cloned(),
@@ -641,6 +726,128 @@ impl<'a> Sim<'a> {
     fn track_step(&mut self) {
         self.gather_view();
         self.tracker.on_step(self.scene, &self.view.view());
+    }
+
+    /// The wall guard: a sphere whose overlap with a wall exceeds [`CROSSING_OVERLAP`] of its
+    /// radius is going through the wall (no contact law resolves such an overlap: the step is
+    /// far too coarse for its speed, or a wall pushes it the wrong way). Checked at every step
+    /// from the overlaps the force pass just computed.
+    fn wall_guard(&self) -> Option<String> {
+        let (i, wall, overlap, radius) = self.deepest_wall_overlap()?;
+        (overlap > CROSSING_OVERLAP * radius).then(|| {
+            let w = &self.scene.source.walls[wall];
+            format!(
+                "sphere {i} (radius {radius:.3e} m) sinks {overlap:.3e} m into wall {wall} \
+                 (`walls[{wall}]`, kind {:?}{}): it is going through the wall. Lower dt_s or \
+                 declare a larger max_speed_m_per_s if it is that fast; for a mesh, check its \
+                 winding (docs/user-guide.md, mesh walls)",
+                w.kind,
+                w.file
+                    .as_deref()
+                    .map_or(String::new(), |f| format!(", file {f}"))
+            )
+        })
+    }
+
+    /// The touching sphere–wall pair with the largest overlap relative to the sphere's radius:
+    /// (sphere, wall, overlap, radius).
+    fn deepest_wall_overlap(&self) -> Option<(usize, usize, f64, f64)> {
+        let mut deepest: Option<(usize, usize, f64, f64)> = None;
+        let mut consider = |i: usize, wall: usize, overlap: f64, radius: f64| {
+            if deepest.is_none_or(|(_, _, o, r)| overlap * r > o * radius) {
+                deepest = Some((i, wall, overlap, radius));
+            }
+        };
+        match &self.built.coupling {
+            Coupling::Fast(stepper) => with_fast!(stepper, s => {
+                let sp = s.surface_pairs();
+                let radius = &s.particles().radius;
+                for q in (0..sp.len()).filter(|&q| sp.active[q]) {
+                    let i = sp.particle[q] as usize;
+                    if let Some(&wall) = self.built.wall_of_surface.get(sp.surface[q] as usize) {
+                        consider(i, wall, sp.contact[q].overlap, radius[i]);
+                    }
+                }
+            }),
+            Coupling::Force(stepper) => {
+                let index = |map: &[usize], c: rapier3d_f64::prelude::ColliderHandle| {
+                    map.get(c.into_raw_parts().0 as usize)
+                        .copied()
+                        .filter(|&i| i != usize::MAX)
+                };
+                for e in stepper.contacts().entries() {
+                    let particle = index(&self.built.particle_of_collider, e.collider1);
+                    let wall = index(&self.built.wall_of_collider, e.collider2);
+                    if let (Some(i), Some(wall)) = (particle, wall) {
+                        consider(i, wall, e.contact.overlap, self.scene.particles[i].radius);
+                    }
+                }
+            }
+            Coupling::Restitution(_) => {}
+        }
+        deepest
+    }
+
+    /// The energy guard: why the books' drift from their first row is beyond the scene's
+    /// `max_energy_drift`, if it is.
+    fn energy_guard(&self) -> Option<String> {
+        let max = self.scene.max_energy_drift?;
+        let drift = BalanceDrift::of(&self.energy)?;
+        (drift.fraction.abs() > max).then(|| {
+            format!(
+                "the energy balance drifted by {:+.3e} J, {:+.2} % of the energy scale {:.3e} J, beyond \
+                 `run.max_energy_drift` = {max} ({} %): the time step is too coarse for the contacts \
+                 (lower dt_s or raise steps_per_contact), or a wall pushes spheres the wrong way (a \
+                 mesh's winding); raise max_energy_drift to go on",
+                drift.joules,
+                100.0 * drift.fraction,
+                drift.scale_j,
+                100.0 * max
+            )
+        })
+    }
+
+    /// Stop the run on a guard at step `k` (after its forces and samples): the step is finished
+    /// (unless it is the last), a checkpoint and the series so far are written, and the error
+    /// says why and where the state is.
+    fn stop(&mut self, out: &Path, last: bool, reason: String) -> SimError {
+        let (time, step) = (self.time(), self.step);
+        let written = (|| {
+            if !last {
+                self.advance()?;
+            }
+            self.write_checkpoint(out)?;
+            self.write_series(out, &mut Vec::new(), true)
+        })();
+        match (written, self.checkpoints.last()) {
+            (Ok(()), Some(checkpoint)) => SimError::Stopped {
+                time,
+                step,
+                reason,
+                checkpoint: checkpoint.clone(),
+            },
+            (Err(e), _) => e,
+            (Ok(()), None) => SimError::Diverged { time, step, reason },
+        }
+    }
+
+    /// A resumed run continues the frame numbering and the collection from its checkpoint:
+    /// frames numbered past the checkpoint's collection and checkpoints past its step belong to a
+    /// future this run replaces, and are removed; the collection is written back as the
+    /// checkpoint has it.
+    fn remove_stale_outputs(&self, out: &Path) -> Result<(), SimError> {
+        let frames = self.collection.iter().filter(|e| e.part == 0).count();
+        let contact_frames = self.collection.iter().filter(|e| e.part == 1).count();
+        crate::output::run_dir::remove_stale(
+            out,
+            &self.scene.name,
+            frames,
+            contact_frames,
+            self.step,
+        )
+        .map_err(output(out))?;
+        let pvd = out.join(format!("{}.pvd", self.scene.name));
+        vtk::write_collection(&pvd, &self.collection).map_err(output(&pvd))
     }
 
     /// A NaN stops the run with a clear message.

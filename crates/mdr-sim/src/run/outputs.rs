@@ -194,7 +194,10 @@ impl Sim<'_> {
     pub(super) fn write_checkpoint(&mut self, out: &Path) -> Result<(), SimError> {
         let path = out
             .join("checkpoints")
-            .join(format!("{}_step{:012}.mdrck", self.scene.name, self.step));
+            .join(crate::output::run_dir::checkpoint_name(
+                &self.scene.name,
+                self.step,
+            ));
         let data = CheckpointData::capture(self).map_err(|reason| CheckpointError::Encode {
             path: path.clone(),
             reason,

@@ -636,6 +636,7 @@ pub fn fingerprint(scene: &Scene) -> u32 {
     source.run.output_interval_s = 0.0;
     source.run.checkpoint_interval_s = None;
     source.run.energy_interval_s = None;
+    source.run.max_energy_drift = None;
     let mut hasher = crc32fast::Hasher::new();
     hasher.update(toml::to_string(&source).unwrap_or_default().as_bytes());
     for p in &scene.particles {

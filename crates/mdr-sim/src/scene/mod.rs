@@ -87,6 +87,9 @@ pub struct Scene {
     pub checkpoint_interval: Option<f64>,
     /// Energy-book interval (s).
     pub energy_interval: f64,
+    /// Energy guard: the run stops once the balance drifts by more than this fraction of its
+    /// energy scale; `None` in restitution mode, whose books do not itemise the impulses' losses.
+    pub max_energy_drift: Option<f64>,
     /// Coupling mode.
     pub coupling: CouplingMode,
     /// Force mode's implementation (ignored in restitution mode, which the validation refuses

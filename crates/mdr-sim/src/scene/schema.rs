@@ -113,6 +113,12 @@ pub struct RunSection {
     /// Interval between energy-book rows (s); defaults to `output_interval_s / 10`.
     #[serde(default)]
     pub energy_interval_s: Option<f64>,
+    /// Energy guard: the largest drift of the energy balance, as a fraction of the run's energy
+    /// scale ([`crate::output::energy::BalanceDrift`]), before the run is stopped (default
+    /// [`crate::scene::validate::DEFAULT_MAX_ENERGY_DRIFT`]). Left out of the serialisation when
+    /// absent, as `force_path`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_energy_drift: Option<f64>,
     /// Coupling mode.
     #[serde(default)]
     pub coupling: CouplingMode,

@@ -194,8 +194,13 @@ impl Checker<'_, '_> {
                 if !path.exists() {
                     return None;
                 }
-                match walls::read_mesh(&path, scale, offset) {
-                    Ok(piece) => vec![piece],
+                match walls::read_mesh_with_notes(&path, scale, offset) {
+                    Ok((piece, notes)) => {
+                        for note in notes {
+                            self.warn(&table.key("file"), note);
+                        }
+                        vec![piece]
+                    }
                     Err(e) => {
                         self.error(&table.key("file"), e);
                         return None;
@@ -344,9 +349,14 @@ impl WallPiece {
             WallPiece::ConvexHull { points } => WallPiece::ConvexHull {
                 points: points.into_iter().map(|p| p + shift).collect(),
             },
-            WallPiece::TriMesh { vertices, indices } => WallPiece::TriMesh {
+            WallPiece::TriMesh {
+                vertices,
+                indices,
+                closed,
+            } => WallPiece::TriMesh {
                 vertices: vertices.into_iter().map(|p| p + shift).collect(),
                 indices,
+                closed,
             },
         }
     }

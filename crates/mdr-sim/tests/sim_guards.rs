@@ -1,0 +1,251 @@
+//! What a run does when it goes wrong: mesh walls whatever their winding (an open mesh is
+//! two-sided, a closed one must be wound consistently), a sphere driven through a wall, the
+//! energy guard, a resumed run's output folder.
+
+mod common;
+
+use common::{column, temp_dir, write};
+use mdr_sim::{load_scene, run_scene, RunOptions, SimError};
+
+const PLANE: &str = r#"[[walls]]
+kind = "plane"
+material = "grain"
+point_m = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+"#;
+
+/// A flat square floor at z = 0 (two triangles) in ASCII STL, every facet normal +z, wound
+/// counter-clockwise seen from above, or clockwise.
+fn floor_stl(clockwise: bool) -> String {
+    let h = 0.05;
+    let mut tris = [[[-h, -h], [h, -h], [h, h]], [[-h, -h], [h, h], [-h, h]]];
+    if clockwise {
+        for t in &mut tris {
+            t.swap(1, 2);
+        }
+    }
+    let mut s = String::from("solid floor\n");
+    for t in tris {
+        s.push_str("  facet normal 0 0 1\n    outer loop\n");
+        for [x, y] in t {
+            s.push_str(&format!("      vertex {x} {y} 0\n"));
+        }
+        s.push_str("    endloop\n  endfacet\n");
+    }
+    s.push_str("endsolid floor\n");
+    s
+}
+
+/// The small column of the scene tests, standing on `walls` instead of its plane.
+fn column_on(walls: &str, duration: f64, extra_run: &str) -> String {
+    let text = column(2, 2, duration, 0.5, extra_run);
+    assert!(text.contains(PLANE));
+    text.replace(PLANE, walls)
+}
+
+const MESH_FLOOR: &str = r#"[[walls]]
+kind = "mesh"
+material = "grain"
+file = "floor.stl"
+"#;
+
+/// The floor wound clockwise seen from the spheres (its facet normals +z): an open mesh is
+/// two-sided, so the spheres land on it and stay above it, as on the counter-clockwise floor;
+/// the facet normals that disagree with the winding are reported.
+#[test]
+fn spheres_stay_above_a_floor_mesh_wound_either_way() {
+    for clockwise in [false, true] {
+        let dir = temp_dir(&format!("mesh_floor_{clockwise}"));
+        write(&dir, "floor.stl", &floor_stl(clockwise));
+        let path = write(&dir, "scene.toml", &column_on(MESH_FLOOR, 0.04, ""));
+        let scene = load_scene(&path).unwrap();
+        let notes: Vec<String> = scene.warnings.iter().map(|w| w.to_string()).collect();
+        assert_eq!(
+            notes.iter().any(|w| w.contains("facet normals")),
+            clockwise,
+            "{notes:?}"
+        );
+        let summary = run_scene(&scene, &RunOptions::new(dir.join("out")).quiet(true))
+            .unwrap_or_else(|e| panic!("clockwise {clockwise}: {e}"));
+        for (i, p) in summary.particles.iter().enumerate() {
+            let r = scene.particles[i].radius;
+            assert!(
+                p.translation[2] > 0.9 * r,
+                "clockwise {clockwise}: sphere {i} at z = {} (r = {r})",
+                p.translation[2]
+            );
+        }
+    }
+}
+
+/// A closed mesh (a tetrahedron) with one triangle turned round has no consistent outside: it
+/// is refused with the triangle named, at the wall's `file` key.
+#[test]
+fn a_closed_mesh_wound_inconsistently_is_refused_naming_the_triangle() {
+    let dir = temp_dir("mesh_closed");
+    let corners = [
+        [0.0, 0.0, -0.05],
+        [0.05, 0.0, -0.1],
+        [0.0, 0.05, -0.1],
+        [0.0, 0.0, -0.1],
+    ];
+    // Outward winding of the four faces; the third turned round.
+    let faces = [[0, 1, 2], [0, 3, 1], [0, 3, 2], [1, 3, 2]];
+    let mut stl = String::from("solid tet\n");
+    for f in faces {
+        stl.push_str("  facet normal 0 0 0\n    outer loop\n");
+        for c in f {
+            let [x, y, z] = corners[c];
+            stl.push_str(&format!("      vertex {x} {y} {z}\n"));
+        }
+        stl.push_str("    endloop\n  endfacet\n");
+    }
+    stl.push_str("endsolid tet\n");
+    write(&dir, "tet.stl", &stl);
+    let walls = format!("{PLANE}\n{}", MESH_FLOOR.replace("floor.stl", "tet.stl"));
+    let path = write(&dir, "scene.toml", &column_on(&walls, 0.01, ""));
+    let problems = load_scene(&path).unwrap_err();
+    let text = problems.to_string();
+    assert!(text.contains("walls[1].file"), "{text}");
+    assert!(text.contains("triangle 3 "), "{text}");
+}
+
+/// A sphere thrown at the floor at 100 m/s sinks deeper than the contact can hold: the run
+/// stops with the sphere and the wall named and a checkpoint of the state.
+#[test]
+fn a_sphere_going_through_a_wall_stops_the_run_naming_it() {
+    let dir = temp_dir("crossing");
+    let scene = r#"
+[run]
+name = "shot"
+duration_s = 0.001
+dt_s = 4.0e-6
+max_speed_m_per_s = 100.0
+output_interval_s = 0.0005
+
+[[material]]
+name = "grain"
+youngs_pa = 5.0e7
+poisson_ratio = 0.25
+density_kg_per_m3 = 2500.0
+
+[contact]
+normal = "mdr"
+critical_line_load_n_per_m = 100.0
+hardening_ratio = 0.37
+
+[[particles]]
+material = "grain"
+placement = "csv"
+file = "shot.csv"
+velocity_m_per_s = [0.0, 0.0, -100.0]
+
+[[walls]]
+kind = "plane"
+material = "grain"
+point_m = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+"#;
+    write(&dir, "shot.csv", "x_m,y_m,z_m,radius_m\n0,0,0.0025,0.002\n");
+    let path = write(&dir, "shot.toml", scene);
+    let scene = load_scene(&path).unwrap();
+    let e = run_scene(&scene, &RunOptions::new(dir.join("out")).quiet(true)).unwrap_err();
+    let SimError::Stopped {
+        reason, checkpoint, ..
+    } = &e
+    else {
+        panic!("{e}");
+    };
+    assert!(
+        reason.contains("sphere 0 ") && reason.contains("wall 0 "),
+        "{e}"
+    );
+    assert!(checkpoint.exists(), "{e}");
+    assert!(e.is_guard());
+}
+
+/// The energy guard: the same column stops once its books drift beyond `max_energy_drift`
+/// (here below its round-off drift), with a checkpoint and the books written; with the default
+/// threshold it runs to the end. The checkpoint resumes with a larger threshold (the key may
+/// change on a restart).
+#[test]
+fn the_energy_guard_stops_a_drifting_run_with_a_checkpoint() {
+    let dir = temp_dir("drift");
+    let tight = write(
+        &dir,
+        "tight.toml",
+        &column(2, 2, 0.02, 0.5, "max_energy_drift = 1e-15"),
+    );
+    let scene = load_scene(&tight).unwrap();
+    let out = dir.join("out");
+    let e = run_scene(&scene, &RunOptions::new(&out).quiet(true)).unwrap_err();
+    let SimError::Stopped {
+        reason,
+        checkpoint,
+        step,
+        ..
+    } = &e
+    else {
+        panic!("{e}");
+    };
+    assert!(reason.contains("max_energy_drift"), "{reason}");
+    assert!(checkpoint.exists());
+    assert!(*step < scene.total_steps(), "{e}");
+    assert!(out.join("column_energy.csv").exists());
+    let relaxed = write(&dir, "relaxed.toml", &column(2, 2, 0.02, 0.5, ""));
+    let scene = load_scene(&relaxed).unwrap();
+    assert_eq!(
+        scene.max_energy_drift,
+        Some(mdr_sim::scene::validate::DEFAULT_MAX_ENERGY_DRIFT)
+    );
+    let resumed = run_scene(
+        &scene,
+        &RunOptions::new(&out)
+            .quiet(true)
+            .resume(Some(checkpoint.clone())),
+    )
+    .unwrap();
+    assert_eq!(resumed.step, scene.total_steps());
+    assert!(resumed.start_step > 0);
+    let fresh = run_scene(&scene, &RunOptions::new(dir.join("fresh")).quiet(true)).unwrap();
+    assert_eq!(fresh.start_step, 0);
+    let drift = mdr_sim::output::energy::BalanceDrift::of(&fresh.energy).unwrap();
+    assert!(drift.fraction.abs() < 1e-3, "{drift:?}");
+}
+
+/// A resumed run continues its own collection: frames written after the checkpoint by an
+/// earlier continuation are removed, and the collection and the frames agree.
+#[test]
+fn a_resumed_run_leaves_no_stale_frames() {
+    let dir = temp_dir("stale");
+    let path = write(
+        &dir,
+        "scene.toml",
+        &column(2, 2, 0.02, 0.5, "checkpoint_interval_s = 0.005"),
+    );
+    let scene = load_scene(&path).unwrap();
+    let out = dir.join("out");
+    let full = run_scene(&scene, &RunOptions::new(&out).quiet(true)).unwrap();
+    let frames = |out: &std::path::Path| std::fs::read_dir(out.join("frames")).unwrap().count();
+    let all = frames(&out);
+    // Resume from the oldest checkpoint kept, stopping at three quarters (at once or later).
+    let first = std::fs::read_dir(out.join("checkpoints"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .min()
+        .unwrap();
+    let stop = full.step * 3 / 4;
+    let summary = run_scene(
+        &scene,
+        &RunOptions::new(&out)
+            .quiet(true)
+            .resume(Some(first))
+            .stop_at_step(Some(stop)),
+    )
+    .unwrap();
+    assert!(summary.stopped_early);
+    let pvd = std::fs::read_to_string(out.join("column.pvd")).unwrap();
+    let entries = pvd.matches("<DataSet").count();
+    assert!(entries < all, "{entries} of {all}");
+    assert_eq!(frames(&out), entries, "{pvd}");
+}
