@@ -1,6 +1,7 @@
 //! `mdr-dem sim run` from the command line. Ctrl-C: SIGINT while the run is under way makes it
-//! write a final checkpoint and exit with success, printing the `--resume` command; resuming
-//! from that checkpoint (with a `duration_s` that ends shortly after it) completes normally.
+//! write a final checkpoint and exit with status 130, printing the command that continues it;
+//! that command, run verbatim by a shell, completes the run in the same folder, and its summary
+//! counts the steps it ran. Exit statuses of refused input (2) and of a guard (3).
 //! `--threads`: one and two threads write the same energy books, and 0 is refused by name.
 
 #![cfg(unix)]
@@ -103,21 +104,33 @@ fn ctrl_c_writes_a_final_checkpoint_and_the_run_resumes_from_it() {
     assert!(killed.success());
     let output = child.wait_with_output().unwrap();
     let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(output.status.success(), "{}: {stderr}", output.status);
+    assert_eq!(
+        output.status.code(),
+        Some(130),
+        "{}: {stderr}",
+        output.status
+    );
     assert!(stderr.contains("interrupted at t = "), "{stderr}");
-    // "interrupted at t = T s (step N); continue with:\n  mdr-dem sim run SCENE --resume CK"
+    // "interrupted at t = T s (step N) …; continue with:\n  PROGRAM sim run SCENE --out OUT
+    // --resume CK --quiet"
     let step: u64 = stderr
         .split("(step ")
         .nth(1)
         .and_then(|s| s.split(')').next())
         .and_then(|s| s.parse().ok())
         .unwrap_or_else(|| panic!("no step in {stderr}"));
+    let hint = stderr
+        .split("continue with:\n")
+        .nth(1)
+        .and_then(|s| s.lines().next())
+        .unwrap_or_else(|| panic!("no command in {stderr}"))
+        .trim()
+        .to_owned();
     let checkpoint = PathBuf::from(
-        stderr
-            .split("--resume ")
+        hint.split("--resume ")
             .nth(1)
-            .map(str::trim)
-            .unwrap_or_else(|| panic!("no --resume in {stderr}")),
+            .and_then(|s| s.split_whitespace().next())
+            .unwrap_or_else(|| panic!("no --resume in {hint}")),
     );
     assert!(checkpoint.exists(), "{}", checkpoint.display());
     assert!(step > 0);
@@ -129,25 +142,50 @@ fn ctrl_c_writes_a_final_checkpoint_and_the_run_resumes_from_it() {
         }
     }
 
-    // Resume with a duration 50 steps past the stop (only duration_s may change).
-    let short = write(&dir.join("short.toml"), &scene((step as f64 + 49.5) * DT));
-    let resumed = Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
-        .args(["sim", "run"])
-        .arg(&short)
-        .arg("--out")
-        .arg(&out)
-        .arg("--quiet")
-        .arg("--resume")
-        .arg(&checkpoint)
+    // The scene now ends 50 steps past the stop (only duration_s may change); the hint runs as
+    // printed, from another working directory, and continues in the same folder.
+    write(&long, &scene((step as f64 + 49.5) * DT));
+    let resumed = Command::new("sh")
+        .arg("-c")
+        .arg(&hint)
+        .current_dir(std::env::temp_dir())
         .output()
         .unwrap();
     let stdout = String::from_utf8_lossy(&resumed.stdout);
     assert!(
         resumed.status.success(),
-        "{}",
+        "{hint}: {}",
         String::from_utf8_lossy(&resumed.stderr)
     );
-    assert!(stdout.contains(&format!("{} steps", step + 50)), "{stdout}");
+    assert!(stdout.contains("done: t = "), "{stdout}");
+    assert!(stdout.contains(", 50 steps in "), "{stdout}");
+    assert!(stdout.contains("energy balance drift"), "{stdout}");
+    let pvd = std::fs::read_to_string(out.join("column.pvd")).unwrap();
+    let frames = std::fs::read_dir(out.join("frames")).unwrap().count();
+    assert_eq!(pvd.matches("<DataSet").count(), frames, "{pvd}");
+
+    // A fresh run into the folder is refused (2) unless --overwrite is given.
+    let again = |extra: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
+            .args(["sim", "run"])
+            .arg(&long)
+            .arg("--out")
+            .arg(&out)
+            .arg("--quiet")
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let refused = again(&[]);
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("--overwrite"), "{stderr}");
+    let replaced = again(&["--overwrite"]);
+    assert!(
+        replaced.status.success(),
+        "{}",
+        String::from_utf8_lossy(&replaced.stderr)
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -191,5 +229,46 @@ fn threads_flag_sets_the_pool_and_changes_no_result() {
         stderr.contains("--threads = 0 is outside the allowed range [1, inf)"),
         "{stderr}"
     );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn guards_and_refused_input_have_their_exit_statuses() {
+    let dir = std::env::temp_dir().join(format!("mdr_sim_cli_status_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let run = |scene: &Path, extra: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
+            .args(["sim", "run"])
+            .arg(scene)
+            .arg("--out")
+            .arg(dir.join("out"))
+            .arg("--quiet")
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    // The energy guard set below the round-off drift trips at once: status 3.
+    let text = scene(200.5 * DT).replace(
+        "headline = \"column\"",
+        "headline = \"column\"\nmax_energy_drift = 1e-15",
+    );
+    let tight = write(&dir.join("tight.toml"), &text);
+    let stopped = run(&tight, &[]);
+    let stderr = String::from_utf8_lossy(&stopped.stderr);
+    assert_eq!(stopped.status.code(), Some(3), "{stderr}");
+    assert!(stderr.contains("max_energy_drift"), "{stderr}");
+    // A refused scene file: status 2.
+    let bad = write(
+        &dir.join("bad.toml"),
+        &scene(1e-3).replace("seed = 5", "sed = 5"),
+    );
+    let refused = run(&bad, &[]);
+    assert_eq!(refused.status.code(), Some(2));
+    // A missing checkpoint: status 2, the system's message once.
+    let missing = run(&tight, &["--resume", "no/such.mdrck", "--overwrite"]);
+    let stderr = String::from_utf8_lossy(&missing.stderr);
+    assert_eq!(missing.status.code(), Some(2), "{stderr}");
+    assert_eq!(stderr.matches("No such file").count(), 1, "{stderr}");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -378,6 +378,9 @@ fn time_scene(args: &SceneArgs, scene: &mdr_sim::scene::Scene) -> anyhow::Result
     })
 }
 
+/// Below this many sphere contacts per particle, `bench scene` warns that it timed free flight.
+const FEW_CONTACTS_PER_PARTICLE: f64 = 0.5;
+
 fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
     if args.steps == 0 {
         bail!("--steps = 0 is outside the allowed range [1, inf) (timed steps)");
@@ -387,6 +390,14 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
     // The run's steps with the pool's other threads awake between passes, as `sim run` has them.
     let figures =
         pool.install(|| mdr_rapier::fast::with_workers_awake(|| time_scene(args, &scene)))?;
+    if figures.contacts_per_particle < FEW_CONTACTS_PER_PARTICLE {
+        eprintln!(
+            "warning: the timed steps had {:.3} sphere contacts per particle: they time spheres in \
+             free flight, not a granular flow (a settled bed has about 6); start the timing later \
+             with --warmup, or from a checkpoint of the flowing state with --resume",
+            figures.contacts_per_particle
+        );
+    }
     if args.json {
         println!("{}", serde_json::to_string(&figures)?);
     } else {

@@ -90,6 +90,16 @@ fn rayon_pool(threads: usize) -> anyhow::Result<mdr_rapier::fast::rayon::ThreadP
             Refused("--threads = 0 is outside the allowed range [1, inf)".to_owned()).into(),
         );
     }
+    if let Ok(cores) = std::thread::available_parallelism() {
+        if threads > cores.get() {
+            eprintln!(
+                "warning: --threads {threads} is more than the {cores} cores this process may use: \
+                 the pool's threads wait for each pass busily, so with more threads than cores \
+                 they take turns on the cores and a run loses half its speed or more; ask for {cores} \
+                 at most"
+            );
+        }
+    }
     Ok(mdr_rapier::fast::rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()?)

@@ -80,6 +80,11 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         eprintln!("{estimate}");
         return Ok(());
     }
+    if let Some(checkpoint) = &args.resume {
+        if let Err(e) = std::fs::metadata(checkpoint) {
+            return Err(Refused(format!("checkpoint {}: {e}", checkpoint.display())).into());
+        }
+    }
     prepare_output_folder(args, &scene, &out)?;
     match pool {
         Some(pool) => pool.install(|| run_checked(args, &scene, &out)),

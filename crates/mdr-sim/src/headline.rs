@@ -19,6 +19,24 @@ use mdr_contact::ContactPair;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
+/// Orifices narrower than this many mean particle diameters jam: arches form over them and
+/// stop the flow for good (in 3D silos the mean avalanche between jams grows without bound
+/// only as `D/d` approaches about 5; Zuriguel, Garcimartín, Maza, Pugnaloni & Pastor, Phys.
+/// Rev. E 71, 051303, 2005). The scene check warns below it, and the hopper headline reports
+/// "jammed" instead of a flow rate.
+pub const JAMMING_RATIO: f64 = 4.0;
+
+/// The time (s) the first removable wall (a plug) is removed, 0 when there is none: the
+/// discharge starts then.
+pub fn plug_opened_at(scene: &Scene) -> f64 {
+    scene
+        .walls
+        .iter()
+        .filter_map(|w| w.removed_at)
+        .reduce(f64::min)
+        .map_or(0.0, |t| t.clamp(0.0, scene.duration))
+}
+
 /// Beverloo's discharge coefficient `C`.
 pub const BEVERLOO_C: f64 = 0.58;
 /// Beverloo's empty-annulus coefficient `k`.
@@ -401,31 +419,59 @@ impl Tracker {
                     .iter()
                     .map(|p| scene.materials[p.material].1.sphere_mass(p.radius))
                     .sum();
-                let final_mass = samples.last().map_or(0.0, |s| s.values[0]);
-                // Steady discharge: the second half of the run, once the flow has started and
-                // while the hopper is not yet nearly empty.
+                // `+ 0.0` turns a negative zero into 0 (no "−0.0 %").
+                let final_mass = samples.last().map_or(0.0, |s| s.values[0]) + 0.0;
+                // Steady discharge: the second half of the time after the plug opens (the whole
+                // run without a plug), once the flow has started and while the hopper is not yet
+                // nearly empty.
                 let t_end = samples.last().map_or(0.0, |s| s.time);
+                let opened_at = plug_opened_at(scene);
+                let window_start = opened_at + 0.5 * (t_end - opened_at);
                 let window: Vec<(f64, f64)> = samples
                     .iter()
                     .map(|s| (s.time, s.values[0]))
-                    .filter(|(t, m)| *t >= 0.5 * t_end && *m > 0.0 && *m <= 0.9 * total)
+                    .filter(|(t, m)| *t >= window_start && *m > 0.0 && *m <= 0.9 * total)
                     .collect();
                 let rate = linear_fit(&window).map_or(f64::NAN, |(_, slope)| slope);
                 r.push("orifice_diameter_m", orifice);
                 r.push("mean_particle_diameter_m", d);
                 r.push("discharged_fraction", final_mass / total);
+                let jammed = orifice < JAMMING_RATIO * d;
+                if jammed {
+                    r.push("jammed", 1.0);
+                    r.push(
+                        "mass_flow_rate_kg_per_s",
+                        if rate.is_finite() { rate } else { 0.0 },
+                    );
+                    r.text = format!(
+                        "hopper discharge: D = {orifice:.4e} m, d = {d:.4e} m (D/d = {:.2}): jammed: an \
+                         orifice narrower than {JAMMING_RATIO} particle diameters arches over and \
+                         stops the flow (Zuriguel et al. 2005), so no steady rate and no Beverloo \
+                         ratio are reported; discharged {:.1} % of the mass",
+                        orifice / d,
+                        100.0 * final_mass / total,
+                    );
+                    return r;
+                }
                 r.push("mass_flow_rate_kg_per_s", rate);
                 r.push("beverloo_kg_per_s", beverloo);
                 r.push("ratio_to_beverloo", rate / beverloo);
+                let after = if opened_at > 0.0 {
+                    format!(
+                        "the second half of the time after the plug opened at {opened_at:.4e} s"
+                    )
+                } else {
+                    "the second half of the run".to_owned()
+                };
                 let rate_text = if rate.is_finite() {
                     format!(
-                        "W = {rate:.4e} kg/s (fit over the second half of the run, {} samples)",
+                        "W = {rate:.4e} kg/s (fit over {after}, {} samples)",
                         window.len()
                     )
                 } else {
                     format!(
-                        "W not measured: {} samples of the discharged mass in the second half of \
-                         the run (between none and 90 % of the mass), a fit needs 3 (run longer, \
+                        "W not measured: {} samples of the discharged mass in {after} \
+                         (between none and 90 % of the mass), a fit needs 3 (run longer, \
                          or write rows more often with output_interval_s)",
                         window.len()
                     )

@@ -124,7 +124,16 @@ pub fn lattice(
     if capacity < count {
         return Err(format!(
             "the region holds only {capacity} lattice sites ({nx} × {ny} × {nz} at spacing {spacing:.4e} m) \
-             for {count} particles: enlarge the region or reduce count"
+             for {count} particles: enlarge the region or reduce count{}",
+            if nx.min(ny).min(nz) == 0 {
+                format!(
+                    " (a sphere of diameter {:.4e} m does not fit the region at all: the radius and \
+                     the region are both in metres)",
+                    2.0 * r
+                )
+            } else {
+                String::new()
+            }
         ));
     }
     let slack = spacing - 2.0 * r;

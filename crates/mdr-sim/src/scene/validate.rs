@@ -57,6 +57,20 @@ pub fn load_scene(path: &Path) -> Result<Scene, Problems> {
 
 /// Check a scene given as text; `path` locates it (messages, relative file names).
 pub fn parse_scene(path: &Path, text: &str) -> Result<Scene, Problems> {
+    if text.trim().is_empty() {
+        return Err(Problems(vec![Problem {
+            severity: Severity::Error,
+            file: path.to_path_buf(),
+            line: 0,
+            column: 0,
+            key: String::new(),
+            message: format!(
+                "the scene file is empty ({} bytes): a scene needs [run], [[material]], [contact] \
+                 and [[particles]] (copy one of scenes/*.toml)",
+                text.len()
+            ),
+        }]));
+    }
     let loc = Locator::new(path, text);
     let (file, structural) = parse_structure(&loc, text);
     let Some(file) = file else {
@@ -90,11 +104,26 @@ fn parse_structure(loc: &Locator<'_>, text: &str) -> (Option<SceneFile>, Vec<Pro
             Ok(file) => return (Some(file), problems),
             Err(e) => {
                 let span = e.span();
-                let message = e.message().trim().to_owned();
-                let (line_range, key) = span
+                let message = with_suggestion(e.message().trim());
+                let (line_range, mut key) = span
                     .as_ref()
                     .map(|s| line_of(&work, s.start))
                     .map_or((None, String::new()), |(r, k)| (Some(r), k));
+                let mut message = message;
+                if message.starts_with("duplicate key") {
+                    let line = line_range.clone().map_or("", |r| work[r].trim());
+                    if let Some(table) = line.strip_prefix('[') {
+                        key = table.trim_matches(['[', ']', ' ']).to_owned();
+                        message = format!(
+                            "duplicate table: [{key}] is defined a second time here (a table \
+                             written once per file; [[…]] for a list of tables)"
+                        );
+                    } else {
+                        message = format!(
+                            "duplicate key: `{key}` is given a second time in the same table; keep one"
+                        );
+                    }
+                }
                 problems.push(loc.at_span(Severity::Error, span.clone(), key, message.clone()));
                 let Some(range) = line_range else { break };
                 let line = &work[range.clone()];
@@ -113,6 +142,29 @@ fn parse_structure(loc: &Locator<'_>, text: &str) -> (Option<SceneFile>, Vec<Pro
     }
     problems.sort_by_key(|p| (p.line, p.column));
     (None, problems)
+}
+
+/// A serde message about an unknown key or variant (`` unknown field `x`, expected one of `a`,
+/// `b` ``), with the nearest allowed name added (`did you mean`) where one is close: within a
+/// third of the name's length in edits (Levenshtein), at least one.
+fn with_suggestion(message: &str) -> String {
+    let unknown = ["unknown field `", "unknown variant `"]
+        .iter()
+        .find_map(|p| message.strip_prefix(p))
+        .and_then(|rest| rest.split_once('`'));
+    let Some((name, rest)) = unknown else {
+        return message.to_owned();
+    };
+    let allowed = rest.split('`').skip(1).step_by(2);
+    let best = allowed
+        .map(|a| (strsim::levenshtein(name, a), a))
+        .min_by_key(|(d, _)| *d);
+    match best {
+        Some((d, a)) if d > 0 && d <= (name.chars().count() / 3).max(1) => {
+            format!("{message}; did you mean `{a}`?")
+        }
+        _ => message.to_owned(),
+    }
 }
 
 /// The byte range of the line holding `offset` and the key written on it (text before `=`).
@@ -681,6 +733,7 @@ impl Checker<'_, '_> {
                 "is shorter than the time step: one row per step",
             );
         }
+        self.jamming_hint(&file, &particles);
         Some(Scene {
             file: path.to_path_buf(),
             source: file.clone(),
@@ -708,6 +761,46 @@ impl Checker<'_, '_> {
             walls: walls_out,
             warnings: Vec::new(),
         })
+    }
+}
+
+impl Checker<'_, '_> {
+    /// Orifices (an orifice plate's `orifice_diameter_m`, each of `orifice_sweep_m`) narrower
+    /// than [`crate::headline::JAMMING_RATIO`] mean particle diameters jam.
+    fn jamming_hint(&mut self, file: &SceneFile, particles: &[ParticleInit]) {
+        if particles.is_empty() {
+            return;
+        }
+        let d = 2.0 * particles.iter().map(|p| p.radius).sum::<f64>() / particles.len() as f64;
+        let limit = crate::headline::JAMMING_RATIO;
+        let root = KeyPath::root();
+        let mut orifices: Vec<(KeyPath, f64)> = file
+            .walls
+            .iter()
+            .enumerate()
+            .filter(|(_, w)| w.kind == WallKind::OrificePlate)
+            .filter_map(|(i, w)| {
+                let key = root.key("walls").index(i).key("orifice_diameter_m");
+                w.orifice_diameter_m.map(|o| (key, o))
+            })
+            .collect();
+        if let Some(sweep) = &file.run.orifice_sweep_m {
+            let key = root.key("run").key("orifice_sweep_m");
+            orifices = sweep.iter().map(|&o| (key.clone(), o)).collect();
+        }
+        for (key, o) in orifices {
+            if o < limit * d {
+                self.warn(
+                    &key,
+                    format!(
+                        "an orifice of {o} m is {:.2} mean particle diameters (d = {d:.4e} m): below \
+                         about {limit} d arches jam it and the flow stops (the hopper headline \
+                         reports \"jammed\"); Beverloo's law holds from about 6 d",
+                        o / d
+                    ),
+                );
+            }
+        }
     }
 }
 

@@ -3,6 +3,9 @@
 
 use super::*;
 
+/// Sphere radii from this size up (m) get the millimetre hint.
+const MILLIMETRE_HINT_RADIUS_M: f64 = 1.0;
+
 impl Checker<'_, '_> {
     pub(super) fn place_group(
         &mut self,
@@ -63,7 +66,11 @@ impl Checker<'_, '_> {
                 ],
                 "by placement = \"lattice\" / \"random\"",
             );
-            self.radius_law(table, g)
+            let law = self.radius_law(table, g);
+            if let Some(law) = &law {
+                self.millimetre_hint(table, g, law.max());
+            }
+            law
         };
         let mut out = None;
         match g.placement {
@@ -263,6 +270,27 @@ impl Checker<'_, '_> {
             // radius_law reports the bounds' own problems.
             _ => None,
         }
+    }
+
+    /// A sphere radius of a metre or more is most often a radius in millimetres written into a
+    /// key in metres: a warning at the radius key says so.
+    fn millimetre_hint(&mut self, table: &KeyPath, g: &ParticleGroup, largest: f64) {
+        if largest < MILLIMETRE_HINT_RADIUS_M {
+            return;
+        }
+        let key = if g.radius_m.is_some() {
+            "radius_m"
+        } else {
+            "radius_max_m"
+        };
+        self.warn(
+            &table.key(key),
+            format!(
+                "= {largest} m: spheres of a metre or more? Every length of a scene is in metres (the \
+                 `_m` keys); if this is millimetres, write {:e}",
+                largest / 1000.0
+            ),
+        );
     }
 
     pub(super) fn radius_law(&mut self, table: &KeyPath, g: &ParticleGroup) -> Option<RadiusLaw> {
