@@ -258,6 +258,14 @@ fn guards_and_refused_input_have_their_exit_statuses() {
     let stderr = String::from_utf8_lossy(&stopped.stderr);
     assert_eq!(stopped.status.code(), Some(3), "{stderr}");
     assert!(stderr.contains("max_energy_drift"), "{stderr}");
+    // `--check` measures the first steps and estimates the run's wall time.
+    let checked = run(&tight, &["--check"]);
+    let stderr = String::from_utf8_lossy(&checked.stderr);
+    assert!(checked.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("estimate: ") && stderr.contains("steps/s"),
+        "{stderr}"
+    );
     // A refused scene file: status 2.
     let bad = write(
         &dir.join("bad.toml"),

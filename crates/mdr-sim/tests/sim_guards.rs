@@ -249,3 +249,93 @@ fn a_resumed_run_leaves_no_stale_frames() {
     assert!(entries < all, "{entries} of {all}");
     assert_eq!(frames(&out), entries, "{pvd}");
 }
+
+/// Eight spheres over an orifice of 1.5 particle diameters: the check warns at the orifice's
+/// key, and the hopper headline says "jammed" with no NaN in its text or values.
+#[test]
+fn an_orifice_below_four_diameters_is_warned_and_reported_jammed() {
+    let dir = temp_dir("jam");
+    let text = column_on(
+        r#"[[walls]]
+kind = "orifice_plate"
+material = "grain"
+center_m = [0.0, 0.0, 0.0]
+outer_radius_m = 0.02
+orifice_diameter_m = 0.006
+thickness_m = 0.002
+"#,
+        0.01,
+        "",
+    )
+    .replace("headline = \"column\"", "headline = \"hopper\"");
+    let path = write(&dir, "jam.toml", &text);
+    let scene = load_scene(&path).unwrap();
+    let warning = scene
+        .warnings
+        .iter()
+        .find(|w| w.key == "walls[0].orifice_diameter_m")
+        .unwrap_or_else(|| panic!("{:?}", scene.warnings));
+    assert!(
+        warning.message.contains("1.50 mean particle diameters"),
+        "{warning}"
+    );
+    let summary = run_scene(&scene, &RunOptions::new(dir.join("out")).quiet(true)).unwrap();
+    let headline = &summary.headline;
+    assert!(headline.text.contains("jammed"), "{}", headline.text);
+    assert!(!headline.text.contains("NaN"), "{}", headline.text);
+    assert!(
+        headline.values.iter().all(|v| v.value.is_finite()),
+        "{:?}",
+        headline.values
+    );
+    assert_eq!(headline.get("jammed"), Some(1.0));
+}
+
+/// Radii in millimetres written into `radius_m`: a warning at the key, and the lattice's
+/// refusal says the spheres do not fit the region at all.
+#[test]
+fn radii_that_look_like_millimetres_are_pointed_at() {
+    let text = column(2, 2, 0.01, 0.5, "").replace("radius_m = 0.002", "radius_m = 2.0");
+    let problems =
+        mdr_sim::scene::validate::parse_scene(std::path::Path::new("mm.toml"), &text).unwrap_err();
+    let hint = problems
+        .0
+        .iter()
+        .find(|p| p.key == "particles[0].radius_m")
+        .unwrap_or_else(|| panic!("{problems}"));
+    assert!(hint.message.contains("millimetres"), "{hint}");
+    assert!(
+        problems
+            .to_string()
+            .contains("does not fit the region at all"),
+        "{problems}"
+    );
+}
+
+/// A misspelt key gets the nearest allowed one; an empty file and a duplicate key or table say
+/// so with the key named.
+#[test]
+fn misspelt_duplicate_and_missing_keys_are_named() {
+    let parse = |text: &str| {
+        mdr_sim::scene::validate::parse_scene(std::path::Path::new("s.toml"), text)
+            .unwrap_err()
+            .to_string()
+    };
+    let good = column(2, 2, 0.01, 0.5, "");
+    let typo = parse(&good.replace("seed = 5", "sed = 5"));
+    assert!(typo.contains("did you mean `seed`?"), "{typo}");
+    let far = parse(&good.replace("seed = 5", "colour = 5"));
+    assert!(!far.contains("did you mean"), "{far}");
+    let empty = parse("\n  \n");
+    assert!(
+        empty.contains("s.toml") && empty.contains("empty"),
+        "{empty}"
+    );
+    let twice = parse(&good.replace("seed = 5", "seed = 5\nseed = 6"));
+    assert!(twice.contains("`seed` is given a second time"), "{twice}");
+    let table = parse(&good.replace("[contact]", "[contact]\nfriction = 0.1\n[contact]"));
+    assert!(
+        table.contains("[contact] is defined a second time"),
+        "{table}"
+    );
+}
