@@ -37,6 +37,49 @@ pub fn plug_opened_at(scene: &Scene) -> f64 {
         .map_or(0.0, |t| t.clamp(0.0, scene.duration))
 }
 
+/// The literature's prediction drawn next to a headline's time series, as labelled lines in the
+/// series' units: the column's run-out of Lube et al. (2004) (and its final height, `H = H0`
+/// below `a = 0.74`), the hopper's discharged mass at Beverloo's rate from the start of the
+/// fitted window. Other headlines have none.
+pub fn reference_lines(
+    report: &HeadlineReport,
+    samples: &[HeadlineSample],
+) -> Vec<(String, Vec<(f64, f64)>)> {
+    let (Some(first), Some(last)) = (samples.first(), samples.last()) else {
+        return Vec::new();
+    };
+    let span = |v: f64| vec![(first.time, v), (last.time, v)];
+    let mut lines = Vec::new();
+    if let (Some(r0), Some(lube)) = (
+        report.get("initial_radius_m"),
+        report.get("lube_2004_normalised_runout"),
+    ) {
+        lines.push((
+            format!("Lube et al. 2004 run-out R0 (1 + {lube:.3})"),
+            span(r0 * (1.0 + lube)),
+        ));
+        if let Some(h) = report
+            .get("lube_2004_final_height_m")
+            .filter(|h| h.is_finite())
+        {
+            lines.push(("Lube et al. 2004 height H = H0".to_owned(), span(h)));
+        }
+    }
+    if let (Some(w), Some(start)) = (
+        report.get("beverloo_kg_per_s").filter(|w| *w > 0.0),
+        report.get("fit_window_start_s"),
+    ) {
+        if let Some(s0) = samples.iter().find(|s| s.time >= start) {
+            let m0 = s0.values[0];
+            lines.push((
+                format!("Beverloo et al. 1961: W = {w:.3e} kg/s"),
+                vec![(s0.time, m0), (last.time, m0 + w * (last.time - s0.time))],
+            ));
+        }
+    }
+    lines
+}
+
 /// Beverloo's discharge coefficient `C`.
 pub const BEVERLOO_C: f64 = 0.58;
 /// Beverloo's empty-annulus coefficient `k`.
@@ -456,6 +499,7 @@ impl Tracker {
                 r.push("mass_flow_rate_kg_per_s", rate);
                 r.push("beverloo_kg_per_s", beverloo);
                 r.push("ratio_to_beverloo", rate / beverloo);
+                r.push("fit_window_start_s", window_start);
                 let after = if opened_at > 0.0 {
                     format!(
                         "the second half of the time after the plug opened at {opened_at:.4e} s"

@@ -116,7 +116,7 @@ impl RunOptions {
 /// A sphere–wall overlap beyond this fraction of the sphere's radius stops the run: the sphere
 /// is going through the wall (a two-sided sheet's overlap reaches the radius as the centre
 /// passes it).
-pub const CROSSING_OVERLAP: f64 = 0.75;
+pub const CROSSING_OVERLAP: f64 = 0.95;
 
 /// Seconds of stepping after which a run prints its wall-time estimate.
 const ESTIMATE_AFTER_S: f64 = 2.0;

@@ -178,12 +178,14 @@ impl Sim<'_> {
                 })
                 .collect();
             let path = out.join(format!("{name}_headline.svg"));
-            plot::write_lines(
+            let report = self.tracker.report(self.scene, &self.samples);
+            plot::write_chart(
                 &path,
                 &format!("{name}: headline"),
                 "time (s)",
-                "value",
+                &plot::axis_label(names),
                 &series,
+                &crate::headline::reference_lines(&report, &self.samples),
             )
             .map_err(output(&path))?;
             files.push(path);
