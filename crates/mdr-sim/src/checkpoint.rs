@@ -22,9 +22,10 @@ use thiserror::Error;
 pub const MAGIC: &[u8; 8] = b"MDRSIMCK";
 /// Version of the layout of the payload; bumped whenever it changes (1 lacked the rolling books
 /// and rapier's world, 2 the springs' stiffness books and the spring states they start from, 3
-/// the neighbour-list path's particles and lists, 5 the removed spheres' energy; 6 keeps the
-/// springs' stiffness energy in each contact's work books).
-pub const FORMAT_VERSION: u32 = 6;
+/// the neighbour-list path's particles and lists, 5 the removed spheres' energy, 6 the springs'
+/// stiffness energy in each contact's work books; 7 keeps the scene's fixed keys, to name what
+/// changed when a restart is refused).
+pub const FORMAT_VERSION: u32 = 7;
 const HEADER_LEN: usize = 24;
 
 /// Why a checkpoint was refused.

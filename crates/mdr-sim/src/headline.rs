@@ -2,7 +2,7 @@
 //!
 //! - column collapse: run-out distance and final height (compared with the axisymmetric
 //!   run-out scaling of Lube, Huppert, Sparks & Hallworth, J. Fluid Mech. 508, 175 (2004));
-//! - hopper: steady mass flow rate, fitted over the second half of the run (compared with the Beverloo correlation
+//! - hopper: steady mass flow rate, fitted over the second half of the time after the plug opens (compared with the Beverloo correlation
 //!   `W = C ρ_b √g (D − k d)^{5/2}`, Beverloo, Leniger & van de Velde, Chem. Eng. Sci. 15, 260
 //!   (1961), with `C = 0.58`, `k = 1.5`, `ρ_b = 0.6 ρ_p`);
 //! - rotating drum: dynamic angle of repose of the free surface;

@@ -216,8 +216,8 @@ fn damaged_and_foreign_checkpoints_are_refused() {
     // Checkpoints of the earlier formats (1: before the rolling books and rapier's world; 2:
     // before the springs' stiffness books; 3: before the neighbour-list state; 4: before the
     // pairs' largest overlaps in the books; 5: before the stiffness energy in each contact's
-    // work books) are refused with both versions named.
-    for old in [1u8, 2, 3, 4, 5] {
+    // work books; 6: before the scene's fixed keys) are refused with both versions named.
+    for old in [1u8, 2, 3, 4, 5, 6] {
         let mut version = bytes.clone();
         version[8] = old;
         std::fs::write(&p, &version).unwrap();
@@ -225,7 +225,7 @@ fn damaged_and_foreign_checkpoints_are_refused() {
         assert!(
             matches!(
                 e,
-                SimError::Checkpoint(CheckpointError::Version { found, expected: 6, .. })
+                SimError::Checkpoint(CheckpointError::Version { found, expected: 7, .. })
                     if found == u32::from(old)
             ),
             "{e}"
@@ -255,6 +255,8 @@ fn damaged_and_foreign_checkpoints_are_refused() {
         ),
         "{e}"
     );
+    // The refusal names what changed.
+    assert!(e.to_string().contains("`run.seed` 5 → 6"), "{e}");
 
     // A longer duration is a legitimate restart.
     let longer_text = text.replace("duration_s = 0.002", "duration_s = 0.003");

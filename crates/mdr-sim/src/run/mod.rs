@@ -316,9 +316,16 @@ impl<'a> Sim<'a> {
         };
         let fingerprint = state::fingerprint(scene);
         if data.fingerprint != fingerprint {
+            let changes = state::changed_keys(&data.scene_keys, &state::fixed_keys(scene));
+            let what = if changes.is_empty() {
+                "the placed particles differ (a placement file changed?)".to_owned()
+            } else {
+                format!("changed: {}", changes.join(", "))
+            };
             return Err(incompatible(format!(
-                "it was written for scene `{}` with fingerprint {:08x}; this scene (`{}`) has {:08x} \
-                 (only duration_s and the output/checkpoint/energy intervals may change on a restart)",
+                "it was written for scene `{}` with fingerprint {:08x}; this scene (`{}`) has {:08x}: \
+                 {what} (only duration_s, the output/checkpoint/energy intervals and \
+                 max_energy_drift may change on a restart)",
                 data.scene_name, data.fingerprint, scene.name, fingerprint
             ))
             .into());

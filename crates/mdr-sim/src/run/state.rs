@@ -547,6 +547,9 @@ pub struct CheckpointData {
     pub energy: Vec<EnergyRow>,
     /// Headline samples so far.
     pub samples: Vec<HeadlineSample>,
+    /// The scene's keys a restart may not change, as [`fixed_keys`] lists them (to name what
+    /// changed when a restart is refused).
+    pub scene_keys: Vec<(String, String)>,
 }
 
 impl CheckpointData {
@@ -624,21 +627,81 @@ impl CheckpointData {
             collection: sim.collection.clone(),
             energy: sim.energy.clone(),
             samples: sim.samples.clone(),
+            scene_keys: fixed_keys(sim.scene),
         })
     }
 }
 
-/// CRC-32 of the scene file's content with the keys a restart may change (duration and
-/// intervals) blanked, and of the placed particles.
-pub fn fingerprint(scene: &Scene) -> u32 {
+/// The scene file's content as TOML with the keys a restart may change (duration, intervals,
+/// the energy guard) blanked.
+fn fixed_source(scene: &Scene) -> String {
     let mut source = scene.source.clone();
     source.run.duration_s = 0.0;
     source.run.output_interval_s = 0.0;
     source.run.checkpoint_interval_s = None;
     source.run.energy_interval_s = None;
     source.run.max_energy_drift = None;
+    toml::to_string(&source).unwrap_or_default()
+}
+
+/// The keys of the scene a restart may not change, each as `(key path, value)`: what a
+/// checkpoint keeps to say which of them changed.
+pub fn fixed_keys(scene: &Scene) -> Vec<(String, String)> {
+    fn walk(prefix: &str, value: &toml::Value, out: &mut Vec<(String, String)>) {
+        match value {
+            toml::Value::Table(t) => {
+                for (k, v) in t {
+                    let path = if prefix.is_empty() {
+                        k.clone()
+                    } else {
+                        format!("{prefix}.{k}")
+                    };
+                    walk(&path, v, out);
+                }
+            }
+            toml::Value::Array(a) if a.iter().all(toml::Value::is_table) && !a.is_empty() => {
+                for (i, v) in a.iter().enumerate() {
+                    walk(&format!("{prefix}[{i}]"), v, out);
+                }
+            }
+            other => out.push((prefix.to_owned(), other.to_string())),
+        }
+    }
+    let mut out = Vec::new();
+    if let Ok(value) = fixed_source(scene).parse::<toml::Value>() {
+        walk("", &value, &mut out);
+    }
+    out
+}
+
+/// What differs between the keys a checkpoint was written with and a scene's, in words.
+pub fn changed_keys(before: &[(String, String)], now: &[(String, String)]) -> Vec<String> {
+    let find = |keys: &[(String, String)], k: &str| {
+        keys.iter()
+            .find(|(key, _)| key == k)
+            .map(|(_, v)| v.clone())
+    };
+    let mut changes = Vec::new();
+    for (k, v) in before {
+        match find(now, k) {
+            Some(w) if &w != v => changes.push(format!("`{k}` {v} → {w}")),
+            None => changes.push(format!("`{k}` = {v} removed")),
+            _ => {}
+        }
+    }
+    for (k, w) in now {
+        if find(before, k).is_none() {
+            changes.push(format!("`{k}` = {w} added"));
+        }
+    }
+    changes
+}
+
+/// CRC-32 of the scene file's content with the keys a restart may change (duration and
+/// intervals) blanked, and of the placed particles.
+pub fn fingerprint(scene: &Scene) -> u32 {
     let mut hasher = crc32fast::Hasher::new();
-    hasher.update(toml::to_string(&source).unwrap_or_default().as_bytes());
+    hasher.update(fixed_source(scene).as_bytes());
     for p in &scene.particles {
         for c in p.position.iter().chain(std::iter::once(&p.radius)) {
             hasher.update(&c.to_le_bytes());
