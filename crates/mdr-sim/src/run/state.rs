@@ -668,8 +668,8 @@ pub fn fixed_keys(scene: &Scene) -> Vec<(String, String)> {
         }
     }
     let mut out = Vec::new();
-    if let Ok(value) = fixed_source(scene).parse::<toml::Value>() {
-        walk("", &value, &mut out);
+    if let Ok(table) = toml::from_str::<toml::Table>(&fixed_source(scene)) {
+        walk("", &toml::Value::Table(table), &mut out);
     }
     out
 }
