@@ -179,26 +179,6 @@ pub fn axis_label(names: &[&str]) -> String {
         .join(", ")
 }
 
-#[cfg(test)]
-mod tests {
-    use super::axis_label;
-
-    #[test]
-    fn axis_labels_carry_the_units_of_the_series_names() {
-        assert_eq!(axis_label(&["runout_m", "height_m"]), "runout, height (m)");
-        assert_eq!(axis_label(&["discharged_mass_kg"]), "discharged mass (kg)");
-        assert_eq!(
-            axis_label(&["height_m", "vertical_velocity_m_per_s"]),
-            "height (m), vertical velocity (m/s)"
-        );
-        assert_eq!(
-            axis_label(&["spheres_in_funnel", "spheres_remaining"]),
-            "spheres in funnel, spheres remaining (count)"
-        );
-        assert_eq!(axis_label(&["surface_angle_deg"]), "surface angle (°)");
-    }
-}
-
 /// The energy books against time.
 pub fn write_energy_plot(path: &Path, title: &str, rows: &[EnergyRow]) -> std::io::Result<()> {
     let col = |f: fn(&EnergyRow) -> f64| rows.iter().map(|r| (r.time_s, f(r))).collect::<Vec<_>>();
@@ -222,4 +202,24 @@ pub fn write_energy_plot(path: &Path, title: &str, rows: &[EnergyRow]) -> std::i
         ("balance", col(|r| r.balance_j)),
     ];
     write_lines(path, title, "time (s)", "energy (J)", &series)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::axis_label;
+
+    #[test]
+    fn axis_labels_carry_the_units_of_the_series_names() {
+        assert_eq!(axis_label(&["runout_m", "height_m"]), "runout, height (m)");
+        assert_eq!(axis_label(&["discharged_mass_kg"]), "discharged mass (kg)");
+        assert_eq!(
+            axis_label(&["height_m", "vertical_velocity_m_per_s"]),
+            "height (m), vertical velocity (m/s)"
+        );
+        assert_eq!(
+            axis_label(&["spheres_in_funnel", "spheres_remaining"]),
+            "spheres in funnel, spheres remaining (count)"
+        );
+        assert_eq!(axis_label(&["surface_angle_deg"]), "surface angle (°)");
+    }
 }

@@ -547,7 +547,7 @@ pub struct CheckpointData {
     pub energy: Vec<EnergyRow>,
     /// Headline samples so far.
     pub samples: Vec<HeadlineSample>,
-    /// The scene's keys a restart may not change, as [`fixed_keys`] lists them (to name what
+    /// The scene's keys a restart may not change, as `fixed_keys` lists them (to name what
     /// changed when a restart is refused).
     pub scene_keys: Vec<(String, String)>,
 }
