@@ -1,4 +1,4 @@
-//! `mdr-dem sim run SCENE.toml [--resume CHECKPOINT] [--quiet] [--out DIR] [--threads T]`: a
+//! `mdr-dem sim run SCENE.toml [--resume CHECKPOINT] [--quiet] [--out DIR] [--overwrite] [--check] [--threads T]`: a
 //! granular scene from a TOML file. Checks the file, runs it with a progress bar, writes VTK
 //! frames, the energy books, plots and checkpoints; Ctrl-C writes a final checkpoint and exits
 //! with status 130, printing the command that continues the run.
