@@ -199,6 +199,20 @@ fn run_checked(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Re
             println!("{}", run.headline.text);
         }
         println!("{}", sweep.text);
+        if let Some(run) = sweep.runs.iter().find(|r| r.stopped_early) {
+            eprintln!(
+                "interrupted at t = {:.6e} s (step {}) of run {} of the sweep; a sweep is not resumed: \
+                 write that run's diameter into orifice_diameter_m, remove orifice_sweep_m and resume \
+                 it with --resume {}",
+                run.time,
+                run.step,
+                sweep.runs.len(),
+                run.checkpoint
+                    .as_deref()
+                    .map_or("<checkpoint>".to_owned(), |p| shell_word(&p.display().to_string()))
+            );
+            return Err(Exit(EXIT_INTERRUPTED).into());
+        }
         return Ok(());
     }
     let summary = run_scene(scene, &options)?;
