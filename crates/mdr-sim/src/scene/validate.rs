@@ -33,8 +33,9 @@ pub const MAX_STEPS: f64 = 1e10;
 /// resolved so coarsely that symplectic Euler gains energy in every impact).
 pub const MIN_STEPS_HARD: f64 = 5.0;
 /// Default of `[run] max_energy_drift`: a run whose energy balance drifts by more than this
-/// fraction of its energy scale stops. The built-in scenes drift by less than 0.5 %; a wall that
-/// pushes spheres the wrong way, or a time step far too coarse, drifts by tens of per cent.
+/// fraction of its energy scale stops. The built-in column, drum and funnel drift by less than
+/// 0.5 % (docs/user-guide.md); a wall that pushes spheres the wrong way, or a time step far too
+/// coarse, drifts by tens of per cent.
 pub const DEFAULT_MAX_ENERGY_DRIFT: f64 = 0.05;
 /// Initial overlaps above this fraction of the smaller radius are refused.
 pub const OVERLAP_TOLERANCE: f64 = 0.01;
