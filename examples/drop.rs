@@ -1,7 +1,7 @@
 //! The smallest program that adds the MDR law to a rapier world (force mode): the paper's steel
 //! ball hits a steel floor at 1 m/s under gravity and bounces.
 //! Run: `cargo run --release --example drop`.
-use mdr_rapier::prelude::ContactPair;
+use mdr_rapier::LawPair as ContactPair;
 use mdr_rapier::prelude::*;
 use mdr_rapier::rapier::prelude::*;
 

@@ -2,7 +2,7 @@
 //! correctness when rapier runs the hooks on several threads.
 
 use mdr_contact::normal::MdrState;
-use mdr_rapier::prelude::ContactPair;
+use mdr_rapier::LawPair as ContactPair;
 use mdr_rapier::prelude::*;
 use rapier3d_f64::prelude::*;
 
