@@ -23,6 +23,8 @@ const SHARDS: usize = 64;
 /// Segment `s` of the slab holds `FIRST_SEGMENT << s` slots.
 const FIRST_SEGMENT_BITS: u32 = 6;
 const SEGMENTS: usize = 26;
+/// The key of a freed slot: no pair has it (collider indices are below `u32::MAX`).
+const FREED: u64 = u64::MAX;
 
 #[derive(Debug, Default)]
 struct ImpactSlot {
@@ -156,12 +158,22 @@ impl ImpactHistory {
 
     /// Keep the pairs for which `keep` is true, and free the slots of the others.
     fn retain_pairs(&mut self, keep: impl Fn(PairKey) -> bool) {
-        let Self { index, free, .. } = self;
+        let Self {
+            index,
+            segments,
+            free,
+            ..
+        } = self;
         let free = free.get_mut().expect("history lock");
         for shard in index.iter_mut() {
             shard.get_mut().expect("history lock").retain(|&key, slot| {
                 let live = keep(PairKey(key));
                 if !live {
+                    // A manifold still holding this slot must not take it for its pair's.
+                    let (segment, offset) = locate(*slot);
+                    if let Some(seg) = segments[segment].get() {
+                        seg[offset].key.store(FREED, Ordering::Relaxed);
+                    }
                     free.push(*slot);
                 }
                 live

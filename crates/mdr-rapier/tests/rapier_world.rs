@@ -49,7 +49,10 @@ fn bottom(world: &PhysicsWorld, collider: ColliderHandle) -> f64 {
 fn cuboid_and_hull_stay_on_the_floor_in_force_mode() {
     let mut world = PhysicsWorld::default();
     world.integration_parameters.length_unit = 2.0 * R;
-    let mut stepper = ForceModeStepper::new(ContactModel::new(MdrElastoPlastic::paper()));
+    // Damped, so that the spheres come to rest within the run.
+    let model = ContactModel::new(MdrElastoPlastic::paper())
+        .with_damping(StiffnessViscous::new(0.5).unwrap());
+    let mut stepper = ForceModeStepper::new(model);
     let m = stepper.particles_mut().insert_material(grain());
     stepper
         .insert_surface(
@@ -90,7 +93,7 @@ fn cuboid_and_hull_stay_on_the_floor_in_force_mode() {
         .unwrap();
     // Three spheres dropped on the cuboid, one on the hull, two side by side on the floor.
     let mut spheres = Vec::new();
-    for x in [-0.02, 0.0, 0.02] {
+    for x in [-0.03, 0.0, 0.03] {
         let (b, _) = stepper
             .insert_sphere(
                 &mut world,
@@ -148,7 +151,8 @@ fn cuboid_and_hull_stay_on_the_floor_in_force_mode() {
             "sphere on the cuboid at {y}"
         );
     }
-    assert!(world.bodies[spheres[3]].translation().y > 0.02);
+    // The one dropped on the hull's apex rolls off it, onto the floor at worst.
+    assert!(world.bodies[spheres[3]].translation().y > 0.9 * R);
     for &s in &spheres[4..] {
         let y = world.bodies[s].translation().y;
         assert!(y > 0.9 * R && y < R, "sphere on the floor at {y}");
@@ -696,7 +700,12 @@ fn the_second_bounce_follows_the_laws_rule_at_two_margins() {
             let b = &mut world.bodies[ball];
             b.set_translation(Vector::new(0.0, r + gap, 0.0), true);
             b.set_linvel(Vector::new(0.0, -speed, 0.0), true);
-            for _ in 0..(gap / (speed * dt)) as usize + 20 {
+            let steps = if speed > 0.0 {
+                (gap / (speed * dt)) as usize + 20
+            } else {
+                1
+            };
+            for _ in 0..steps {
                 hooks.step(&mut world).unwrap();
                 if world.bodies[ball].linvel().y > 0.0 {
                     break;
@@ -713,7 +722,7 @@ fn the_second_bounce_follows_the_laws_rule_at_two_margins() {
             "margin {normalized_prediction}: second impact from within reach {e2}"
         );
         // Two radii above the floor for a step: the crater is gone, the next impact is fresh.
-        bounce(2.0 * r, 1e-6);
+        bounce(2.0 * r, 0.0);
         let e3 = bounce(2.5 * 3.0 * dt, 3.0);
         assert!(
             (e3 - fresh(3.0)).abs() < 5e-3 * e3,
