@@ -1,5 +1,5 @@
 //! A game-style rapier world with MDR spheres in it (restitution mode, the game's 60 Hz step):
-//! a floor, two dynamic crates and a convex rock (registered as surfaces: the spheres bounce off
+//! a walled floor, two dynamic crates and a convex rock (registered as surfaces: the spheres bounce off
 //! them with the law's restitution; they rest on the floor and on each other through rapier),
 //! a fixed ledge the user left unregistered (rapier's own contact), plain rapier balls of the
 //! user's, a user hook that lets "ghost" colliders pass through the ledge, and collision events
@@ -67,6 +67,16 @@ pub fn run(steps: usize) -> Result<GameSummary, CouplingError> {
         None,
         m,
     )?;
+    // The arena's walls, 3 m from the centre.
+    for (centre, half) in [
+        (Vector::new(3.0, 0.5, 0.0), Vector::new(0.1, 0.5, 3.0)),
+        (Vector::new(-3.0, 0.5, 0.0), Vector::new(0.1, 0.5, 3.0)),
+        (Vector::new(0.0, 0.5, 3.0), Vector::new(3.0, 0.5, 0.1)),
+        (Vector::new(0.0, 0.5, -3.0), Vector::new(3.0, 0.5, 0.1)),
+    ] {
+        let wall = ColliderBuilder::cuboid(half.x, half.y, half.z).translation(centre);
+        mdr.insert_surface(&mut world, wall, None, m)?;
+    }
     let mut surface_bodies = Vec::new();
     for (x, half) in [(-1.0, 0.25), (1.2, 0.2)] {
         let body = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(x, 1.0, 0.0)));
