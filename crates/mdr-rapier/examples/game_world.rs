@@ -53,7 +53,8 @@ pub fn run(steps: usize) -> Result<GameSummary, CouplingError> {
     let mut world = PhysicsWorld::default();
     world.integration_parameters.dt = 1.0 / 60.0;
     world.integration_parameters.length_unit = 0.2;
-    let mut mdr = RestitutionHooks::with_friction_rule(MdrElastoPlastic::paper(), FrictionRule::Colliders)?;
+    let mut mdr =
+        RestitutionHooks::with_friction_rule(MdrElastoPlastic::paper(), FrictionRule::Colliders)?;
     let rubberish = Material::builder()
         .youngs(5.0e7)
         .poisson(0.45)
@@ -79,7 +80,8 @@ pub fn run(steps: usize) -> Result<GameSummary, CouplingError> {
     }
     let mut surface_bodies = Vec::new();
     for (x, half) in [(-1.0, 0.25), (1.2, 0.2)] {
-        let body = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(x, 1.0, 0.0)));
+        let body =
+            world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(x, 1.0, 0.0)));
         surface_bodies.push(mdr.insert_surface(
             &mut world,
             ColliderBuilder::cuboid(half, half, half).density(400.0),
@@ -95,7 +97,8 @@ pub fn run(steps: usize) -> Result<GameSummary, CouplingError> {
         Vector::new(0.0, 0.0, 0.3),
         Vector::new(0.1, 0.0, -0.25),
     ];
-    let rock = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 1.5, 1.0)));
+    let rock =
+        world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 1.5, 1.0)));
     let rock_shape = ColliderBuilder::convex_hull(&rock_points)
         .ok_or(CouplingError::Unsupported("the rock's points have no hull"))?
         .density(2500.0);
@@ -153,7 +156,10 @@ pub fn run(steps: usize) -> Result<GameSummary, CouplingError> {
     Ok(GameSummary {
         lowest_surface_body,
         lowest_sphere,
-        plain_balls: plain.iter().map(|&b| world.bodies[b].translation().y).collect(),
+        plain_balls: plain
+            .iter()
+            .map(|&b| world.bodies[b].translation().y)
+            .collect(),
         law_impacts,
         rapier_pairs,
         collisions_started,

@@ -18,8 +18,8 @@ use crate::geometry::{sphere_shape, sphere_sphere, SurfaceContact};
 use crate::kernel::{evaluate_pair, Arms, ContactKinematics, PairHistory, PairWrench};
 use crate::particles::{MaterialHandle, Particle, ParticleSet, ParticleShape, SphereBuilder};
 use crate::registration::{add_force_flags, check_force_flags};
-use crate::timestep::stable_time_step;
 use crate::store::{ContactStore, Keyed, PairKey};
+use crate::timestep::stable_time_step;
 use mdr_contact::damping::{DampingModel, NoDamping};
 use mdr_contact::model::{ContactLaw, ContactModel, StateOf};
 use mdr_contact::normal::NormalModel;
@@ -392,7 +392,8 @@ where
         material: MaterialHandle,
         colliders: &mut ColliderSet,
     ) -> Result<()> {
-        self.particles.register_sphere(colliders, collider, material)?;
+        self.particles
+            .register_sphere(colliders, collider, material)?;
         if let Some(co) = colliders.get_mut(collider) {
             add_force_flags(co, ParticleShape::Sphere { radius: 0.0 });
         }
@@ -588,7 +589,11 @@ where
             .store
             .entries()
             .iter()
-            .filter(|e| particles.get(e.collider2).is_some_and(|p| p.radius().is_some()))
+            .filter(|e| {
+                particles
+                    .get(e.collider2)
+                    .is_some_and(|p| p.radius().is_some())
+            })
             .count();
         self.report = StepReport {
             contacts: self.store.len(),
@@ -795,8 +800,10 @@ fn check_stability(
     contact: &SurfaceContact,
     dt: f64,
 ) -> Result<()> {
-    let (Some(p1), Some(p2)) = (particles.get(candidate.sphere), particles.get(candidate.other))
-    else {
+    let (Some(p1), Some(p2)) = (
+        particles.get(candidate.sphere),
+        particles.get(candidate.other),
+    ) else {
         return Ok(());
     };
     let velocity = |h: Option<RigidBodyHandle>| {
@@ -804,7 +811,7 @@ fn check_stability(
             .map_or(Vector3::zeros(), |b| to_na(b.linvel()))
     };
     let approach = -(velocity(p1.body) - velocity(p2.body)).dot(&contact.normal);
-    if !(approach > 0.0) {
+    if approach.is_nan() || approach <= 0.0 {
         return Ok(());
     }
     let Ok(pair) = bind_pair(particles, bodies, p1, p2) else {

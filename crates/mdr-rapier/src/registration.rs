@@ -109,9 +109,15 @@ mod tests {
         let sphere = force_sphere_solver_groups(user);
         let surface = force_surface_solver_groups(user);
         assert!(!sphere.test(sphere), "sphere–sphere is the law's");
-        assert!(!sphere.test(surface) && !surface.test(sphere), "sphere–surface");
+        assert!(
+            !sphere.test(surface) && !surface.test(sphere),
+            "sphere–surface"
+        );
         assert!(surface.test(surface), "surface–surface is rapier's");
-        assert!(surface.test(user) && sphere.test(user), "against unregistered colliders");
+        assert!(
+            surface.test(user) && sphere.test(user),
+            "against unregistered colliders"
+        );
         // A user's OR-mode groups on a surface change nothing for the law's pairs.
         let or = InteractionGroups::new(Group::GROUP_1, Group::ALL, InteractionTestMode::Or);
         let or_surface = force_surface_solver_groups(or);

@@ -7,6 +7,10 @@
 //! hook reaches the history with one atomic load; a pair-key index (sharded mutexes, touched only
 //! when a manifold is new) lets a re-created manifold of the same pair find its old slot, so a
 //! re-impact keeps the plastic state and a second, slower impact on the same spot is elastic.
+//! The history ends by the law's rule, not rapier's: after each step
+//! ([`RestitutionHooks::maintain`]) a pair whose surfaces are more than the history reach apart
+//! (one effective radius by default, [`RestitutionHooks::history_reach`]) loses its crater,
+//! whatever rapier's prediction distance and AABB margins keep in its narrow phase.
 
 use crate::error::{positive, CouplingError, Result};
 use crate::particles::{MaterialHandle, ParticleSet, SphereBuilder};
@@ -373,7 +377,8 @@ impl RestitutionHooks {
         material: MaterialHandle,
         colliders: &mut ColliderSet,
     ) -> Result<()> {
-        self.particles.register_sphere(colliders, collider, material)?;
+        self.particles
+            .register_sphere(colliders, collider, material)?;
         if let Some(co) = colliders.get_mut(collider) {
             add_restitution_flags(co);
         }
@@ -398,7 +403,11 @@ impl RestitutionHooks {
 
     /// Before a step: take the time step from `params` and check that every registered
     /// collider is in `colliders` with the hook flag.
-    pub fn prepare(&mut self, params: &IntegrationParameters, colliders: &ColliderSet) -> Result<()> {
+    pub fn prepare(
+        &mut self,
+        params: &IntegrationParameters,
+        colliders: &ColliderSet,
+    ) -> Result<()> {
         self.set_time_step(params.dt)?;
         for particle in self.particles.iter() {
             let co = colliders
@@ -461,8 +470,9 @@ impl RestitutionHooks {
     pub fn maintain(&mut self, colliders: &ColliderSet) -> Result<()> {
         let reach = self.history_reach;
         let particles = &self.particles;
-        self.history
-            .retain_pairs(|key| pair_gap(particles, colliders, key).is_some_and(|(gap, r)| gap < reach * r));
+        self.history.retain_pairs(|key| {
+            pair_gap(particles, colliders, key).is_some_and(|(gap, r)| gap < reach * r)
+        });
         self.prepared = false;
         if self.unprepared.swap(false, Ordering::Relaxed) {
             return Err(CouplingError::TimeStepUnset);
@@ -590,11 +600,15 @@ fn pair_gap(particles: &ParticleSet, colliders: &ColliderSet, key: PairKey) -> O
             r1 * r2 / (r1 + r2),
         )),
         (Some(r), None) => Some((
-            co2.shape().distance_to_point(co2.position(), centre(co1), true) - r,
+            co2.shape()
+                .distance_to_point(co2.position(), centre(co1), true)
+                - r,
             r,
         )),
         (None, Some(r)) => Some((
-            co1.shape().distance_to_point(co1.position(), centre(co2), true) - r,
+            co1.shape()
+                .distance_to_point(co1.position(), centre(co2), true)
+                - r,
             r,
         )),
         (None, None) => None,

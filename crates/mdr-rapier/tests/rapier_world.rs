@@ -157,8 +157,14 @@ fn cuboid_and_hull_stay_on_the_floor_in_force_mode() {
         let y = world.bodies[s].translation().y;
         assert!(y > 0.9 * R && y < R, "sphere on the floor at {y}");
     }
-    assert!(rapier_pairs >= 2, "cuboid–floor and hull–floor: {rapier_pairs}");
-    assert!(sphere_surface >= 6, "{sphere_surface} sphere–surface contacts");
+    assert!(
+        rapier_pairs >= 2,
+        "cuboid–floor and hull–floor: {rapier_pairs}"
+    );
+    assert!(
+        sphere_surface >= 6,
+        "{sphere_surface} sphere–surface contacts"
+    );
     assert!(sphere_sphere >= 1, "{sphere_sphere} sphere–sphere contacts");
 }
 
@@ -179,9 +185,11 @@ fn cuboid_and_hull_stay_on_the_floor_in_restitution_mode() {
             m,
         )
         .unwrap();
-    let cuboid_body = world.insert_body(
-        RigidBodyBuilder::dynamic().translation(Vector::new(0.0, HALF + 0.02, 0.0)),
-    );
+    let cuboid_body = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(
+        0.0,
+        HALF + 0.02,
+        0.0,
+    )));
     let cuboid = hooks
         .insert_surface(
             &mut world,
@@ -250,13 +258,24 @@ fn filter_run(force: bool) -> (f64, f64, usize) {
         let mut stepper = ForceModeStepper::new(ContactModel::new(MdrElastoPlastic::paper()));
         let m = stepper.particles_mut().insert_material(grain());
         stepper.insert_surface(&mut world, floor, None, m).unwrap();
-        tagged = stepper.insert_sphere(&mut world, ball(0.0, 7, m)).unwrap().0;
-        plain = stepper.insert_sphere(&mut world, ball(0.1, 0, m)).unwrap().0;
+        tagged = stepper
+            .insert_sphere(&mut world, ball(0.0, 7, m))
+            .unwrap()
+            .0;
+        plain = stepper
+            .insert_sphere(&mut world, ball(0.1, 0, m))
+            .unwrap()
+            .0;
         stepper
             .configure(&mut world.integration_parameters, grain_dt(), 0.2 * R)
             .unwrap();
         for _ in 0..(0.05 / grain_dt()) as usize {
-            filtered = filtered.max(stepper.step_with(&mut world, &RejectTagged, &()).unwrap().filtered);
+            filtered = filtered.max(
+                stepper
+                    .step_with(&mut world, &RejectTagged, &())
+                    .unwrap()
+                    .filtered,
+            );
         }
     } else {
         world.integration_parameters.dt = 1e-4;
@@ -280,8 +299,14 @@ fn filter_run(force: bool) -> (f64, f64, usize) {
 fn the_users_filter_is_honoured_in_both_modes() {
     for force in [true, false] {
         let (tagged_y, plain_vy, filtered) = filter_run(force);
-        assert!(tagged_y < -R, "force {force}: the rejected ball is at {tagged_y}");
-        assert!(plain_vy > 0.1, "force {force}: the accepted ball bounced at {plain_vy}");
+        assert!(
+            tagged_y < -R,
+            "force {force}: the rejected ball is at {tagged_y}"
+        );
+        assert!(
+            plain_vy > 0.1,
+            "force {force}: the accepted ball bounced at {plain_vy}"
+        );
         if force {
             assert!(filtered >= 1, "the report counts the rejected pair");
         }
@@ -302,8 +327,16 @@ impl PhysicsHooks for CountingModifier {
 
 #[test]
 fn the_users_hook_flags_and_groups_survive_registration() {
-    let collision = InteractionGroups::new(Group::GROUP_3, Group::GROUP_1 | Group::GROUP_3, InteractionTestMode::And);
-    let solver = InteractionGroups::new(Group::GROUP_2, Group::GROUP_1 | Group::GROUP_2, InteractionTestMode::And);
+    let collision = InteractionGroups::new(
+        Group::GROUP_3,
+        Group::GROUP_1 | Group::GROUP_3,
+        InteractionTestMode::And,
+    );
+    let solver = InteractionGroups::new(
+        Group::GROUP_2,
+        Group::GROUP_1 | Group::GROUP_2,
+        InteractionTestMode::And,
+    );
     let user_hooks = ActiveHooks::FILTER_CONTACT_PAIRS;
     let describe = |m| {
         SphereBuilder::new(R, m)
@@ -332,7 +365,10 @@ fn the_users_hook_flags_and_groups_survive_registration() {
     assert_eq!((co.user_data, co.friction()), (42, 0.7));
     let body = &world.bodies[b];
     assert_eq!(body.user_data, 43);
-    assert!(body.activation().normalized_linear_threshold > 0.0, "can sleep");
+    assert!(
+        body.activation().normalized_linear_threshold > 0.0,
+        "can sleep"
+    );
     assert!((body.rotation().to_scaled_axis() - Vector::new(0.0, 0.3, 0.0)).length() < 1e-12);
     assert_eq!(hooks.particles().get(c).unwrap().user_hooks, user_hooks);
 
@@ -395,12 +431,22 @@ fn composed_hooks_call_the_users_modifier_where_the_user_asked() {
         for _ in 0..20 {
             impacts += hooks.step_with(&mut world, &user, &()).unwrap().impacts;
         }
-        (user.calls.load(Ordering::Relaxed), impacts, world.bodies[b].linvel().y)
+        (
+            user.calls.load(Ordering::Relaxed),
+            impacts,
+            world.bodies[b].linvel().y,
+        )
     };
     let (calls, impacts, vy) = run(true);
-    assert!(calls > 0 && impacts == 1 && vy > 0.0, "{calls} {impacts} {vy}");
+    assert!(
+        calls > 0 && impacts == 1 && vy > 0.0,
+        "{calls} {impacts} {vy}"
+    );
     let (calls, impacts, vy) = run(false);
-    assert!(calls == 0 && impacts == 1 && vy > 0.0, "{calls} {impacts} {vy}");
+    assert!(
+        calls == 0 && impacts == 1 && vy > 0.0,
+        "{calls} {impacts} {vy}"
+    );
 }
 
 fn steel_world() -> PhysicsWorld {
@@ -503,23 +549,24 @@ fn a_forgotten_time_step_is_an_error() {
             colliders,
         )
         .unwrap();
-    let mut step = |hooks: &RestitutionHooks, bodies: &mut RigidBodySet, colliders: &mut ColliderSet| {
-        pipeline.step(
-            Vector::ZERO,
-            params,
-            islands,
-            broad_phase,
-            narrow_phase,
-            bodies,
-            colliders,
-            impulse_joints,
-            multibody_joints,
-            soft_bodies,
-            ccd_solver,
-            hooks,
-            &(),
-        )
-    };
+    let mut step =
+        |hooks: &RestitutionHooks, bodies: &mut RigidBodySet, colliders: &mut ColliderSet| {
+            pipeline.step(
+                Vector::ZERO,
+                params,
+                islands,
+                broad_phase,
+                narrow_phase,
+                bodies,
+                colliders,
+                impulse_joints,
+                multibody_joints,
+                soft_bodies,
+                ccd_solver,
+                hooks,
+                &(),
+            )
+        };
     let mut error = None;
     for _ in 0..5 {
         step(&hooks, bodies, colliders);
@@ -539,7 +586,9 @@ fn a_forgotten_time_step_is_an_error() {
         step(&hooks, bodies, colliders);
         hooks.maintain(colliders).unwrap();
     }
-    let pair = LawPair::sphere_on_half_space(0.00635, &Material::paper_steel(), &Material::paper_steel()).unwrap();
+    let pair =
+        LawPair::sphere_on_half_space(0.00635, &Material::paper_steel(), &Material::paper_steel())
+            .unwrap();
     let e = MdrElastoPlastic::paper()
         .bind(&pair)
         .unwrap()
@@ -590,11 +639,16 @@ fn an_unconfigured_world_and_an_unstable_step_are_errors() {
     let err = (0..10)
         .find_map(|_| stepper.step(&mut world).err())
         .expect("the contact begins within ten steps");
-    assert!(matches!(err, CouplingError::TimeStepTooLarge { .. }), "{err}");
+    assert!(
+        matches!(err, CouplingError::TimeStepTooLarge { .. }),
+        "{err}"
+    );
 
     // The step of `stable_time_step` passes.
     let (mut world, mut stepper, ball) = build();
-    let pair = LawPair::sphere_on_half_space(0.00635, &Material::paper_steel(), &Material::paper_steel()).unwrap();
+    let pair =
+        LawPair::sphere_on_half_space(0.00635, &Material::paper_steel(), &Material::paper_steel())
+            .unwrap();
     let dt = stable_time_step(&pair, 1.0, 50.0).unwrap().time_step;
     stepper
         .configure(&mut world.integration_parameters, dt, 1e-3)
@@ -667,9 +721,8 @@ fn a_pair_nobody_handles_is_named() {
 fn the_second_bounce_follows_the_laws_rule_at_two_margins() {
     let r = 0.00635;
     let dt = 1e-5;
-    let pair =
-        LawPair::sphere_on_half_space(r, &Material::paper_steel(), &Material::paper_steel())
-            .unwrap();
+    let pair = LawPair::sphere_on_half_space(r, &Material::paper_steel(), &Material::paper_steel())
+        .unwrap();
     let law = MdrElastoPlastic::paper().bind(&pair).unwrap();
     let fresh = |v: f64| {
         law.impact(&MdrState::default(), pair.reduced_mass(), v)
@@ -739,7 +792,8 @@ fn friction_comes_from_the_colliders() {
     let slide = |rule: FrictionRule, floor_friction: f64| {
         let mut world = steel_world();
         world.integration_parameters.dt = 1e-5;
-        let mut hooks = RestitutionHooks::with_friction_rule(MdrElastoPlastic::paper(), rule).unwrap();
+        let mut hooks =
+            RestitutionHooks::with_friction_rule(MdrElastoPlastic::paper(), rule).unwrap();
         let steel = hooks
             .particles_mut()
             .insert_material(Material::paper_steel());
@@ -765,10 +819,16 @@ fn friction_comes_from_the_colliders() {
         }
         world.bodies[ball].linvel().x
     };
-    let (slippery, rough) = (slide(FrictionRule::Colliders, 0.0), slide(FrictionRule::Colliders, 0.5));
+    let (slippery, rough) = (
+        slide(FrictionRule::Colliders, 0.0),
+        slide(FrictionRule::Colliders, 0.5),
+    );
     assert!((slippery - 1.0).abs() < 1e-9, "frictionless: {slippery}");
     assert!(rough < 0.9, "rough: {rough}");
-    let (a, b) = (slide(FrictionRule::Uniform(0.2), 0.0), slide(FrictionRule::Uniform(0.2), 0.5));
+    let (a, b) = (
+        slide(FrictionRule::Uniform(0.2), 0.0),
+        slide(FrictionRule::Uniform(0.2), 0.5),
+    );
     assert_eq!(a, b);
     assert!(a < 1.0);
 }
