@@ -42,7 +42,7 @@ fn bottom(world: &PhysicsWorld, collider: ColliderHandle) -> f64 {
     world.colliders[collider].compute_aabb().mins.y
 }
 
-/// The third program: MDR spheres, a dynamic cuboid and a convex hull on a floor, in
+/// A mixed world: MDR spheres, a dynamic cuboid and a convex hull on a floor, in
 /// force mode. The cuboid and the hull are registered surfaces (the spheres touch them through
 /// the law); their contacts with the floor and with each other are rapier's.
 #[test]
@@ -507,7 +507,7 @@ fn a_forgotten_hook_flag_is_an_error() {
     stepper.step(&mut world).unwrap();
 }
 
-/// The second program: restitution mode inside the user's own `PhysicsPipeline::step`
+/// Restitution mode inside the user's own `PhysicsPipeline::step`
 /// loop. Without `prepare` the hooks do not know the step; `maintain` says so.
 #[test]
 fn a_forgotten_time_step_is_an_error() {
@@ -598,7 +598,7 @@ fn a_forgotten_time_step_is_an_error() {
     assert!((vy - e).abs() < 5e-3 * e, "bounced at {vy}, law {e}");
 }
 
-/// The first program's misuse: force mode on a world that `configure` never saw, and a
+/// Force mode on a world that `configure` never saw, and a
 /// step far above the contact's stability limit.
 #[test]
 fn an_unconfigured_world_and_an_unstable_step_are_errors() {
