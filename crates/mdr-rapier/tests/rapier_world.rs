@@ -598,8 +598,8 @@ fn a_forgotten_time_step_is_an_error() {
     assert!((vy - e).abs() < 5e-3 * e, "bounced at {vy}, law {e}");
 }
 
-/// Force mode on a world that `configure` never saw, and a
-/// step far above the contact's stability limit.
+/// Force mode on a world that `configure` never saw, and a step far above the contact's
+/// stability limit.
 #[test]
 fn an_unconfigured_world_and_an_unstable_step_are_errors() {
     let build = || {
