@@ -10,10 +10,10 @@
 //! size, `--force-only` to time force mode alone, e.g. under `perf record`). A benchmark, not a test: it prints a table and asserts nothing about time.
 
 use mdr_contact::normal::MdrState;
-use mdr_rapier::prelude::ContactPair;
 use mdr_rapier::prelude::*;
 use mdr_rapier::rapier::prelude::*;
 use mdr_rapier::rapier::rayon;
+use mdr_rapier::LawPair as ContactPair;
 use std::time::Instant;
 
 const RADIUS: f64 = 2.0e-3;

@@ -9,9 +9,9 @@
 //! The material is soft (E = 1 MPa, glass-like density) so the run takes minutes, not hours: the
 //! time step follows the Hertz contact time, which grows as E*^(-2/5).
 
-use mdr_rapier::prelude::ContactPair;
 use mdr_rapier::prelude::*;
 use mdr_rapier::rapier::prelude::*;
+use mdr_rapier::LawPair as ContactPair;
 use rand::{Rng, SeedableRng};
 use std::path::{Path, PathBuf};
 use vtkio::model::{

@@ -1,9 +1,9 @@
 //! The smallest program that adds the MDR law to a rapier world (force mode): the paper's steel
 //! ball hits a steel floor at 1 m/s under gravity and bounces.
 //! Run: `cargo run --release --example drop`.
-use mdr_rapier::prelude::ContactPair;
 use mdr_rapier::prelude::*;
 use mdr_rapier::rapier::prelude::*;
+use mdr_rapier::LawPair;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (radius, v0) = (0.635e-2, 1.0);
@@ -23,7 +23,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (ball, _) = stepper.insert_sphere(&mut world, ball)?;
 
     // 100 steps per Hertz contact at the impact speed; rapier then integrates exactly.
-    let pair = ContactPair::sphere_on_half_space(radius, &steel, &steel)?;
+    let pair = LawPair::sphere_on_half_space(radius, &steel, &steel)?;
     let dt = stable_time_step(&pair, v0, 100.0)?.time_step;
     stepper.configure(&mut world.integration_parameters, dt, 0.1 * radius)?;
 

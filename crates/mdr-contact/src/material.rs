@@ -39,6 +39,20 @@ impl Material {
         })
     }
 
+    /// A material by named parameters, so that `E`, `ν` and `ρ` cannot be swapped:
+    /// `Material::builder().youngs(E).poisson(ν).density(ρ).build()`. A parameter left unset is
+    /// an error naming it.
+    ///
+    /// ```
+    /// use mdr_contact::Material;
+    /// let glass = Material::builder().youngs(6.3e10).poisson(0.2).density(2500.0).build().unwrap();
+    /// assert_eq!(glass, Material::new(6.3e10, 0.2, 2500.0).unwrap());
+    /// assert!(Material::builder().youngs(6.3e10).poisson(0.2).build().is_err());
+    /// ```
+    pub fn builder() -> MaterialBuilder {
+        MaterialBuilder::default()
+    }
+
     /// The paper's steel (Fig. 2): `E = 2·10¹¹ Pa`, `ν = 0.286`, `ρ = 7800 kg/m³`.
     pub fn paper_steel() -> Self {
         Self {
@@ -71,6 +85,51 @@ impl Material {
     /// Mass of a sphere of radius `radius` (m) made of this material (kg).
     pub fn sphere_mass(&self, radius: f64) -> f64 {
         4.0 / 3.0 * std::f64::consts::PI * radius.powi(3) * self.density
+    }
+}
+
+/// Named-parameter construction of a [`Material`] ([`Material::builder`]); every parameter is
+/// required and validated by [`Material::new`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MaterialBuilder {
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+    density: f64,
+}
+
+impl Default for MaterialBuilder {
+    fn default() -> Self {
+        // NaN marks "unset": `Material::new` rejects it with the parameter's name.
+        Self {
+            youngs_modulus: f64::NAN,
+            poisson_ratio: f64::NAN,
+            density: f64::NAN,
+        }
+    }
+}
+
+impl MaterialBuilder {
+    /// Young's modulus `E` (Pa, > 0).
+    pub fn youngs(mut self, youngs_modulus: f64) -> Self {
+        self.youngs_modulus = youngs_modulus;
+        self
+    }
+
+    /// Poisson's ratio `ν` (in (−1, 0.5]).
+    pub fn poisson(mut self, poisson_ratio: f64) -> Self {
+        self.poisson_ratio = poisson_ratio;
+        self
+    }
+
+    /// Density `ρ` (kg/m³, > 0).
+    pub fn density(mut self, density: f64) -> Self {
+        self.density = density;
+        self
+    }
+
+    /// The material, or an error naming the first parameter that is unset or out of range.
+    pub fn build(self) -> Result<Material> {
+        Material::new(self.youngs_modulus, self.poisson_ratio, self.density)
     }
 }
 

@@ -1,7 +1,7 @@
 //! Typed errors of the coupling.
 
 use mdr_contact::ContactError;
-use rapier3d_f64::prelude::ColliderHandle;
+use rapier3d_f64::prelude::{ColliderHandle, RigidBodyHandle};
 use thiserror::Error;
 
 /// Everything that can go wrong when building or stepping a coupled world.
@@ -35,6 +35,64 @@ pub enum CouplingError {
     /// A combination of options that the chosen coupling does not support.
     #[error("unsupported: {0}")]
     Unsupported(&'static str),
+    /// The body handle does not name a rigid body of the body set.
+    #[error("rigid body {0:?} is not in the rigid-body set")]
+    UnknownBody(RigidBodyHandle),
+    /// Force mode was stepped on integration parameters that `configure` did not set (or that
+    /// were changed since).
+    #[error(
+        "the world is not configured for force mode: {0}; call \
+         `ForceModeStepper::configure(&mut world.integration_parameters, dt, prediction_distance)` \
+         before stepping"
+    )]
+    NotConfigured(String),
+    /// A registered collider lacks the flag or group its coupling needs (registered through
+    /// `ParticleSet` by hand, or changed since).
+    #[error("collider {collider:?} is registered with the coupling but {problem}; {fix}")]
+    MissingFlag {
+        /// The collider.
+        collider: ColliderHandle,
+        /// What is missing.
+        problem: &'static str,
+        /// How to fix it.
+        fix: &'static str,
+    },
+    /// Restitution-mode hooks ran without knowing the step length.
+    #[error(
+        "the restitution hooks ran without a time step; call \
+         `RestitutionHooks::prepare(&integration_parameters, &colliders)` before each \
+         `PhysicsPipeline::step` (or step with `RestitutionHooks::step_with`)"
+    )]
+    TimeStepUnset,
+    /// The hooks' time step differs from the one rapier integrates with.
+    #[error(
+        "the restitution hooks assume dt = {hooks} s but rapier steps with dt = {world} s; \
+         call `RestitutionHooks::prepare` with the world's integration parameters"
+    )]
+    TimeStepMismatch {
+        /// The step the hooks were prepared with (s).
+        hooks: f64,
+        /// The step of the world's integration parameters (s).
+        world: f64,
+    },
+    /// A force-mode step too long for a contact: symplectic Euler is unstable on it.
+    #[error(
+        "time step {dt:e} s exceeds the stability limit {limit:e} s of the contact between \
+         {collider1:?} and {collider2:?} (Hertz contact time {contact_time:e} s at its approach \
+         speed); reduce dt, e.g. to `stable_time_step(pair, v_max, 50.0)`"
+    )]
+    TimeStepTooLarge {
+        /// The step (s).
+        dt: f64,
+        /// Stability limit `2 √(m / k_max)` of the contact (s).
+        limit: f64,
+        /// Hertz contact time at the approach speed (s).
+        contact_time: f64,
+        /// The sphere.
+        collider1: ColliderHandle,
+        /// The other collider.
+        collider2: ColliderHandle,
+    },
     /// A saved fast-path state (neighbour lists, histories) does not fit the stepper it is
     /// restored into.
     #[error("the saved neighbour-list state does not fit this stepper: {0}")]

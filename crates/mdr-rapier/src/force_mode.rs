@@ -13,11 +13,13 @@
 //!    `x_{k+1} = x_k + dt v_{k+1}` (symplectic Euler; see `docs/coupling.md`).
 
 use crate::convert::{to_glam, to_na};
-use crate::error::{positive, Result};
+use crate::error::{positive, CouplingError, Result};
 use crate::geometry::{sphere_shape, sphere_sphere, SurfaceContact};
 use crate::kernel::{evaluate_pair, Arms, ContactKinematics, PairHistory, PairWrench};
-use crate::particles::{MaterialHandle, ParticleSet, ParticleShape, SphereBuilder};
+use crate::particles::{MaterialHandle, Particle, ParticleSet, ParticleShape, SphereBuilder};
+use crate::registration::{add_force_flags, check_force_flags};
 use crate::store::{ContactStore, Keyed, PairKey};
+use crate::timestep::stable_time_step;
 use mdr_contact::damping::{DampingModel, NoDamping};
 use mdr_contact::model::{ContactLaw, ContactModel, StateOf};
 use mdr_contact::normal::NormalModel;
@@ -60,6 +62,34 @@ where
     pub wrench: PairWrench,
 }
 
+impl<NL, TL, DL, RL> ForceContact<NL, TL, DL, RL>
+where
+    NL: mdr_contact::normal::NormalLaw,
+    TL: mdr_contact::tangential::TangentialLaw,
+    RL: RollingLaw,
+{
+    /// Unit normal from collider 2 towards the sphere (collider 1), in rapier's vector type.
+    pub fn normal(&self) -> Vector {
+        to_glam(&self.contact.normal)
+    }
+
+    /// Contact point (m), in rapier's vector type.
+    pub fn point(&self) -> Vector {
+        to_glam(&self.contact.point)
+    }
+
+    /// Overlap (m).
+    pub fn overlap(&self) -> f64 {
+        self.contact.overlap
+    }
+
+    /// Force on the sphere (N) of the current step, in rapier's vector type (collider 2 gets
+    /// the opposite).
+    pub fn force(&self) -> Vector {
+        to_glam(&self.wrench.force)
+    }
+}
+
 impl<NL, TL, DL, RL> Keyed for ForceContact<NL, TL, DL, RL>
 where
     NL: mdr_contact::normal::NormalLaw,
@@ -81,11 +111,25 @@ pub type ForceStore<N, T, D, R> = ContactStore<
     >,
 >;
 
-/// What happened during one step.
+/// What happened during one step, with every pair of the world that has contacts counted by
+/// who handles it.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct StepReport {
-    /// Touching pairs handled this step.
+    /// Touching pairs handled by the law this step (`sphere_sphere + sphere_surface`).
     pub contacts: usize,
+    /// Of those, pairs of two registered spheres.
+    pub sphere_sphere: usize,
+    /// Of those, pairs of a registered sphere and a registered surface.
+    pub sphere_surface: usize,
+    /// Pairs with contacts that rapier's solver handles (any pair but the law's: surface on
+    /// surface, a registered collider against an unregistered one, pairs without the plugin),
+    /// as rapier's narrow phase saw them at the start of the step.
+    pub rapier_pairs: usize,
+    /// Candidate pairs of the law that the user's `filter_contact_pair` rejected (no force).
+    pub filtered: usize,
+    /// Pairs with contacts involving a registered sphere that neither the law nor rapier's
+    /// solver handles (listed by [`ForceModeStepper::unhandled_pairs`]).
+    pub unhandled: usize,
     /// Candidate pairs examined (narrow-phase pairs involving the plugin's colliders).
     pub candidates: usize,
     /// History entries created this step.
@@ -128,6 +172,28 @@ struct Candidate {
     contact: Option<SurfaceContact>,
 }
 
+/// A pair with contacts that gets no response at all: neither the law nor rapier's solver.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct UnhandledPair {
+    /// The registered sphere.
+    pub sphere: ColliderHandle,
+    /// The other collider (not registered with the coupling).
+    pub other: ColliderHandle,
+}
+
+impl std::fmt::Display for UnhandledPair {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "sphere {:?} touches collider {:?}, which is not registered and whose solver groups \
+             leave out the coupling's group: no force acts; register it as a surface \
+             (ForceModeStepper::register_surface) or let its solver filter include \
+             COUPLING_SOLVER_GROUP",
+            self.sphere, self.other
+        )
+    }
+}
+
 /// The force-mode coupling: owns the contact model, the registered colliders and the history
 /// store; call [`ForceModeStepper::step`] instead of `PhysicsWorld::step`.
 pub struct ForceModeStepper<
@@ -145,6 +211,7 @@ pub struct ForceModeStepper<
     wrenches: Vec<(Vector3<f64>, Vector3<f64>)>,
     /// Bodies already written this step (by arena index).
     written: Vec<bool>,
+    unhandled: Vec<UnhandledPair>,
     report: StepReport,
 }
 
@@ -159,6 +226,7 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> ForceModeStepper<N, T,
             candidates: Vec::new(),
             wrenches: Vec::new(),
             written: Vec::new(),
+            unhandled: Vec::new(),
             report: StepReport::default(),
         }
     }
@@ -181,6 +249,7 @@ where
             candidates: self.candidates,
             wrenches: self.wrenches,
             written: self.written,
+            unhandled: self.unhandled,
             report: self.report,
         }
     }
@@ -201,8 +270,10 @@ where
         &self.particles
     }
 
-    /// The registered colliders and materials, mutably (to add materials or register colliders
-    /// built by hand; such colliders need `solver_groups(InteractionGroups::none())`).
+    /// The registered colliders and materials, mutably (to add materials). Register colliders
+    /// built by hand with [`ForceModeStepper::register_sphere`] and
+    /// [`ForceModeStepper::register_surface`], which add the coupling's solver group; a collider
+    /// registered through the particle set alone is refused by the next step.
     pub fn particles_mut(&mut self) -> &mut ParticleSet {
         &mut self.particles
     }
@@ -221,6 +292,11 @@ where
     /// The report of the last step.
     pub fn last_report(&self) -> StepReport {
         self.report
+    }
+
+    /// The pairs of the last step that got no response (see [`StepReport::unhandled`]).
+    pub fn unhandled_pairs(&self) -> &[UnhandledPair] {
+        &self.unhandled
     }
 
     /// Set what force mode needs on rapier's integration parameters: time step `dt` (s), one
@@ -242,46 +318,155 @@ where
         Ok(())
     }
 
-    /// Insert a sphere (dynamic body + ball collider, rapier's contact impulses off) and
-    /// register it.
+    /// Insert a sphere (dynamic body + ball collider) into `world` and register it; its pairs
+    /// with the coupling's spheres and surfaces leave rapier's solver (solver group added to the
+    /// user's, see [`crate::registration`]).
     pub fn insert_sphere(
         &mut self,
         world: &mut PhysicsWorld,
         sphere: SphereBuilder,
     ) -> Result<(RigidBodyHandle, ColliderHandle)> {
-        self.particles.insert_sphere_flagged(world, sphere, |c| {
-            c.solver_groups(InteractionGroups::none())
-        })
+        self.insert_sphere_into(sphere, &mut world.bodies, &mut world.colliders)
     }
 
-    /// Insert a collider of any shape (a wall, a box, a mesh …), optionally on a body, with
-    /// rapier's contact impulses off, and register it as a surface of `material`.
-    pub fn insert_surface(
+    /// [`ForceModeStepper::insert_sphere`] on rapier's sets, for programs that run their own
+    /// `PhysicsPipeline`.
+    pub fn insert_sphere_into(
         &mut self,
-        world: &mut PhysicsWorld,
-        collider: ColliderBuilder,
-        parent: Option<RigidBodyHandle>,
-        material: MaterialHandle,
-    ) -> Result<ColliderHandle> {
+        sphere: SphereBuilder,
+        bodies: &mut RigidBodySet,
+        colliders: &mut ColliderSet,
+    ) -> Result<(RigidBodyHandle, ColliderHandle)> {
         self.particles
-            .insert_surface_flagged(world, collider, parent, material, |c| {
-                c.solver_groups(InteractionGroups::none())
+            .insert_sphere_into_sets(bodies, colliders, sphere, |co| {
+                add_force_flags(co, ParticleShape::Sphere { radius: 0.0 })
             })
     }
 
+    /// Insert a collider of any shape (a wall, a box, a mesh …) into `world`, optionally on a
+    /// body (as `PhysicsWorld::insert_collider(collider, parent)`), and register it as a
+    /// surface of `material`: its contacts with the coupling's spheres come from the law, its
+    /// contacts with everything else stay rapier's.
+    pub fn insert_surface(
+        &mut self,
+        world: &mut PhysicsWorld,
+        collider: impl Into<Collider>,
+        parent: Option<RigidBodyHandle>,
+        material: MaterialHandle,
+    ) -> Result<ColliderHandle> {
+        self.insert_surface_with_parent(
+            collider,
+            parent,
+            material,
+            &mut world.colliders,
+            &mut world.bodies,
+        )
+    }
+
+    /// [`ForceModeStepper::insert_surface`] on rapier's sets, in the order of
+    /// `ColliderSet::insert_with_parent(collider, parent, bodies)` (the collider set first,
+    /// as the receiver of rapier's call).
+    pub fn insert_surface_with_parent(
+        &mut self,
+        collider: impl Into<Collider>,
+        parent: Option<RigidBodyHandle>,
+        material: MaterialHandle,
+        colliders: &mut ColliderSet,
+        bodies: &mut RigidBodySet,
+    ) -> Result<ColliderHandle> {
+        self.particles.insert_surface_into_sets(
+            collider,
+            parent,
+            material,
+            bodies,
+            colliders,
+            |co| add_force_flags(co, ParticleShape::Surface),
+        )
+    }
+
+    /// Register a ball collider already in `colliders` (on a dynamic body) as a sphere of
+    /// `material`, adding the coupling's solver group to its own.
+    pub fn register_sphere(
+        &mut self,
+        collider: ColliderHandle,
+        material: MaterialHandle,
+        colliders: &mut ColliderSet,
+    ) -> Result<()> {
+        self.particles
+            .register_sphere(colliders, collider, material)?;
+        if let Some(co) = colliders.get_mut(collider) {
+            add_force_flags(co, ParticleShape::Sphere { radius: 0.0 });
+        }
+        Ok(())
+    }
+
+    /// Register a collider of any shape already in `colliders` as a surface of `material`,
+    /// removing the coupling's solver group from its solver filter.
+    pub fn register_surface(
+        &mut self,
+        collider: ColliderHandle,
+        material: MaterialHandle,
+        colliders: &mut ColliderSet,
+    ) -> Result<()> {
+        self.particles
+            .register_surface(colliders, collider, material)?;
+        if let Some(co) = colliders.get_mut(collider) {
+            add_force_flags(co, ParticleShape::Surface);
+        }
+        Ok(())
+    }
+
     /// One coupled step of `world`: forces from the current poses, then `world.step()`.
+    /// Equivalent to [`ForceModeStepper::step_with`] with no hooks and no event handler.
     pub fn step(&mut self, world: &mut PhysicsWorld) -> Result<StepReport> {
+        self.step_with(world, &(), &())
+    }
+
+    /// One coupled step of `world` with the user's hooks and event handler: checks that the
+    /// world is configured ([`ForceModeStepper::configure`]) and that every registered collider
+    /// still has the coupling's solver group, computes the law's forces from the current poses
+    /// (pairs that `hooks.filter_contact_pair` rejects get none), then
+    /// `world.step_with_events(hooks, events)`.
+    pub fn step_with(
+        &mut self,
+        world: &mut PhysicsWorld,
+        hooks: &dyn PhysicsHooks,
+        events: &dyn EventHandler,
+    ) -> Result<StepReport> {
+        self.check(&world.integration_parameters, &world.colliders)?;
         let dt = world.integration_parameters.dt;
-        self.compute_forces(&world.bodies, &world.colliders, &world.narrow_phase, dt)?;
+        self.compute_forces_with(
+            &world.bodies,
+            &world.colliders,
+            &world.narrow_phase,
+            dt,
+            hooks,
+        )?;
         self.apply_forces(&mut world.bodies);
         self.report.prediction_distance_ok =
             2.0 * self.report.max_speed * dt <= world.integration_parameters.prediction_distance();
-        world.step();
+        world.step_with_events(hooks, events);
         Ok(self.report)
     }
 
+    /// The checks of [`ForceModeStepper::step_with`], for programs that run their own
+    /// `PhysicsPipeline`: `params` must be as [`ForceModeStepper::configure`] left them (one
+    /// solver iteration, no CCD substeps, no speed cap), and every registered collider must
+    /// be in rapier's set with the coupling's solver group.
+    pub fn check(&self, params: &IntegrationParameters, colliders: &ColliderSet) -> Result<()> {
+        check_configured(params)?;
+        for particle in self.particles.iter() {
+            let co = colliders
+                .get(particle.collider)
+                .ok_or(CouplingError::UnknownCollider(particle.collider))?;
+            check_force_flags(co, particle)?;
+        }
+        Ok(())
+    }
+
     /// Steps 1–4: candidates, geometry, history merge and per-pair wrenches, from the poses and
-    /// velocities in `bodies`/`colliders`. Does not touch the bodies.
+    /// velocities in `bodies`/`colliders`. Does not touch the bodies. No user hooks: see
+    /// [`ForceModeStepper::compute_forces_with`].
     pub fn compute_forces(
         &mut self,
         bodies: &RigidBodySet,
@@ -289,16 +474,57 @@ where
         narrow_phase: &NarrowPhase,
         dt: f64,
     ) -> Result<()> {
+        self.compute_forces_with(bodies, colliders, narrow_phase, dt, &())
+    }
+
+    /// [`ForceModeStepper::compute_forces`] honouring the user's `hooks`: a candidate pair in
+    /// which either collider has `ActiveHooks::FILTER_CONTACT_PAIRS` gets the law's force only
+    /// when `hooks.filter_contact_pair` returns solver flags with `COMPUTE_RIGID_IMPULSES` (as
+    /// rapier would solve it); pairs whose collision groups do not interact get none either.
+    /// A contact that begins with a step above the stability limit of symplectic Euler at its
+    /// approach speed is an error ([`CouplingError::TimeStepTooLarge`]).
+    pub fn compute_forces_with(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        narrow_phase: &NarrowPhase,
+        dt: f64,
+        hooks: &dyn PhysicsHooks,
+    ) -> Result<()> {
         let t0 = Instant::now();
         let particles = &self.particles;
         self.candidates.clear();
+        self.unhandled.clear();
+        let (mut rapier_pairs, mut filtered) = (0, 0);
         for pair in narrow_phase.contact_pairs() {
-            let (Some(a), Some(b)) = (particles.get(pair.collider1), particles.get(pair.collider2))
-            else {
-                continue;
+            let (a, b) = (particles.get(pair.collider1), particles.get(pair.collider2));
+            let law_pair = match (a, b) {
+                (Some(a), Some(b)) => {
+                    !(a.body.is_some() && a.body == b.body)
+                        && (a.radius().is_some() || b.radius().is_some())
+                }
+                _ => false,
             };
-            if a.body.is_some() && a.body == b.body {
+            if !law_pair {
+                match rapier_response(pair) {
+                    Some(true) => rapier_pairs += 1,
+                    Some(false) => {
+                        if let Some(unhandled) = unhandled_pair(a, b, pair) {
+                            self.unhandled.push(unhandled);
+                        }
+                    }
+                    None => {}
+                }
                 continue;
+            }
+            let (a, b) = (a.expect("law pair"), b.expect("law pair"));
+            match filter_verdict(bodies, colliders, a, b, hooks) {
+                Verdict::Law => {}
+                Verdict::Filtered => {
+                    filtered += 1;
+                    continue;
+                }
+                Verdict::NoInteraction => continue,
             }
             // Body 1 is a sphere; between two spheres, the one with the smaller index.
             let (sphere, other) = match (a.shape, b.shape) {
@@ -310,8 +536,7 @@ where
                     }
                 }
                 (ParticleShape::Sphere { .. }, ParticleShape::Surface) => (a, b),
-                (ParticleShape::Surface, ParticleShape::Sphere { .. }) => (b, a),
-                (ParticleShape::Surface, ParticleShape::Surface) => continue,
+                (ParticleShape::Surface, _) => (b, a),
             };
             self.candidates.push(Candidate {
                 key: PairKey::new(sphere.collider, other.collider),
@@ -327,6 +552,13 @@ where
         self.candidates.par_sort_unstable_by_key(|c| c.key);
         let t2 = Instant::now();
 
+        for c in &self.candidates {
+            if let Some(contact) = &c.contact {
+                if self.store.get(c.key).is_none() {
+                    check_stability(particles, bodies, c, contact, dt)?;
+                }
+            }
+        }
         let (created0, removed0) = (self.store.created(), self.store.removed());
         let model = &self.model;
         let rolling = &self.rolling;
@@ -337,24 +569,7 @@ where
                 let p1 = particles.get(c.sphere).expect("registered");
                 let p2 = particles.get(c.other).expect("registered");
                 let body1 = p1.body.expect("a sphere has a body");
-                let m1 = bodies[body1].mass();
-                let m2 = p2
-                    .body
-                    .map(|h| &bodies[h])
-                    .filter(|b| b.is_dynamic())
-                    .map_or(f64::INFINITY, |b| b.mass());
-                let r1 = p1.radius().expect("body 1 is a sphere");
-                let radius = match p2.radius() {
-                    Some(r2) => r1 * r2 / (r1 + r2),
-                    None => r1,
-                };
-                let mass = if m2.is_finite() {
-                    m1 * m2 / (m1 + m2)
-                } else {
-                    m1
-                };
-                let (e_star, g_star) = particles.pair_moduli(p1.material, p2.material);
-                let pair = ContactPair::new(e_star, g_star, radius, mass)?;
+                let pair = bind_pair(particles, bodies, p1, p2)?;
                 Ok(ForceContact {
                     key: c.key,
                     collider1: c.sphere,
@@ -370,8 +585,23 @@ where
             },
             |entry, c| entry.contact = c.contact.expect("filtered"),
         )?;
+        let sphere_sphere = self
+            .store
+            .entries()
+            .iter()
+            .filter(|e| {
+                particles
+                    .get(e.collider2)
+                    .is_some_and(|p| p.radius().is_some())
+            })
+            .count();
         self.report = StepReport {
             contacts: self.store.len(),
+            sphere_sphere,
+            sphere_surface: self.store.len() - sphere_sphere,
+            rapier_pairs,
+            filtered,
+            unhandled: self.unhandled.len(),
             candidates: self.candidates.len(),
             created: self.store.created() - created0,
             removed: self.store.removed() - removed0,
@@ -459,6 +689,177 @@ where
         self.report.max_speed = max_speed2.sqrt();
         self.report.timings.apply = started.elapsed().as_secs_f64();
     }
+}
+
+/// The parameters [`ForceModeStepper::configure`] sets, checked before a step.
+fn check_configured(params: &IntegrationParameters) -> Result<()> {
+    let problem = if params.num_solver_iterations != 1 {
+        format!(
+            "{} solver iterations instead of 1 (the force would be applied more than once)",
+            params.num_solver_iterations
+        )
+    } else if params.max_ccd_substeps != 0 {
+        format!(
+            "{} CCD substeps instead of 0 (CCD would move soft spheres apart)",
+            params.max_ccd_substeps
+        )
+    } else if params.normalized_max_linear_velocity != f64::MAX {
+        "rapier's speed cap is on (it would clip impact speeds)".to_owned()
+    } else if !(params.dt.is_finite() && params.dt > 0.0) {
+        format!("dt = {} is not a positive step", params.dt)
+    } else {
+        return Ok(());
+    };
+    Err(CouplingError::NotConfigured(problem))
+}
+
+/// Whether rapier's solver acts on a pair with contacts: `None` without contacts.
+fn rapier_response(pair: &rapier3d_f64::geometry::ContactPair) -> Option<bool> {
+    let mut touching = false;
+    for m in pair.solver_manifolds() {
+        if !m.data.solver_contacts.is_empty() {
+            if m.data
+                .solver_flags
+                .contains(SolverFlags::COMPUTE_RIGID_IMPULSES)
+            {
+                return Some(true);
+            }
+            touching = true;
+        }
+    }
+    touching.then_some(false)
+}
+
+/// A pair with contacts but no solver response in which a registered sphere meets an
+/// unregistered collider (any other such pair is the user's choice: their filter or groups).
+fn unhandled_pair(
+    a: Option<&Particle>,
+    b: Option<&Particle>,
+    pair: &rapier3d_f64::geometry::ContactPair,
+) -> Option<UnhandledPair> {
+    match (a, b) {
+        (Some(p), None) if p.radius().is_some() => Some(UnhandledPair {
+            sphere: p.collider,
+            other: pair.collider2,
+        }),
+        (None, Some(p)) if p.radius().is_some() => Some(UnhandledPair {
+            sphere: p.collider,
+            other: pair.collider1,
+        }),
+        _ => None,
+    }
+}
+
+/// Who answers for a law candidate pair.
+enum Verdict {
+    /// The law.
+    Law,
+    /// Nobody: the user's filter rejected it.
+    Filtered,
+    /// Nobody: the collision groups do not interact (rapier computes no contact either).
+    NoInteraction,
+}
+
+/// The user's say on a law candidate, as rapier's narrow phase would ask it.
+fn filter_verdict(
+    bodies: &RigidBodySet,
+    colliders: &ColliderSet,
+    a: &Particle,
+    b: &Particle,
+    hooks: &dyn PhysicsHooks,
+) -> Verdict {
+    let (Some(co1), Some(co2)) = (colliders.get(a.collider), colliders.get(b.collider)) else {
+        return Verdict::NoInteraction;
+    };
+    if !co1.collision_groups().test(co2.collision_groups()) {
+        return Verdict::NoInteraction;
+    }
+    if !(co1.active_hooks() | co2.active_hooks()).contains(ActiveHooks::FILTER_CONTACT_PAIRS) {
+        return Verdict::Law;
+    }
+    let context = PairFilterContext {
+        bodies,
+        colliders,
+        collider1: a.collider,
+        collider2: b.collider,
+        rigid_body1: a.body,
+        rigid_body2: b.body,
+    };
+    match hooks.filter_contact_pair(&context) {
+        Some(flags) if flags.contains(SolverFlags::COMPUTE_RIGID_IMPULSES) => Verdict::Law,
+        _ => Verdict::Filtered,
+    }
+}
+
+/// A contact that begins must be resolvable: `dt` below the stability limit `2 √(m / k_max)`
+/// of the Hertz contact at its approach speed ([`stable_time_step`]).
+fn check_stability(
+    particles: &ParticleSet,
+    bodies: &RigidBodySet,
+    candidate: &Candidate,
+    contact: &SurfaceContact,
+    dt: f64,
+) -> Result<()> {
+    let (Some(p1), Some(p2)) = (
+        particles.get(candidate.sphere),
+        particles.get(candidate.other),
+    ) else {
+        return Ok(());
+    };
+    let velocity = |h: Option<RigidBodyHandle>| {
+        h.and_then(|h| bodies.get(h))
+            .map_or(Vector3::zeros(), |b| to_na(b.linvel()))
+    };
+    let approach = -(velocity(p1.body) - velocity(p2.body)).dot(&contact.normal);
+    if approach.is_nan() || approach <= 0.0 {
+        return Ok(());
+    }
+    let Ok(pair) = bind_pair(particles, bodies, p1, p2) else {
+        return Ok(());
+    };
+    let advice = stable_time_step(&pair, approach, 1.0)?;
+    if dt > advice.stability_limit {
+        return Err(CouplingError::TimeStepTooLarge {
+            dt,
+            limit: advice.stability_limit,
+            contact_time: advice.contact_time,
+            collider1: candidate.sphere,
+            collider2: candidate.other,
+        });
+    }
+    Ok(())
+}
+
+/// The pair quantities of sphere `p1` against `p2` (sphere or surface): `E*`, `G*`, effective
+/// radius (the sphere's against a surface) and reduced mass (the sphere's against a fixed body).
+fn bind_pair(
+    particles: &ParticleSet,
+    bodies: &RigidBodySet,
+    p1: &Particle,
+    p2: &Particle,
+) -> Result<ContactPair> {
+    let body1 = p1.body.ok_or(CouplingError::NoParentBody(p1.collider))?;
+    let m1 = bodies
+        .get(body1)
+        .ok_or(CouplingError::UnknownBody(body1))?
+        .mass();
+    let m2 = p2
+        .body
+        .and_then(|h| bodies.get(h))
+        .filter(|b| b.is_dynamic())
+        .map_or(f64::INFINITY, |b| b.mass());
+    let r1 = p1.radius().ok_or(CouplingError::NotABall(p1.collider))?;
+    let radius = match p2.radius() {
+        Some(r2) => r1 * r2 / (r1 + r2),
+        None => r1,
+    };
+    let mass = if m2.is_finite() {
+        m1 * m2 / (m1 + m2)
+    } else {
+        m1
+    };
+    let (e_star, g_star) = particles.pair_moduli(p1.material, p2.material);
+    Ok(ContactPair::new(e_star, g_star, radius, mass)?)
 }
 
 fn accumulate(

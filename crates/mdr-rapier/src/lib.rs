@@ -1,24 +1,27 @@
 //! # mdr-rapier
 //!
 //! The MDR elasto-plastic contact law ([`mdr_contact`]) as a per-contact history model in the
-//! rapier physics engine (`rapier3d-f64` 0.36). Two coupling modes, both documented in
-//! `docs/coupling.md`:
+//! rapier physics engine (`rapier3d-f64` 0.36, re-exported as [`rapier`]). Two coupling modes,
+//! both documented in `docs/coupling.md`:
 //!
 //! - **force mode** ([`ForceModeStepper`]): soft spheres. The law computes every contact force
 //!   from the overlap at the start of the step and the pair's history; rapier detects candidate
 //!   pairs, stores the bodies and integrates them (one solver iteration: exact symplectic Euler).
-//!   rapier's own contact impulses are switched off for the plugin's colliders.
+//!   rapier's own contact impulses are switched off between the plugin's colliders only (one
+//!   reserved solver group, [`COUPLING_SOLVER_GROUP`]); every other pair stays rapier's.
 //! - **restitution mode** ([`RestitutionHooks`]): hard spheres. A `PhysicsHooks` implementation
 //!   sets each manifold's restitution from the law's energy route at the approach speed, with the
-//!   pair's plastic history kept in a thread-safe store reached through the manifold's
-//!   `user_data`; rapier resolves the contact with impulses.
+//!   pair's plastic history kept in a thread-safe store; rapier resolves the contact with
+//!   impulses. It composes with a user's hooks ([`RestitutionHooks::with_user`]).
 //!
-//! The law itself is never re-implemented here: every force and every restitution comes from
-//! `mdr-contact`.
+//! Registration adds the coupling's solver group or hook flag to the user's own and never
+//! replaces them; a step refuses a world that misses them, or that is not configured, with an
+//! error naming the fix. The law itself is never re-implemented here: every force and every
+//! restitution comes from `mdr-contact` (re-exported as [`mdr_contact`]).
 //!
 //! ```
 //! use mdr_rapier::prelude::*;
-//! use rapier3d_f64::prelude::*;
+//! use mdr_rapier::rapier::prelude::*;
 //!
 //! let mut world = PhysicsWorld::default();
 //! world.gravity = Vector::ZERO;
@@ -49,6 +52,7 @@ pub mod force_mode;
 pub mod geometry;
 pub mod kernel;
 pub mod particles;
+pub mod registration;
 pub mod restitution;
 pub mod restitution_law;
 pub mod scenario;
@@ -59,23 +63,57 @@ pub mod timestep;
 /// use the same version.
 pub use rapier3d_f64 as rapier;
 
+/// The law crate, re-exported so that programs use the same version (its `ContactPair`, the
+/// pair quantities `E*`, `G*`, `R`, `m`, is [`LawPair`] here: rapier's prelude has a
+/// `ContactPair` of its own).
+pub use mdr_contact;
+
+/// The pair quantities of a contact (`mdr_contact::ContactPair`): `E*` (eq. 3), `G*`,
+/// effective radius and reduced mass, under a name that does not clash with rapier's
+/// narrow-phase `ContactPair`.
+pub use mdr_contact::ContactPair as LawPair;
+
 pub use error::{CouplingError, Result};
-pub use force_mode::{ForceModeStepper, PhaseTimings, StepReport};
-pub use particles::{MaterialHandle, Particle, ParticleSet, ParticleShape, SphereBuilder};
-pub use restitution::{ImpactHistory, RestitutionHooks};
+pub use force_mode::{ForceModeStepper, PhaseTimings, StepReport, UnhandledPair};
+pub use particles::{
+    MaterialHandle, Particle, ParticleSet, ParticleShape, SphereBodyOptions, SphereBuilder,
+    SphereColliderOptions,
+};
+pub use registration::COUPLING_SOLVER_GROUP;
+pub use restitution::{
+    FrictionRule, ImpactHistory, RestitutionHooks, RestitutionReport, WithUserHooks,
+};
 pub use scenario::{CouplingMode, ImpactScene, SceneLaw, SceneOutcome, Target};
 pub use store::{ContactStore, PairKey};
 pub use timestep::{check_time_step, stable_time_step, TimeStepAdvice, TimeStepWarning};
 
-/// The names most programs need: this crate's types and the law crate's prelude.
+/// The names most programs need: this crate's types and the law crate's prelude, without the
+/// law crate's `ContactPair` (rapier's prelude has its own; the law's is [`LawPair`]), so that
+/// `use mdr_rapier::prelude::*;` and `use mdr_rapier::rapier::prelude::*;` go together.
 pub mod prelude {
     pub use crate::error::{CouplingError, Result};
-    pub use crate::force_mode::{ForceModeStepper, StepReport};
+    pub use crate::force_mode::{ForceModeStepper, StepReport, UnhandledPair};
     pub use crate::particles::{
         MaterialHandle, Particle, ParticleSet, ParticleShape, SphereBuilder,
     };
-    pub use crate::restitution::{ImpactHistory, RestitutionHooks};
+    pub use crate::registration::COUPLING_SOLVER_GROUP;
+    pub use crate::restitution::{
+        FrictionRule, ImpactHistory, RestitutionHooks, RestitutionReport, WithUserHooks,
+    };
     pub use crate::timestep::{check_time_step, stable_time_step, TimeStepAdvice, TimeStepWarning};
-    pub use mdr_contact::prelude::*;
+    pub use crate::LawPair;
+    pub use mdr_contact::prelude::{
+        effective_modulus, effective_shear_modulus, Books, ContactError, ContactInput, ContactLaw,
+        ContactModel, ContactOutput, ContactReport, ContactState, Counterpart, DampingLaw,
+        DampingModel, Hertz, HertzLaw, HertzianViscous, Material, MdrElastoPlastic, MdrLaw,
+        MdrState, NoBooks, NoDamping, NormalLaw, NormalModel, NormalResponse, SphereSpringBed,
+        SpringBed, SpringBedState, StiffnessViscous, Thornton, ThorntonLaw, ThorntonState,
+        ThorntonUnloading, WorkBooks,
+    };
+    pub use mdr_contact::prelude::{
+        Frictionless, Mindlin, MindlinLaw, MindlinState, SpringBedTangential,
+        SpringBedTangentialState, TangentialInput, TangentialLaw, TangentialModel,
+        TangentialResponse,
+    };
     pub use mdr_contact::rolling::{EpsdRolling, NoRolling, RollingModel};
 }

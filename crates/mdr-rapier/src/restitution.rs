@@ -7,21 +7,28 @@
 //! hook reaches the history with one atomic load; a pair-key index (sharded mutexes, touched only
 //! when a manifold is new) lets a re-created manifold of the same pair find its old slot, so a
 //! re-impact keeps the plastic state and a second, slower impact on the same spot is elastic.
+//! The history ends by the law's rule, not rapier's: after each step
+//! ([`RestitutionHooks::maintain`]) a pair whose surfaces are more than the history reach apart
+//! (one effective radius by default, [`RestitutionHooks::history_reach`]) loses its crater,
+//! whatever rapier's prediction distance and AABB margins keep in its narrow phase.
 
-use crate::error::{positive, Result};
+use crate::error::{positive, CouplingError, Result};
 use crate::particles::{MaterialHandle, ParticleSet, SphereBuilder};
+use crate::registration::{add_restitution_flags, check_restitution_flags};
 use crate::store::PairKey;
 use mdr_contact::normal::{MdrElastoPlastic, MdrLaw, MdrState, NormalModel};
 use mdr_contact::ContactPair;
 use rapier3d_f64::prelude::*;
 use std::collections::HashMap;
-use std::sync::atomic::{AtomicU32, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
 use std::sync::{Mutex, OnceLock};
 
 const SHARDS: usize = 64;
 /// Segment `s` of the slab holds `FIRST_SEGMENT << s` slots.
 const FIRST_SEGMENT_BITS: u32 = 6;
 const SEGMENTS: usize = 26;
+/// The key of a freed slot: no pair has it (collider indices are below `u32::MAX`).
+const FREED: u64 = u64::MAX;
 
 #[derive(Debug, Default)]
 struct ImpactSlot {
@@ -29,8 +36,6 @@ struct ImpactSlot {
     /// `d_max` (m) as f64 bits; non-negative floats order like their bits, so `fetch_max` works.
     max_overlap: AtomicU64,
     impacts: AtomicU32,
-    /// Last maintenance epoch in which the pair existed.
-    seen: u64,
 }
 
 /// Thread-safe per-pair impact history (largest indentation), reached through slot indices.
@@ -40,7 +45,6 @@ pub struct ImpactHistory {
     segments: Box<[OnceLock<Box<[ImpactSlot]>>]>,
     next: AtomicU32,
     free: Mutex<Vec<u32>>,
-    epoch: u64,
 }
 
 impl Default for ImpactHistory {
@@ -50,8 +54,6 @@ impl Default for ImpactHistory {
             segments: (0..SEGMENTS).map(|_| OnceLock::new()).collect(),
             next: AtomicU32::new(0),
             free: Mutex::new(Vec::new()),
-            // Slots start with `seen = 0`: epoch 0 never counts as seen.
-            epoch: 1,
         }
     }
 }
@@ -158,10 +160,8 @@ impl ImpactHistory {
         self.next.load(Ordering::Relaxed)
     }
 
-    /// Keep only the pairs marked with `mark_live` since the previous call, and free the slots
-    /// of the others.
-    fn retain_marked(&mut self) {
-        let epoch = self.epoch;
+    /// Keep the pairs for which `keep` is true, and free the slots of the others.
+    fn retain_pairs(&mut self, keep: impl Fn(PairKey) -> bool) {
         let Self {
             index,
             segments,
@@ -170,67 +170,119 @@ impl ImpactHistory {
         } = self;
         let free = free.get_mut().expect("history lock");
         for shard in index.iter_mut() {
-            shard.get_mut().expect("history lock").retain(|_, slot| {
-                let (segment, offset) = locate(*slot);
-                let seen = segments[segment].get().map_or(0, |seg| seg[offset].seen);
-                if seen == epoch {
-                    true
-                } else {
+            shard.get_mut().expect("history lock").retain(|&key, slot| {
+                let live = keep(PairKey(key));
+                if !live {
+                    // A manifold still holding this slot must not take it for its pair's.
+                    let (segment, offset) = locate(*slot);
+                    if let Some(seg) = segments[segment].get() {
+                        seg[offset].key.store(FREED, Ordering::Relaxed);
+                    }
                     free.push(*slot);
-                    false
                 }
+                live
             });
         }
-        self.epoch += 1;
     }
+}
 
-    fn mark_live(&mut self, key: PairKey) {
-        let slot = self.index[shard_of(key.0)]
-            .get_mut()
-            .expect("history lock")
-            .get(&key.0)
-            .copied();
-        if let Some(slot) = slot {
-            let (segment, offset) = locate(slot);
-            if let Some(seg) = self.segments[segment].get_mut() {
-                seg[offset].seen = self.epoch;
-            }
-        }
-    }
+/// Where the friction coefficient of a restitution-mode manifold comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FrictionRule {
+    /// The colliders' own: rapier combines the two colliders' `friction` with their
+    /// `friction_combine_rule` (default: the average) and the hook leaves it as it is.
+    Colliders,
+    /// One coefficient `μ` (≥ 0) for every pair of registered colliders.
+    Uniform(f64),
+}
+
+/// Default reach of a pair's impact history, in effective radii (see
+/// [`RestitutionHooks::history_reach`]).
+pub const DEFAULT_HISTORY_REACH: f64 = 1.0;
+
+/// What one restitution-mode step did.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RestitutionReport {
+    /// Pairs of registered colliders with contacts, resolved with the law's restitution.
+    pub law_pairs: usize,
+    /// Impacts whose restitution came from the law this step.
+    pub impacts: u64,
+    /// Other pairs with contacts that rapier's solver handles as it would without the
+    /// coupling (surface on surface, registered on unregistered, pairs without the plugin).
+    pub rapier_pairs: usize,
+    /// Pairs with a stored impact history (craters within reach).
+    pub histories: usize,
 }
 
 /// The restitution-mode coupling: a `PhysicsHooks` value setting each manifold's restitution
-/// from the MDR law and its friction from `μ`. Step with [`RestitutionHooks::step`] (or pass it
-/// to `PhysicsWorld::step_with_events` and call [`RestitutionHooks::maintain`] afterwards).
+/// from the MDR law (and, with [`FrictionRule::Uniform`], its friction). Step with
+/// [`RestitutionHooks::step`] or [`RestitutionHooks::step_with`] (the user's hooks and event
+/// handler); with an own `PhysicsPipeline`, bracket each `step` by
+/// [`RestitutionHooks::prepare`] and [`RestitutionHooks::maintain`] and pass
+/// [`RestitutionHooks::with_user`] (or the hooks themselves) to it.
 #[derive(Debug)]
 pub struct RestitutionHooks {
     model: MdrElastoPlastic,
-    friction: f64,
-    dt: f64,
+    friction: FrictionRule,
+    dt: Option<f64>,
+    prepared: bool,
+    history_reach: f64,
     particles: ParticleSet,
     history: ImpactHistory,
+    unprepared: AtomicBool,
+    impacts: AtomicU64,
+    report: RestitutionReport,
 }
 
 impl RestitutionHooks {
-    /// Hooks for the MDR law `model` and Coulomb friction coefficient `friction` (≥ 0).
+    /// Hooks for the MDR law `model` and one Coulomb friction coefficient `friction` (≥ 0) for
+    /// every registered pair ([`FrictionRule::Uniform`]).
     pub fn new(model: MdrElastoPlastic, friction: f64) -> Result<Self> {
-        if !(friction.is_finite() && friction >= 0.0) {
-            return Err(crate::CouplingError::OutOfRange {
-                name: "mu",
-                value: friction,
-                range: "[0, inf)",
-            });
+        Self::with_friction_rule(model, FrictionRule::Uniform(friction))
+    }
+
+    /// Hooks for the MDR law `model` with friction by `rule`; [`FrictionRule::Colliders`] takes
+    /// each pair's friction from its colliders.
+    pub fn with_friction_rule(model: MdrElastoPlastic, rule: FrictionRule) -> Result<Self> {
+        if let FrictionRule::Uniform(mu) = rule {
+            if !(mu.is_finite() && mu >= 0.0) {
+                return Err(crate::CouplingError::OutOfRange {
+                    name: "mu",
+                    value: mu,
+                    range: "[0, inf)",
+                });
+            }
         }
         Ok(Self {
             model,
-            friction,
-            dt: 1.0 / 60.0,
+            friction: rule,
+            dt: None,
+            prepared: false,
+            history_reach: DEFAULT_HISTORY_REACH,
             particles: ParticleSet::new(),
             history: ImpactHistory::new(),
+            unprepared: AtomicBool::new(false),
+            impacts: AtomicU64::new(0),
+            report: RestitutionReport::default(),
         })
     }
 
-    /// The registered colliders and materials, mutably.
+    /// Keep a pair's impact history while the gap between its surfaces is below `reach`
+    /// effective radii (> 0; default [`DEFAULT_HISTORY_REACH`]): the law's crater rule
+    /// (docs/coupling.md, "History").
+    pub fn history_reach(mut self, reach: f64) -> Result<Self> {
+        self.history_reach = positive("history_reach", reach)?;
+        Ok(self)
+    }
+
+    /// The friction rule.
+    pub fn friction_rule(&self) -> FrictionRule {
+        self.friction
+    }
+
+    /// The registered colliders and materials, mutably (to add materials; register colliders
+    /// with [`RestitutionHooks::register_sphere`] / [`RestitutionHooks::register_surface`],
+    /// which add the hook flag).
     pub fn particles_mut(&mut self) -> &mut ParticleSet {
         &mut self.particles
     }
@@ -245,58 +297,194 @@ impl RestitutionHooks {
         &self.history
     }
 
+    /// The report of the last [`RestitutionHooks::step_with`].
+    pub fn last_report(&self) -> RestitutionReport {
+        self.report
+    }
+
     /// The step length the hook assumes when deciding whether a speculative contact closes in
-    /// this step (set by [`RestitutionHooks::step`]).
+    /// this step. [`RestitutionHooks::prepare`] (called by the step methods) takes it from the
+    /// integration parameters; this sets it ahead of that.
     pub fn set_time_step(&mut self, dt: f64) -> Result<()> {
-        self.dt = positive("dt", dt)?;
+        self.dt = Some(positive("dt", dt)?);
         Ok(())
     }
 
-    /// Insert a sphere whose contacts go through the hook, and register it.
+    /// Insert a sphere whose contacts go through the hook (hook flag added to the user's), and
+    /// register it.
     pub fn insert_sphere(
         &mut self,
         world: &mut PhysicsWorld,
         sphere: SphereBuilder,
     ) -> Result<(RigidBodyHandle, ColliderHandle)> {
-        self.particles.insert_sphere_flagged(world, sphere, |c| {
-            c.active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS)
-        })
+        self.insert_sphere_into(sphere, &mut world.bodies, &mut world.colliders)
     }
 
-    /// Insert a collider of any shape as a surface of `material`, optionally on a body.
+    /// [`RestitutionHooks::insert_sphere`] on rapier's sets.
+    pub fn insert_sphere_into(
+        &mut self,
+        sphere: SphereBuilder,
+        bodies: &mut RigidBodySet,
+        colliders: &mut ColliderSet,
+    ) -> Result<(RigidBodyHandle, ColliderHandle)> {
+        self.particles
+            .insert_sphere_into_sets(bodies, colliders, sphere, add_restitution_flags)
+    }
+
+    /// Insert a collider of any shape as a surface of `material`, optionally on a body (as
+    /// `PhysicsWorld::insert_collider(collider, parent)`).
     pub fn insert_surface(
         &mut self,
         world: &mut PhysicsWorld,
-        collider: ColliderBuilder,
+        collider: impl Into<Collider>,
         parent: Option<RigidBodyHandle>,
         material: MaterialHandle,
     ) -> Result<ColliderHandle> {
+        self.insert_surface_with_parent(
+            collider,
+            parent,
+            material,
+            &mut world.colliders,
+            &mut world.bodies,
+        )
+    }
+
+    /// [`RestitutionHooks::insert_surface`] on rapier's sets, in the order of
+    /// `ColliderSet::insert_with_parent(collider, parent, bodies)`.
+    pub fn insert_surface_with_parent(
+        &mut self,
+        collider: impl Into<Collider>,
+        parent: Option<RigidBodyHandle>,
+        material: MaterialHandle,
+        colliders: &mut ColliderSet,
+        bodies: &mut RigidBodySet,
+    ) -> Result<ColliderHandle> {
+        self.particles.insert_surface_into_sets(
+            collider,
+            parent,
+            material,
+            bodies,
+            colliders,
+            add_restitution_flags,
+        )
+    }
+
+    /// Register a ball collider already in `colliders` (on a rigid body) as a sphere of
+    /// `material`, adding the hook flag to its active hooks.
+    pub fn register_sphere(
+        &mut self,
+        collider: ColliderHandle,
+        material: MaterialHandle,
+        colliders: &mut ColliderSet,
+    ) -> Result<()> {
         self.particles
-            .insert_surface_flagged(world, collider, parent, material, |c| {
-                c.active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS)
-            })
+            .register_sphere(colliders, collider, material)?;
+        if let Some(co) = colliders.get_mut(collider) {
+            add_restitution_flags(co);
+        }
+        Ok(())
+    }
+
+    /// Register a collider of any shape already in `colliders` as a surface of `material`,
+    /// adding the hook flag to its active hooks.
+    pub fn register_surface(
+        &mut self,
+        collider: ColliderHandle,
+        material: MaterialHandle,
+        colliders: &mut ColliderSet,
+    ) -> Result<()> {
+        self.particles
+            .register_surface(colliders, collider, material)?;
+        if let Some(co) = colliders.get_mut(collider) {
+            add_restitution_flags(co);
+        }
+        Ok(())
+    }
+
+    /// Before a step: take the time step from `params` and check that every registered
+    /// collider is in `colliders` with the hook flag.
+    pub fn prepare(
+        &mut self,
+        params: &IntegrationParameters,
+        colliders: &ColliderSet,
+    ) -> Result<()> {
+        self.set_time_step(params.dt)?;
+        for particle in self.particles.iter() {
+            let co = colliders
+                .get(particle.collider)
+                .ok_or(CouplingError::UnknownCollider(particle.collider))?;
+            check_restitution_flags(co, particle)?;
+        }
+        self.prepared = true;
+        Ok(())
+    }
+
+    /// These hooks around the user's: `filter_contact_pair` and `filter_intersection_pair` are
+    /// the user's; `modify_solver_contacts` runs the user's first where the user's own flags
+    /// ask for it, then the law's on the pairs of registered colliders.
+    pub fn with_user<'a>(&'a self, user: &'a dyn PhysicsHooks) -> WithUserHooks<'a> {
+        WithUserHooks { mdr: self, user }
     }
 
     /// One step of `world` with these hooks, then [`RestitutionHooks::maintain`].
     pub fn step(&mut self, world: &mut PhysicsWorld) -> Result<()> {
-        self.set_time_step(world.integration_parameters.dt)?;
-        world.step_with_events(&*self, &());
-        self.maintain(&world.narrow_phase);
+        self.step_with(world, &(), &()).map(|_| ())
+    }
+
+    /// One step of `world` with these hooks composed with the user's `hooks`
+    /// ([`RestitutionHooks::with_user`]) and the user's event handler: [`RestitutionHooks::prepare`],
+    /// `world.step_with_events`, [`RestitutionHooks::maintain`].
+    pub fn step_with(
+        &mut self,
+        world: &mut PhysicsWorld,
+        hooks: &dyn PhysicsHooks,
+        events: &dyn EventHandler,
+    ) -> Result<RestitutionReport> {
+        self.prepare(&world.integration_parameters, &world.colliders)?;
+        world.step_with_events(&self.with_user(hooks), events);
+        self.maintain(&world.colliders)?;
+        let (mut law_pairs, mut rapier_pairs) = (0, 0);
+        for pair in world.narrow_phase.contact_pairs() {
+            if !pair.has_any_active_contact() {
+                continue;
+            }
+            if self.is_law_pair(pair.collider1, pair.collider2) {
+                law_pairs += 1;
+            } else {
+                rapier_pairs += 1;
+            }
+        }
+        self.report = RestitutionReport {
+            law_pairs,
+            impacts: self.impacts.swap(0, Ordering::Relaxed),
+            rapier_pairs,
+            histories: self.history.len(),
+        };
+        Ok(self.report)
+    }
+
+    /// After a step: end the histories the law's rule ends (a pair whose surfaces are more
+    /// than the history reach apart, see [`RestitutionHooks::history_reach`]; a pair whose
+    /// collider left the set), and report hooks that ran without
+    /// [`RestitutionHooks::prepare`] ([`CouplingError::TimeStepUnset`]).
+    pub fn maintain(&mut self, colliders: &ColliderSet) -> Result<()> {
+        let reach = self.history_reach;
+        let particles = &self.particles;
+        self.history.retain_pairs(|key| {
+            pair_gap(particles, colliders, key).is_some_and(|(gap, r)| gap < reach * r)
+        });
+        self.prepared = false;
+        if self.unprepared.swap(false, Ordering::Relaxed) {
+            return Err(CouplingError::TimeStepUnset);
+        }
         Ok(())
     }
 
-    /// Drop the history of pairs that rapier no longer tracks (their bounding boxes separated),
-    /// so the store stays proportional to the pairs in proximity.
-    pub fn maintain(&mut self, narrow_phase: &NarrowPhase) {
-        for pair in narrow_phase.contact_pairs() {
-            if self.particles.get(pair.collider1).is_some()
-                && self.particles.get(pair.collider2).is_some()
-            {
-                self.history
-                    .mark_live(PairKey::new(pair.collider1, pair.collider2));
-            }
+    fn is_law_pair(&self, c1: ColliderHandle, c2: ColliderHandle) -> bool {
+        match (self.particles.get(c1), self.particles.get(c2)) {
+            (Some(a), Some(b)) => a.radius().is_some() || b.radius().is_some(),
+            _ => false,
         }
-        self.history.retain_marked();
     }
 
     /// The pair quantities and the bound law of two registered colliders.
@@ -330,6 +518,134 @@ impl RestitutionHooks {
         let pair = ContactPair::new(e_star, g_star, radius, mass).ok()?;
         Some((self.model.bind(&pair).ok()?, mass))
     }
+
+    /// The law's part of `modify_solver_contacts`.
+    fn modify_law_contacts(&self, ctx: &mut ContactModificationContext) {
+        let bodies = ctx.bodies;
+        let (c1, c2) = (ctx.collider1, ctx.collider2);
+        let (rb1, rb2) = (ctx.rigid_body1, ctx.rigid_body2);
+        let Some((law, mass)) = self.pair_law(bodies, (rb1, rb2), c1, c2) else {
+            return;
+        };
+        let Some(dt) = self.dt.filter(|_| self.prepared) else {
+            // Run without `prepare`: the step length is unknown; `maintain` reports it.
+            self.unprepared.store(true, Ordering::Relaxed);
+            return;
+        };
+        let Some(rigid) = ctx.rigid_mut() else {
+            return;
+        };
+        if let FrictionRule::Uniform(mu) = self.friction {
+            *rigid.friction = mu;
+        }
+        // Approach speed at the closest solver contact; the normal points out of collider 1.
+        let n = *rigid.normal;
+        let mut closest = f64::INFINITY;
+        let mut approach = 0.0;
+        for contact in rigid.solver_contacts.iter() {
+            if contact.dist < closest {
+                closest = contact.dist;
+                let v1 = rb1
+                    .and_then(|h| bodies.get(h))
+                    .map_or(Vector::ZERO, |b| b.velocity_at_point(contact.anchor1));
+                let v2 = rb2
+                    .and_then(|h| bodies.get(h))
+                    .map_or(Vector::ZERO, |b| b.velocity_at_point(contact.anchor2));
+                approach = (v1 - v2).dot(n);
+            }
+        }
+        if approach.is_nan() || approach <= 0.0 {
+            // Separating or resting: rapier applies no bounce.
+            return;
+        }
+        if closest > approach * dt {
+            // The gap does not close in this step: no impact yet.
+            defer_speculative_contacts(rigid.solver_contacts, approach, dt);
+            return;
+        }
+        let key = PairKey::new(c1, c2);
+        let mut slot = rigid.user_data.wrapping_sub(1);
+        if *rigid.user_data == 0 || self.history.key(slot) != key {
+            slot = self.history.slot_for(key);
+            *rigid.user_data = slot + 1;
+        }
+        let state = self.history.state(slot);
+        let kinetic = 0.5 * mass * approach * approach;
+        self.impacts.fetch_add(1, Ordering::Relaxed);
+        // Energy that fits within the old unloading branch is returned: elastic re-impact
+        // (docs/theory.md §4); skip the root solve.
+        let restitution = if kinetic <= law.stored_energy(state.max_overlap, state.max_overlap) {
+            1.0
+        } else {
+            let impact = law.impact(&state, mass, approach);
+            self.history.commit(slot, impact.state.max_overlap);
+            impact.restitution
+        };
+        *rigid.restitution = restitution;
+    }
+}
+
+/// The gap between the surfaces of a registered pair (m; ≤ 0 when they overlap) and its
+/// effective radius (m), from the colliders' current poses; `None` when a collider is gone or
+/// the pair is not a law pair.
+fn pair_gap(particles: &ParticleSet, colliders: &ColliderSet, key: PairKey) -> Option<(f64, f64)> {
+    let (i, j) = ((key.0 >> 32) as u32, key.0 as u32);
+    let (co1, h1) = colliders.get_unknown_gen(i)?;
+    let (co2, h2) = colliders.get_unknown_gen(j)?;
+    let (p1, p2) = (particles.get(h1)?, particles.get(h2)?);
+    let centre = |co: &Collider| co.position().translation;
+    match (p1.radius(), p2.radius()) {
+        (Some(r1), Some(r2)) => Some((
+            (centre(co1) - centre(co2)).length() - r1 - r2,
+            r1 * r2 / (r1 + r2),
+        )),
+        (Some(r), None) => Some((
+            co2.shape()
+                .distance_to_point(co2.position(), centre(co1), true)
+                - r,
+            r,
+        )),
+        (None, Some(r)) => Some((
+            co1.shape()
+                .distance_to_point(co1.position(), centre(co2), true)
+                - r,
+            r,
+        )),
+        (None, None) => None,
+    }
+}
+
+/// [`RestitutionHooks`] around a user's `PhysicsHooks` ([`RestitutionHooks::with_user`]).
+pub struct WithUserHooks<'a> {
+    mdr: &'a RestitutionHooks,
+    user: &'a dyn PhysicsHooks,
+}
+
+impl PhysicsHooks for WithUserHooks<'_> {
+    fn filter_contact_pair(&self, context: &PairFilterContext) -> Option<SolverFlags> {
+        self.user.filter_contact_pair(context)
+    }
+
+    fn filter_intersection_pair(&self, context: &PairFilterContext) -> bool {
+        self.user.filter_intersection_pair(context)
+    }
+
+    fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {
+        let particles = &self.mdr.particles;
+        let user_flags = |c: ColliderHandle| match particles.get(c) {
+            Some(p) => p.user_hooks,
+            None => context
+                .colliders
+                .get(c)
+                .map_or(ActiveHooks::empty(), |co| co.active_hooks()),
+        };
+        if (user_flags(context.collider1) | user_flags(context.collider2))
+            .contains(ActiveHooks::MODIFY_SOLVER_CONTACTS)
+        {
+            self.user.modify_solver_contacts(context);
+        }
+        self.mdr.modify_law_contacts(context);
+    }
 }
 
 /// Keep the contacts of a manifold that holds no impact in this step (a pair approaching at
@@ -357,59 +673,7 @@ pub fn defer_speculative_contacts(contacts: &mut SolverContacts, approach: f64, 
 
 impl PhysicsHooks for RestitutionHooks {
     fn modify_solver_contacts(&self, ctx: &mut ContactModificationContext) {
-        let bodies = ctx.bodies;
-        let (c1, c2) = (ctx.collider1, ctx.collider2);
-        let (rb1, rb2) = (ctx.rigid_body1, ctx.rigid_body2);
-        let Some((law, mass)) = self.pair_law(bodies, (rb1, rb2), c1, c2) else {
-            return;
-        };
-        let Some(rigid) = ctx.rigid_mut() else {
-            return;
-        };
-        *rigid.friction = self.friction;
-        // Approach speed at the closest solver contact; the normal points out of collider 1.
-        let n = *rigid.normal;
-        let mut closest = f64::INFINITY;
-        let mut approach = 0.0;
-        for contact in rigid.solver_contacts.iter() {
-            if contact.dist < closest {
-                closest = contact.dist;
-                let v1 = rb1
-                    .and_then(|h| bodies.get(h))
-                    .map_or(Vector::ZERO, |b| b.velocity_at_point(contact.anchor1));
-                let v2 = rb2
-                    .and_then(|h| bodies.get(h))
-                    .map_or(Vector::ZERO, |b| b.velocity_at_point(contact.anchor2));
-                approach = (v1 - v2).dot(n);
-            }
-        }
-        if approach.is_nan() || approach <= 0.0 {
-            // Separating or resting: rapier applies no bounce.
-            return;
-        }
-        if closest > approach * self.dt {
-            // The gap does not close in this step: no impact yet.
-            defer_speculative_contacts(rigid.solver_contacts, approach, self.dt);
-            return;
-        }
-        let key = PairKey::new(c1, c2);
-        let mut slot = rigid.user_data.wrapping_sub(1);
-        if *rigid.user_data == 0 || self.history.key(slot) != key {
-            slot = self.history.slot_for(key);
-            *rigid.user_data = slot + 1;
-        }
-        let state = self.history.state(slot);
-        let kinetic = 0.5 * mass * approach * approach;
-        // Energy that fits within the old unloading branch is returned: elastic re-impact
-        // (docs/theory.md §4); skip the root solve.
-        let restitution = if kinetic <= law.stored_energy(state.max_overlap, state.max_overlap) {
-            1.0
-        } else {
-            let impact = law.impact(&state, mass, approach);
-            self.history.commit(slot, impact.state.max_overlap);
-            impact.restitution
-        };
-        *rigid.restitution = restitution;
+        self.modify_law_contacts(ctx);
     }
 }
 
@@ -437,8 +701,7 @@ mod tests {
         assert_eq!(h.impacts(a), 2);
         let b = h.slot_for(PairKey(9));
         assert_ne!(a, b);
-        h.mark_live(PairKey(9));
-        h.retain_marked();
+        h.retain_pairs(|key| key == PairKey(9));
         assert_eq!(h.find(PairKey(7)), None);
         assert_eq!(h.find(PairKey(9)), Some(b));
         // The freed slot is reused, with a fresh history.

@@ -1,8 +1,8 @@
 //! Many-contact behaviour of force mode: energy conservation over repeated elastic bounces,
 //! history bookkeeping, determinism across runs and thread counts, and settling of a pile.
 
-use mdr_rapier::prelude::ContactPair;
 use mdr_rapier::prelude::*;
+use mdr_rapier::LawPair as ContactPair;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rapier3d_f64::prelude::*;

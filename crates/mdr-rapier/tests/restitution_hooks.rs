@@ -2,8 +2,8 @@
 //! correctness when rapier runs the hooks on several threads.
 
 use mdr_contact::normal::MdrState;
-use mdr_rapier::prelude::ContactPair;
 use mdr_rapier::prelude::*;
+use mdr_rapier::LawPair as ContactPair;
 use rapier3d_f64::prelude::*;
 
 const R: f64 = 0.635e-2;
