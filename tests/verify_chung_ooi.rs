@@ -10,6 +10,7 @@ use mdr_verify::chung_ooi::{self, Resolution};
 
 fn assert_passes(number: u8) {
     let report = chung_ooi::run(number, Resolution::ci()).expect("test runs");
+    eprintln!("{report}");
     assert!(!report.checks.is_empty(), "test {number} made no checks");
     assert!(report.passed(), "{report}");
 }

@@ -48,6 +48,7 @@ fn gross_sliding_matches_impulse_theory() {
             let e_t = 1.0 - MU * (1.0 + e_n) / theta.tan();
             let omega = 2.5 * MU * (1.0 + e_n) * v_n / radius;
             let measured_e_t = outcome.tangential_restitution.unwrap();
+            eprintln!("MEASURE oblique {law} {angle} et {:.3e} w {:.3e}", (measured_e_t / e_t - 1.0).abs(), (outcome.spin / omega - 1.0).abs());
             assert!(
                 (measured_e_t / e_t - 1.0).abs() < 1e-2,
                 "{law}, θ = {angle}°: e_t {measured_e_t} vs {e_t}"
@@ -62,6 +63,7 @@ fn gross_sliding_matches_impulse_theory() {
             mindlin.tangential_restitution.unwrap(),
             bed.tangential_restitution.unwrap(),
         );
+        eprintln!("MEASURE between {angle} {:.3e} {:.3e}", (a - b).abs(), (mindlin.spin / bed.spin - 1.0).abs());
         assert!(
             (a - b).abs() < 1e-5 && (mindlin.spin / bed.spin - 1.0).abs() < 1e-5,
             "θ = {angle}°: Mindlin e_t {a}, ω {} vs spring bed e_t {b}, ω {}",
@@ -129,6 +131,7 @@ fn no_angle_creates_energy() {
         .friction(MU)
         .run()
         .unwrap();
+    eprintln!("MEASURE tiny {:.3e}", (tiny.normal_restitution - head_on).abs());
     assert!((tiny.normal_restitution - head_on).abs() < 1e-4);
 }
 

@@ -428,12 +428,12 @@ fn hopper_orifice_sweep_runs_once_per_diameter_and_fits_the_rates() {
             .join(format!("out/hopper_D{i}/hopper_D{i}_headline.toml"))
             .exists());
     }
-    if let Some(fit) = sweep.fit {
-        let (a, b) = fit.line;
-        let rho_b = mdr_sim::headline::BULK_SOLID_FRACTION * 2500.0;
-        assert!((fit.c - b.powf(2.5) / (rho_b * 9.81f64.sqrt())).abs() < 1e-12 * fit.c.abs());
-        assert!((fit.k + a / (b * 0.002)).abs() < 1e-9 * fit.k.abs().max(1.0));
-    }
+    eprintln!("MEASURE sweep points {:?} fit {:?}", sweep.points, sweep.fit.as_ref().map(|f| (f.c, f.k, f.line)));
+    let fit = sweep.fit.expect("three growing rates always give a fit");
+    let (a, b) = fit.line;
+    let rho_b = mdr_sim::headline::BULK_SOLID_FRACTION * 2500.0;
+    assert!((fit.c - b.powf(2.5) / (rho_b * 9.81f64.sqrt())).abs() < 1e-12 * fit.c.abs());
+    assert!((fit.k + a / (b * 0.002)).abs() < 1e-9 * fit.k.abs().max(1.0));
 }
 
 /// `exact_surface = true` on the hopper's cylinder and orifice plate: with an orifice narrower
