@@ -245,7 +245,9 @@ impl Bed {
     /// The bed repeated `nx × ny` times in x and y (a periodic bed stays a valid periodic bed).
     /// Refuses (naming `tile`) a result of more than [`MAX_BED_SPHERES`] spheres.
     pub fn tiled(&self, nx: usize, ny: usize) -> Result<Bed, BedError> {
-        let spheres = self.len() as u128 * nx as u128 * ny as u128;
+        let spheres = (self.len() as u128)
+            .saturating_mul(nx as u128)
+            .saturating_mul(ny as u128);
         let total = bounded_spheres("tile", nx.max(ny), spheres)?;
         let lx = self.hi[0] - self.lo[0];
         let ly = self.hi[1] - self.lo[1];
