@@ -411,13 +411,17 @@ fn curve_with_several_laws_writes_one_file_per_law() {
             .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
             .collect()
     };
-    assert_eq!(e_n("hertz"), vec![1.0, 1.0]);
+    // Hertz is time-integrated: e_n = 1 to the integrator's 3.1e-9 (measured).
+    for e in e_n("hertz") {
+        assert!((e - 1.0).abs() < 1e-8, "Hertz e_n = {e}");
+    }
     let v_y = paper_yield_speed();
     for (v, e) in [1.0, 3.0].into_iter().zip(e_n("thornton")) {
         let x = v_y / v;
         let published = (6.0 * 3f64.sqrt() / 5.0 * (1.0 - x * x / 6.0)).sqrt()
             * (x / (x + 2.0 * (6.0 / 5.0 - x * x / 5.0).sqrt())).powf(0.25);
-        assert!((e - published).abs() < 1e-5, "Thornton at {v} m/s: {e} vs {published}");
+        // Time integration against his eq. 31: measured 8.9e-8 (tests of mdr-impact).
+        assert!((e - published).abs() < 3e-7, "Thornton at {v} m/s: {e} vs {published}");
     }
     let single = stdout(&mdr_dem(&[
         "impact",

@@ -79,9 +79,9 @@ fn box_open_top_decides_whether_a_sphere_can_leave() {
     );
 }
 
-/// A unit square (OBJ, normal +z) scaled by 0.02 and moved down by 5 mm: a sphere above the
-/// scaled square comes to rest on it at z = −5 mm + r; one 30 mm off-centre, outside the scaled
-/// square (but inside the unscaled one), falls past it.
+/// A unit square (OBJ, normal +z) scaled by 0.02 and moved down by `offset_m`: a sphere above
+/// the scaled square is held by it 5 mm down and falls freely past 0.15 s when it is 0.5 m down;
+/// one 30 mm off-centre, outside the scaled square (but inside the unscaled one), falls past it.
 #[test]
 fn mesh_scale_and_offset_place_the_mesh() {
     let dir = common::temp_dir("keys-mesh");
@@ -95,22 +95,30 @@ fn mesh_scale_and_offset_place_the_mesh() {
         "two.csv",
         "x_m,y_m,z_m,radius_m\n0.01,0.01,-0.002,0.002\n0.03,0.0,-0.002,0.002\n",
     );
-    let text = format!(
-        "{}\n[[particles]]\nmaterial = \"grain\"\nplacement = \"csv\"\nfile = \"two.csv\"\n\n\
-         [[walls]]\nkind = \"mesh\"\nmaterial = \"grain\"\nfile = \"square.obj\"\nscale = 0.02\n\
-         offset_m = [0.0, 0.0, -0.005]\n",
-        HEAD.replace("DURATION", "0.15")
-    );
-    let summary = run(&dir, "mesh", &text, quiet(&dir, "mesh"));
-    let on_mesh = summary.particles[0].translation;
-    let past = summary.particles[1].translation;
-    // At rest: z = −0.005 + 0.002 less the Hertz overlap under its weight (≈ 10 µm).
-    assert!(
-        (on_mesh[2] - (-0.003)).abs() < 5e-5,
-        "sphere over the mesh at {on_mesh:?}"
-    );
-    // Free fall from −2 mm for 0.15 s: −0.112 m.
-    assert!((past[2] - (-0.1124)).abs() < 1e-3, "sphere past the mesh at {past:?}");
+    let sphere_over_mesh_z = |offset: &str| {
+        let text = format!(
+            "{}\n[[particles]]\nmaterial = \"grain\"\nplacement = \"csv\"\nfile = \"two.csv\"\n\n\
+             [[walls]]\nkind = \"mesh\"\nmaterial = \"grain\"\nfile = \"square.obj\"\nscale = 0.02\n\
+             offset_m = [0.0, 0.0, {offset}]\n",
+            HEAD.replace("DURATION", "0.15")
+        );
+        let name = format!("mesh{offset}");
+        let summary = run(&dir, &name, &text, quiet(&dir, &name));
+        let on_mesh = &summary.particles[0];
+        let past = summary.particles[1].translation;
+        // Free fall from −2 mm for 0.15 s: −0.1124 m.
+        assert!(
+            (past[2] - (-0.1124)).abs() < 1e-3,
+            "sphere past the mesh at {past:?}"
+        );
+        on_mesh.translation[2]
+    };
+    // Held by the mesh 5 mm down: its centre stays above −5 mm + r (less a small overlap).
+    let held = sphere_over_mesh_z("-0.005");
+    assert!(held > -0.005 + 0.002 - 1e-4, "z = {held}");
+    // The mesh 0.5 m down: the same sphere falls freely all the way.
+    let free = sphere_over_mesh_z("-0.5");
+    assert!((free - (-0.1124)).abs() < 1e-3, "z = {free}");
 }
 
 /// A LAMMPS data file in millimetres with `length_scale_m = 0.001`: the spheres start at the

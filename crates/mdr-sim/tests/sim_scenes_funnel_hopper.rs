@@ -428,8 +428,10 @@ fn hopper_orifice_sweep_runs_once_per_diameter_and_fits_the_rates() {
             .join(format!("out/hopper_D{i}/hopper_D{i}_headline.toml"))
             .exists());
     }
-    eprintln!("MEASURE sweep points {:?} fit {:?}", sweep.points, sweep.fit.as_ref().map(|f| (f.c, f.k, f.line)));
-    let fit = sweep.fit.expect("three growing rates always give a fit");
+    // The fit is always made (three or more points) and must be there: a sweep that silently
+    // drops it fails here. The rates of these 0.06 s runs are transients, not Beverloo's
+    // steady flow; the ignored test below checks the physics.
+    let fit = sweep.fit.expect("the sweep's Beverloo fit");
     let (a, b) = fit.line;
     let rho_b = mdr_sim::headline::BULK_SOLID_FRACTION * 2500.0;
     assert!((fit.c - b.powf(2.5) / (rho_b * 9.81f64.sqrt())).abs() < 1e-12 * fit.c.abs());
