@@ -421,7 +421,10 @@ fn curve_with_several_laws_writes_one_file_per_law() {
         let published = (6.0 * 3f64.sqrt() / 5.0 * (1.0 - x * x / 6.0)).sqrt()
             * (x / (x + 2.0 * (6.0 / 5.0 - x * x / 5.0).sqrt())).powf(0.25);
         // Time integration against his eq. 31: measured 8.9e-8 (tests of mdr-impact).
-        assert!((e - published).abs() < 3e-7, "Thornton at {v} m/s: {e} vs {published}");
+        assert!(
+            (e - published).abs() < 3e-7,
+            "Thornton at {v} m/s: {e} vs {published}"
+        );
     }
     let single = stdout(&mdr_dem(&[
         "impact",
@@ -463,5 +466,9 @@ fn fig2_draws_the_measured_points() {
     let without = run(&[]);
     let with = run(&["--data", data.to_str().unwrap()]);
     let circles = |svg: &str| svg.matches("<circle").count();
-    assert_eq!(circles(&with) - circles(&without), 4 + 1, "4 points and a legend marker");
+    assert_eq!(
+        circles(&with) - circles(&without),
+        4 + 1,
+        "4 points and a legend marker"
+    );
 }

@@ -32,15 +32,24 @@ fn verify_runs_one_test_writes_its_figures_and_honours_quick() {
         "--plot",
         dir.to_str().unwrap(),
     ]));
-    assert!(quick.contains("Test 1:") && quick.contains("PASSED"), "{quick}");
-    assert!(!quick.contains("Test 2:"), "--test 1 ran another test: {quick}");
+    assert!(
+        quick.contains("Test 1:") && quick.contains("PASSED"),
+        "{quick}"
+    );
+    assert!(
+        !quick.contains("Test 2:"),
+        "--test 1 ran another test: {quick}"
+    );
     let figures: Vec<_> = std::fs::read_dir(&dir)
         .expect("--plot folder")
         .map(|e| e.unwrap().file_name().into_string().unwrap())
         .collect();
     assert!(!figures.is_empty());
     for name in &figures {
-        assert!(name.starts_with("verify_test1_") && name.ends_with(".svg"), "{name}");
+        assert!(
+            name.starts_with("verify_test1_") && name.ends_with(".svg"),
+            "{name}"
+        );
         let svg = std::fs::read_to_string(dir.join(name)).unwrap();
         assert!(svg.contains("<svg"), "{name}");
         assert!(quick.contains(name.as_str()), "figure {name} not reported");

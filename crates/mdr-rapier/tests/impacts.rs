@@ -116,7 +116,11 @@ fn restitution_mode_refuses_thornton_with_a_clear_error() {
 #[test]
 fn restitution_mode_matches_validator_exactly() {
     for v in SPEEDS {
-        check(&ImpactScene::paper_drop(v), CouplingMode::Restitution, EXACT);
+        check(
+            &ImpactScene::paper_drop(v),
+            CouplingMode::Restitution,
+            EXACT,
+        );
         check(&unequal_pair(v), CouplingMode::Restitution, EXACT);
     }
 }

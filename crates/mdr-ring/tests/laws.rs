@@ -82,7 +82,10 @@ fn mdr_ice_law_follows_bridges_over_ring_impact_speeds() {
         let published = (0.32 * (v / 0.01f64).powf(-0.234)).min(1.0);
         let (a, b) = (mdr.first_impact(&pair, v), bridges.at(v));
         assert!((b - published).abs() < 1e-12, "v = {v}: {b} vs {published}");
-        assert!((a - published).abs() < 0.06, "v = {v}: MDR {a}, Bridges {published}");
+        assert!(
+            (a - published).abs() < 0.06,
+            "v = {v}: MDR {a}, Bridges {published}"
+        );
     }
     // High-speed limit sqrt(Θ/E*) (docs/theory.md §4).
     let fast = mdr.first_impact(&pair, 10.0);

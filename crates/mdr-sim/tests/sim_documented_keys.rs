@@ -73,10 +73,7 @@ fn box_open_top_decides_whether_a_sphere_can_leave() {
         quiet(&dir, "closed"),
     );
     let z_closed = closed.particles[0].translation[2];
-    assert!(
-        z_closed < 0.02 - 0.002 + 1e-4,
-        "closed top: z = {z_closed}"
-    );
+    assert!(z_closed < 0.02 - 0.002 + 1e-4, "closed top: z = {z_closed}");
 }
 
 /// A unit square (OBJ, normal +z) scaled by 0.02 and moved down by `offset_m`: a sphere above

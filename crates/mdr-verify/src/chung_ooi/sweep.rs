@@ -4,8 +4,7 @@
 
 use super::{
     Resolution, CROSS_TOLERANCE, ELASTIC_RESTITUTION_TOLERANCE, NO_SLIP_TOLERANCE,
-    RAPIER_OBLIQUE_RESTITUTION_TOLERANCE,
-    SLIDING_TOLERANCE,
+    RAPIER_OBLIQUE_RESTITUTION_TOLERANCE, SLIDING_TOLERANCE,
 };
 use crate::collision::{Backend, Collision, Target};
 use crate::error::Result;
