@@ -91,8 +91,8 @@ pub enum BedError {
     },
 }
 
-/// The most spheres a generated or tiled bed may hold: 10⁸, a few times the largest bed a
-/// 128 GiB machine can step (sizes a user types are checked against it before allocation).
+/// The most spheres a generated or tiled bed may hold, 10⁸: `count` and `tile` are checked
+/// against it before anything is allocated.
 pub const MAX_BED_SPHERES: usize = 100_000_000;
 
 /// `Err(TooManySpheres)` unless `spheres ≤ MAX_BED_SPHERES`.
