@@ -132,6 +132,9 @@ fn bench_bed_refuses_bad_values_by_name() {
     for (flag, value) in [
         ("--threads", "0"),
         ("--tile", "0"),
+        // tile² × spheres beyond MAX_BED_SPHERES, and a tile whose square overflows.
+        ("--tile", "100000"),
+        ("--tile", "18446744073709551615"),
         ("--skin", "-0.1"),
         ("--skin", "0"),
         ("--steps", "0"),

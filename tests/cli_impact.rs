@@ -371,3 +371,104 @@ fn bad_flag_values_name_the_flag() {
         );
     }
 }
+
+/// Yield speed of the paper's ball from docs/theory.md §4, written out (independent of the
+/// code): `m v_y²/2 = (8/15) E* √R u_c^{5/2}`, `u_c = π q_c/(2E*)`, `E* = E/(2(1 − ν²))`.
+fn paper_yield_speed() -> f64 {
+    let (e, nu, rho, r, q_c) = (2.0e11_f64, 0.286_f64, 7800.0_f64, 0.635e-2_f64, 3.8e5_f64);
+    let e_star = e / (2.0 * (1.0 - nu * nu));
+    let mass = 4.0 / 3.0 * std::f64::consts::PI * r.powi(3) * rho;
+    let u_c = std::f64::consts::PI * q_c / (2.0 * e_star);
+    (2.0 * 8.0 / 15.0 * e_star * r.sqrt() * u_c.powf(2.5) / mass).sqrt()
+}
+
+/// `impact curve --law mdr,thornton,hertz`: one CSV per law, each the law it names (Hertz
+/// elastic, Thornton his eq. 31 with the MDR law's yield speed, MDR the single-law curve), and
+/// one figure with the three.
+#[test]
+fn curve_with_several_laws_writes_one_file_per_law() {
+    let dir = scratch("laws");
+    let csv = dir.join("laws.csv");
+    let svg = dir.join("laws.svg");
+    stdout(&mdr_dem(&[
+        "impact",
+        "curve",
+        "--law",
+        "mdr,thornton,hertz",
+        "--velocities",
+        "1,3",
+        "--csv",
+        csv.to_str().unwrap(),
+        "--plot",
+        svg.to_str().unwrap(),
+        "--quiet",
+    ]));
+    let e_n = |law: &str| -> Vec<f64> {
+        let text = std::fs::read_to_string(dir.join(format!("laws_{law}.csv")))
+            .unwrap_or_else(|e| panic!("laws_{law}.csv: {e}"));
+        text.lines()
+            .skip(1)
+            .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+            .collect()
+    };
+    // Hertz is time-integrated: e_n = 1 to the integrator's 3.1e-9 (measured).
+    for e in e_n("hertz") {
+        assert!((e - 1.0).abs() < 1e-8, "Hertz e_n = {e}");
+    }
+    let v_y = paper_yield_speed();
+    for (v, e) in [1.0, 3.0].into_iter().zip(e_n("thornton")) {
+        let x = v_y / v;
+        let published = (6.0 * 3f64.sqrt() / 5.0 * (1.0 - x * x / 6.0)).sqrt()
+            * (x / (x + 2.0 * (6.0 / 5.0 - x * x / 5.0).sqrt())).powf(0.25);
+        // Time integration against his eq. 31: measured 8.9e-8 (tests of mdr-impact).
+        assert!(
+            (e - published).abs() < 3e-7,
+            "Thornton at {v} m/s: {e} vs {published}"
+        );
+    }
+    let single = stdout(&mdr_dem(&[
+        "impact",
+        "curve",
+        "--velocities",
+        "1,3",
+        "--csv",
+        "-",
+        "--quiet",
+    ]));
+    let single: Vec<f64> = single
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(e_n("mdr"), single);
+    let figure = std::fs::read_to_string(&svg).unwrap();
+    for law in ["MDR", "Thornton", "Hertz"] {
+        assert!(figure.contains(law), "{law} missing from the figure");
+    }
+}
+
+/// `fig2 --data`: every measured point is drawn (one filled circle per point, plus the legend's).
+#[test]
+fn fig2_draws_the_measured_points() {
+    let dir = scratch("fig2-points");
+    let data = dir.join("measured.csv");
+    std::fs::write(&data, "v0_m_per_s,e_n\n0.1,0.95\n0.5,0.8\n1,0.7\n3,0.62\n").unwrap();
+    let run = |extra: &[&str]| {
+        let output = Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
+            .args(["impact", "fig2", "--quiet"])
+            .args(extra)
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        stdout(&output);
+        std::fs::read_to_string(dir.join("results/fig2.svg")).unwrap()
+    };
+    let without = run(&[]);
+    let with = run(&["--data", data.to_str().unwrap()]);
+    let circles = |svg: &str| svg.matches("<circle").count();
+    assert_eq!(
+        circles(&with) - circles(&without),
+        4 + 1,
+        "4 points and a legend marker"
+    );
+}

@@ -1,10 +1,11 @@
 //! The Chung & Ooi (2011) benchmark tests at CI resolution (coarse sweeps; the full sweeps run
 //! with `mdr-dem verify`). Each test's checks carry their tolerances (`mdr_verify::chung_ooi`
-//! constants, listed in `docs/verification.md`): Hertz contact time and peak force within 0.1 %,
-//! elastic `e_n` within 2·10⁻³, the gross-sliding impulse theory within 5·10⁻³ of `μ J_n`, rapier
-//! against the validator within 10⁻² of `μ J_n` (plus computed geometric allowances), restitution
-//! from plasticity within 5·10⁻³, and test 4 against the Kharaz, Gorham & Salman (2001)
-//! experiment in gross sliding (e_t 0.02, spin 8 %, rebound angles 1.5°/3°).
+//! constants, listed in `docs/verification.md` with the measured errors): Hertz contact time and
+//! peak force within 2·10⁻⁵, elastic `e_n` within 10⁻⁷ (rapier's oblique impacts 2·10⁻³), the
+//! gross-sliding impulse theory within 5·10⁻³ of `μ J_n`, rapier against the validator within
+//! 10⁻² of `μ J_n` (plus computed geometric allowances), restitution from plasticity within
+//! 2·10⁻⁵, and test 4 against the Kharaz, Gorham & Salman (2001) experiment in gross sliding
+//! (e_t 0.02, spin 8 %, rebound angles 1.5°/3°).
 
 use mdr_verify::chung_ooi::{self, Resolution};
 

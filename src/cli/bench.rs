@@ -77,7 +77,7 @@ pub struct BedArgs {
     /// Worker threads.
     #[arg(long, default_value_t = 1)]
     pub threads: usize,
-    /// Repeat the bed `tile × tile` times in x and y (scaling runs).
+    /// Repeat the bed `tile × tile` times in x and y (scaling runs; at most 10⁸ spheres in all).
     #[arg(long, default_value_t = 1)]
     pub tile: usize,
     /// MDR critical line load `q_c` (force/length, reduced units) for `--law mdr`.
@@ -102,7 +102,7 @@ pub struct BedArgs {
 /// Flags of `bench make-bed`.
 #[derive(Debug, Args)]
 pub struct MakeBedArgs {
-    /// Number of spheres.
+    /// Number of spheres (at most 10⁸).
     #[arg(long, default_value_t = 1000)]
     pub count: usize,
     /// Settling steps (dt = 1e-4).

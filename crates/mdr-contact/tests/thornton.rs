@@ -1,5 +1,6 @@
 //! Thornton (1997): the restitution coefficient obtained by integrating `ThorntonLaw` in time
-//! matches the published closed form `e(v/v_y)` (his eq. 31, `thornton_restitution`) within 1 %.
+//! matches the published closed form `e(v/v_y)` (his eq. 31, `thornton_restitution`) within
+//! 5·10⁻⁹ (measured ≤ 1.1·10⁻⁹ at 20,000 steps per contact time).
 
 mod common;
 
@@ -20,7 +21,7 @@ fn time_stepped_restitution_matches_thorntons_closed_form() {
         assert!(run.steps >= 5_000, "only {} steps in contact", run.steps);
         let published = thornton_restitution(ratio);
         assert!(
-            (run.restitution / published - 1.0).abs() < 0.01,
+            (run.restitution / published - 1.0).abs() < 5e-9,
             "v/v_y = {ratio}: integrated e = {}, Thornton e = {published}",
             run.restitution
         );
@@ -42,8 +43,9 @@ fn below_the_yield_speed_the_impact_is_elastic() {
         pair.hertz_contact_time(speed),
         20_000,
     );
+    // Measured |e − 1| = 7.7e-12 (velocity Verlet on the elastic Hertz branch).
     assert!(
-        (run.restitution - 1.0).abs() < 1e-4,
+        (run.restitution - 1.0).abs() < 3e-11,
         "e = {}",
         run.restitution
     );
@@ -72,8 +74,9 @@ fn liggghts_unloading_matches_its_closed_form() {
         let t_c = pair.hertz_contact_time(speed);
         let run = common::impact(&law, &mut state, mass, speed, t_c, 20_000);
         let closed = liggghts_thornton_ning_restitution(ratio);
+        // Measured ≤ 1.9e-9 (20,000 steps per contact time).
         assert!(
-            (run.restitution - closed).abs() < 2e-4,
+            (run.restitution - closed).abs() < 1e-8,
             "v/v_y = {ratio}: integrated e = {}, closed form e = {closed}",
             run.restitution
         );
@@ -88,8 +91,9 @@ fn liggghts_unloading_matches_its_closed_form() {
         if ratio > 1.0 {
             // e² = stored / kinetic (time-free energy route).
             let e_energy = (stored / (0.5 * mass * speed * speed)).sqrt();
+            // Measured ≤ 8.3e-10: the energy route is the closed form's own derivation.
             assert!(
-                (e_energy - closed).abs() < 1e-3,
+                (e_energy - closed).abs() < 5e-9,
                 "v/v_y = {ratio}: energy route e = {e_energy}, closed form e = {closed}"
             );
         }
@@ -102,12 +106,13 @@ fn liggghts_unloading_matches_its_closed_form() {
 #[test]
 fn liggghts_closed_form_matches_liggghts_runs() {
     // (v/v_y, e from LIGGGHTS 3.8) with v_y from p_y = 2 E* yieldRatio / π (docs/verification.md
-    // §4.2, 40 000 steps per contact). Tolerance: LIGGGHTS' explicit incremental force update
-    // (e = 1 + 1e-4 in the elastic range at that resolution) plus rounding of the table.
+    // §4.2, 40 000 steps per contact). Measured ≤ 3.1e-5: LIGGGHTS' explicit incremental force
+    // update (e = 1 + 3e-5 in the elastic range at that resolution) plus the table's rounding
+    // to 5e-6.
     for (ratio, liggghts) in LIGGGHTS_RUNS {
         let e = liggghts_thornton_ning_restitution(ratio);
         assert!(
-            (e - liggghts).abs() < 3e-4,
+            (e - liggghts).abs() < 1e-4,
             "v/v_y = {ratio}: closed form {e}, LIGGGHTS {liggghts}"
         );
     }

@@ -20,7 +20,8 @@ use std::path::{Path, PathBuf};
 fn bed_error(e: BedError) -> PyErr {
     match e {
         BedError::Coupling(CouplingError::Contact(c)) => contact(false)(c),
-        BedError::Coupling(CouplingError::OutOfRange { name, .. }) => invalid(name, &e),
+        BedError::Coupling(CouplingError::OutOfRange { name, .. })
+        | BedError::TooManySpheres { name, .. } => invalid(name, &e),
         BedError::Io { .. } => PyOSError::new_err(e.to_string()),
         BedError::Format { .. } | BedError::NotReference { .. } => invalid("data", e),
         other => PyRuntimeError::new_err(other.to_string()),

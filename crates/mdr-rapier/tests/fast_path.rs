@@ -589,7 +589,7 @@ fn lammps_data_round_trip_and_tiling() {
     for (a, b) in bed.position.iter().zip(&back.position) {
         assert_eq!(a, b, "positions must round-trip exactly");
     }
-    let tiled = back.tiled(2, 3);
+    let tiled = back.tiled(2, 3).unwrap();
     assert_eq!(tiled.len(), 300);
     assert!((tiled.hi[0] - 2.0 * bed.hi[0]).abs() < 1e-12);
     assert!((tiled.hi[1] - 3.0 * bed.hi[1]).abs() < 1e-12);

@@ -12,7 +12,8 @@ fn halfspace(normal: Vector, point: Vector) -> ColliderBuilder {
 }
 
 /// A steel ball bouncing between two parallel steel walls (no gravity, elastic law): after 100
-/// bounces its kinetic energy equals the initial one within 0.1 %, and the history store holds
+/// bounces its kinetic energy equals the initial one within 2e-5 (measured 5.6e-6: the elastic law
+/// conserves energy up to the integrator's error at 200 steps per contact), and the history store holds
 /// an entry only while the ball touches a wall.
 #[test]
 fn hundred_elastic_bounces_conserve_energy_and_free_history() {
@@ -72,7 +73,7 @@ fn hundred_elastic_bounces_conserve_energy_and_free_history() {
     let v = world.bodies[ball].linvel();
     let energy_ratio = v.length_squared() / (v0 * v0);
     assert!(
-        (energy_ratio - 1.0).abs() < 1e-3,
+        (energy_ratio - 1.0).abs() < 2e-5,
         "kinetic energy after 100 bounces / initial = {energy_ratio}"
     );
     assert_eq!(stepper.contacts().created(), 100);

@@ -11,6 +11,15 @@ use mdr_rapier::scenario::{CouplingMode, ImpactScene, SceneLaw, Target};
 
 const SPEEDS: [f64; 3] = [0.5, 1.0, 3.0];
 
+/// Force mode integrates the law at 1000 steps per Hertz contact time: the measured relative
+/// deviation from the validator is 2.6–4.1e-7 for the MDR law and up to 9.5e-7 for Thornton's
+/// (docs/coupling.md, "Validation").
+const FORCE_MODE: f64 = 2e-6;
+
+/// Restitution mode applies the law's closed-form restitution in one impulse: exact up to
+/// rounding (measured ≤ 1.3e-16).
+const EXACT: f64 = 1e-12;
+
 /// The validator's name for the scene's law.
 fn spec(scene: &ImpactScene) -> NormalSpec {
     match scene.model {
@@ -58,35 +67,35 @@ fn check(scene: &ImpactScene, mode: CouplingMode, tolerance: f64) {
 }
 
 #[test]
-fn force_mode_ball_on_half_space_matches_validator_within_1_percent() {
+fn force_mode_ball_on_half_space_matches_validator() {
     for v in SPEEDS {
-        check(&ImpactScene::paper_drop(v), CouplingMode::Force, 0.01);
+        check(&ImpactScene::paper_drop(v), CouplingMode::Force, FORCE_MODE);
     }
 }
 
 #[test]
-fn force_mode_unequal_pair_matches_validator_within_1_percent() {
+fn force_mode_unequal_pair_matches_validator() {
     for v in SPEEDS {
-        check(&unequal_pair(v), CouplingMode::Force, 0.01);
+        check(&unequal_pair(v), CouplingMode::Force, FORCE_MODE);
     }
 }
 
 #[test]
-fn force_mode_thornton_law_matches_validator_within_1_percent() {
+fn force_mode_thornton_law_matches_validator() {
     // p_y = 1 GPa: yield speed ≈ 0.05 m/s for the paper's steel, so every speed is plastic.
     for v in SPEEDS {
         let scene = ImpactScene {
             model: Thornton::new(1.0e9).unwrap().into(),
             ..ImpactScene::paper_drop(v)
         };
-        check(&scene, CouplingMode::Force, 0.01);
+        check(&scene, CouplingMode::Force, FORCE_MODE);
         check(
             &ImpactScene {
                 model: Thornton::new(1.0e9).unwrap().into(),
                 ..unequal_pair(v)
             },
             CouplingMode::Force,
-            0.01,
+            FORCE_MODE,
         );
     }
 }
@@ -105,14 +114,14 @@ fn restitution_mode_refuses_thornton_with_a_clear_error() {
 }
 
 #[test]
-fn restitution_mode_matches_validator_within_half_percent() {
+fn restitution_mode_matches_validator_exactly() {
     for v in SPEEDS {
         check(
             &ImpactScene::paper_drop(v),
             CouplingMode::Restitution,
-            0.005,
+            EXACT,
         );
-        check(&unequal_pair(v), CouplingMode::Restitution, 0.005);
+        check(&unequal_pair(v), CouplingMode::Restitution, EXACT);
     }
 }
 
@@ -129,7 +138,7 @@ fn force_mode_resolves_contact_with_the_requested_steps() {
 }
 
 #[test]
-fn oblique_gross_sliding_matches_validator_within_2_percent() {
+fn oblique_gross_sliding_matches_validator_and_coulomb() {
     // 1 m/s normal, 4 m/s tangential, μ = 0.2: the contact slides throughout
     // (v_t > 3.5 μ (1 + e_n) v_n), so the tangential impulse is μ times the normal one.
     let angle = (4.0f64).atan().to_degrees();
@@ -149,25 +158,31 @@ fn oblique_gross_sliding_matches_validator_within_2_percent() {
     let dvt = vt0 - outcome.tangential_velocity;
     let dvt_ref = vt0 - reference.tangential_velocity;
     let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+    // Measured: Δv_t and e_n within 1.1e-7 and 2.7e-7 of the validator (time integration at
+    // 1000 steps per contact time); the spin change 1.1e-3 smaller, because rapier's lever arm is
+    // R − δ/2 where the validator's is R (docs/verification.md, "Lever arm in rapier").
     assert!(
-        rel(dvt, dvt_ref) < 0.02,
+        rel(dvt, dvt_ref) < FORCE_MODE,
         "tangential velocity change {dvt} vs validator {dvt_ref}"
     );
     assert!(
-        rel(outcome.spin, reference.spin) < 0.02,
+        rel(outcome.spin, reference.spin) < 3e-3 && outcome.spin < reference.spin,
         "spin {} vs validator {}",
         outcome.spin,
         reference.spin
     );
     assert!(
-        rel(outcome.normal_restitution, reference.normal_restitution) < 0.01,
+        rel(outcome.normal_restitution, reference.normal_restitution) < FORCE_MODE,
         "e_n {} vs validator {}",
         outcome.normal_restitution,
         reference.normal_restitution
     );
     // Gross sliding: Δv_t = μ (1 + e_n) v_n (Coulomb impulse), independent of the validator.
     let coulomb = 0.2 * (1.0 + reference.normal_restitution) * 1.0;
-    assert!(rel(dvt, coulomb) < 0.02, "Δv_t {dvt} vs Coulomb {coulomb}");
+    assert!(
+        rel(dvt, coulomb) < FORCE_MODE,
+        "Δv_t {dvt} vs Coulomb {coulomb}"
+    );
 }
 
 #[test]
@@ -176,8 +191,12 @@ fn elastic_law_gives_unit_restitution_in_both_modes() {
         model: MdrElastoPlastic::elastic().into(),
         ..ImpactScene::paper_drop(1.0)
     };
-    for mode in [CouplingMode::Force, CouplingMode::Restitution] {
+    // Measured |e − 1|: 3.7e-9 in force mode (time integration), 0 in restitution mode (exact).
+    for (mode, tolerance) in [
+        (CouplingMode::Force, 1e-8),
+        (CouplingMode::Restitution, EXACT),
+    ] {
         let e = scene.run(mode).unwrap().normal_restitution;
-        assert!((e - 1.0).abs() < 2e-3, "{mode:?}: e = {e}");
+        assert!((e - 1.0).abs() < tolerance, "{mode:?}: e = {e}");
     }
 }

@@ -8,6 +8,9 @@ use rapier3d_f64::prelude::*;
 
 const R: f64 = 0.635e-2;
 
+/// Relative tolerance of a result that is exact up to rounding.
+const EXACT: f64 = 1e-12;
+
 fn world_with_floor() -> (PhysicsWorld, RestitutionHooks, MaterialHandle) {
     let mut world = PhysicsWorld {
         gravity: Vector::ZERO,
@@ -66,22 +69,24 @@ fn second_slower_impact_on_the_same_spot_is_elastic() {
         .unwrap();
     let (law, mass) = law();
     let first = law.impact(&MdrState::default(), mass, 3.0);
+    // The hook applies the law's closed-form restitution in one impulse: exact up to rounding
+    // (measured deviations 0 on all three impacts).
     let e1 = bounce(&mut world, &mut hooks, ball, 3.0);
     assert!(
-        (e1 - first.restitution).abs() < 5e-3 * first.restitution,
+        (e1 - first.restitution).abs() < EXACT * first.restitution,
         "e1 = {e1}"
     );
     // The crater remembers d_max of the first impact.
     assert_eq!(hooks.history().len(), 1);
     // Slower re-impact: its energy fits in the old elastic branch.
     let e2 = bounce(&mut world, &mut hooks, ball, 1.0);
-    assert!((e2 - 1.0).abs() < 1e-3, "second, slower impact: e2 = {e2}");
+    assert!((e2 - 1.0).abs() < EXACT, "second, slower impact: e2 = {e2}");
     // Faster re-impact: plastic again, but less so than on a fresh spot.
     let e3 = bounce(&mut world, &mut hooks, ball, 4.0);
     let expected = law.impact(&first.state, mass, 4.0).restitution;
     let fresh = law.impact(&MdrState::default(), mass, 4.0).restitution;
     assert!(
-        (e3 - expected).abs() < 5e-3 * expected,
+        (e3 - expected).abs() < EXACT * expected,
         "e3 = {e3} vs {expected}"
     );
     assert!(e3 > fresh && e3 < 1.0);

@@ -122,6 +122,24 @@ impl SizeDistribution {
     }
 }
 
+/// The most particles a ring may hold (10⁷, a hundred times REBOUND's shearing-sheet examples):
+/// `particles` and the number a `surface_density` asks for are checked against it before
+/// anything is allocated.
+pub const MAX_PARTICLES: usize = 10_000_000;
+
+/// The error for a population beyond [`MAX_PARTICLES`] (or a zero count), naming the parameter.
+fn too_many(name: &'static str, value: f64) -> RingError {
+    RingError::OutOfRange {
+        name,
+        value,
+        range: if name == "particles" {
+            "[1, 10000000] (MAX_PARTICLES)"
+        } else {
+            "(0, inf) with Σ L_x L_y / mean particle mass ≤ 10000000 particles (MAX_PARTICLES)"
+        },
+    }
+}
+
 /// How many particles to draw.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Population {
@@ -145,14 +163,18 @@ pub fn initial_conditions(
     positive("density", density)?;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let target_mass = match population {
-        Population::SurfaceDensity(sigma) => positive("surface_density", sigma)? * domain.area(),
+        Population::SurfaceDensity(sigma) => {
+            let target = positive("surface_density", sigma)? * domain.area();
+            // Expected number drawn: Σ L_x L_y over the mean particle mass.
+            let mean_mass = density * 4.0 / 3.0 * std::f64::consts::PI * sizes.moment(3.0);
+            if target / mean_mass > MAX_PARTICLES as f64 {
+                return Err(too_many("surface_density", sigma));
+            }
+            target
+        }
         Population::Count(n) => {
-            if n == 0 {
-                return Err(RingError::OutOfRange {
-                    name: "particles",
-                    value: 0.0,
-                    range: "[1, inf)",
-                });
+            if n == 0 || n > MAX_PARTICLES {
+                return Err(too_many("particles", n as f64));
             }
             f64::INFINITY
         }
@@ -166,6 +188,9 @@ pub fn initial_conditions(
     let mut total = 0.0;
     const ATTEMPTS: usize = 10_000;
     while total < target_mass && particles.len() < count {
+        if particles.len() == MAX_PARTICLES {
+            return Err(too_many("surface_density", target_mass / domain.area()));
+        }
         let radius = sizes.quantile(rng.random::<f64>());
         let mass = density * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3);
         let mut placed = false;
@@ -213,8 +238,11 @@ struct OverlapGrid {
 
 impl OverlapGrid {
     fn new(domain: &ShearingBox, cell: f64) -> Self {
-        let nx = ((domain.lx() / cell).floor() as usize).max(1);
-        let ny = ((domain.ly() / cell).floor() as usize).max(1);
+        // At most 1024 × 1024 cells however large the box: fewer, larger cells stay correct
+        // (a cell is never smaller than `cell`), and the grid's size stays bounded.
+        const MAX_CELLS_PER_SIDE: f64 = 1024.0;
+        let nx = (domain.lx() / cell).floor().clamp(1.0, MAX_CELLS_PER_SIDE) as usize;
+        let ny = (domain.ly() / cell).floor().clamp(1.0, MAX_CELLS_PER_SIDE) as usize;
         Self {
             lx: domain.lx(),
             ly: domain.ly(),

@@ -78,10 +78,37 @@ fn mdr_ice_law_follows_bridges_over_ring_impact_speeds() {
     let (mdr, bridges) = (MdrRestitution::ice(), BridgesLaw::default());
     let pair = equal_pair(1.6);
     for v in [3e-4, 1e-3, 3e-3] {
+        // Bridges, Hatzes & Lin (1984): ε = 0.32 (v / 1 cm/s)^−0.234, written out here.
+        let published = (0.32 * (v / 0.01f64).powf(-0.234)).min(1.0);
         let (a, b) = (mdr.first_impact(&pair, v), bridges.at(v));
-        assert!((a - b).abs() < 0.06, "v = {v}: MDR {a}, Bridges {b}");
+        assert!((b - published).abs() < 1e-12, "v = {v}: {b} vs {published}");
+        assert!(
+            (a - published).abs() < 0.06,
+            "v = {v}: MDR {a}, Bridges {published}"
+        );
     }
     // High-speed limit sqrt(Θ/E*) (docs/theory.md §4).
     let fast = mdr.first_impact(&pair, 10.0);
     assert!((fast - 0.2f64.sqrt()).abs() < 0.02, "e(10 m/s) = {fast}");
+}
+
+/// The ice law's yield speed from the energy argument of docs/theory.md §4, written out here
+/// (independent of the law crates): equal ice spheres of radius 1.6 m, `E* = E/(2(1 − ν²))`
+/// (eq. 16), `R = r/2`, `m = m₁/2`, `u_c = π q_c/(2E*)` (eq. 11), `m v_y²/2 = (8/15) E* √R u_c^{5/2}`.
+/// Below it the law is elastic, above it plastic.
+#[test]
+fn mdr_ice_law_yields_at_the_energy_argument_speed() {
+    let law = MdrRestitution::ice();
+    let pair = equal_pair(1.6);
+    let (e, nu, rho, r, q_c) = (9.0e9_f64, 0.33_f64, 400.0_f64, 1.6_f64, 8.0e3_f64);
+    let e_star = e / (2.0 * (1.0 - nu * nu));
+    let mass = 0.5 * rho * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
+    let u_c = std::f64::consts::PI * q_c / (2.0 * e_star);
+    let work = 8.0 / 15.0 * e_star * (0.5 * r).sqrt() * u_c.powf(2.5);
+    let by_hand = (2.0 * work / mass).sqrt();
+    let vy = law.yield_speed(&pair).unwrap();
+    assert!((vy / by_hand - 1.0).abs() < 1e-12, "{vy} vs {by_hand}");
+    let below = law.first_impact(&pair, 0.999 * by_hand);
+    assert!((below - 1.0).abs() < 1e-12, "e(0.999 v_y) = {below}");
+    assert!(law.first_impact(&pair, 1.01 * by_hand) < 1.0);
 }

@@ -1,6 +1,7 @@
 //! Energy books of a small column collapse with no external work and no damping: the sum of
-//! kinetic, gravitational and elastic energy and of the plastic work stays within 1 % of its
-//! start value, while plasticity dissipates a sizeable part of the released energy (so the test
+//! kinetic, gravitational and elastic energy and of the plastic work stays within 0.03 % of its
+//! start value (measured 0.0092 %; 0.018 % and 0.010 % with friction and rolling resistance,
+//! held to 0.05 %), while plasticity dissipates a sizeable part of the released energy (so the test
 //! fails if the plastic work were not booked, or booked twice).
 
 mod common;
@@ -17,7 +18,7 @@ fn worst_drift_without(rows: &[EnergyRow], left_out: impl Fn(&EnergyRow) -> f64)
 }
 
 #[test]
-fn frictionless_column_collapse_keeps_the_energy_sum_within_one_percent() {
+fn frictionless_column_collapse_keeps_the_energy_sum() {
     let dir = common::temp_dir("energy");
     let text = common::column(4, 4, 0.06, 0.0, "");
     let path = common::write(&dir, "column.toml", &text);
@@ -45,7 +46,7 @@ fn frictionless_column_collapse_keeps_the_energy_sum_within_one_percent() {
         100.0 * worst / start
     );
     assert!(
-        worst <= 0.01 * start,
+        worst <= 3e-4 * start,
         "energy sum drifted by {worst:.3e} J of {start:.3e} J"
     );
     // The books are not trivially conserved: the collapse releases energy and plasticity takes a
@@ -69,10 +70,10 @@ fn frictionless_column_collapse_keeps_the_energy_sum_within_one_percent() {
 /// With Mindlin friction the books hold too: slip work is booked as friction, the stored
 /// tangential energy as elastic, and the energy the spring gains or loses without work because
 /// its stiffness follows the contact radius (and a shrinking contact rescales its displacement)
-/// as `stiffness_tangential_j`. Bounds: the required 1 % of the start value, and 0.05 % (measured
-/// 0.018 %; 0.14 % without the stiffness book, which the last assertion checks is needed).
+/// as `stiffness_tangential_j`. Bound: 0.05 % of the start value (measured 0.018 %; 0.14 % without
+/// the stiffness book, which the last assertion checks is needed).
 #[test]
-fn frictional_column_collapse_books_friction_within_one_percent() {
+fn frictional_column_collapse_books_friction() {
     let dir = common::temp_dir("energy-friction");
     let text = common::column(4, 4, 0.06, 0.5, "");
     let path = common::write(&dir, "column.toml", &text);
@@ -96,10 +97,6 @@ fn frictional_column_collapse_books_friction_within_one_percent() {
         100.0 * worst / start
     );
     assert!(
-        worst <= 0.01 * start,
-        "energy sum drifted by {worst:.3e} J of {start:.3e} J"
-    );
-    assert!(
         worst <= 0.0005 * start,
         "energy sum drifted by {worst:.3e} J of {start:.3e} J (more than 0.05 %)"
     );
@@ -120,8 +117,8 @@ fn frictional_column_collapse_books_friction_within_one_percent() {
 
 /// With rolling resistance (Ai et al.'s elastic–plastic spring, μ_r = 0.1) the books hold as
 /// well: the rolling springs' energy `|M_r|²/(2 k_r)` is booked as `elastic_rolling_j` and the
-/// plastic rolling rotation's work as `rolling_j`. Besides the required 1 % of the start value
-/// (which includes the whole potential energy above the floor), the drift is held to 2 % of the
+/// plastic rolling rotation's work as `rolling_j`. Besides 0.05 % of the start value (which
+/// includes the whole potential energy above the floor), the drift is held to 2 % of the
 /// energy the collapse releases and to half the rolling work: leaving the rolling work out of
 /// the sum would break both (it is ~7 % of the released energy). The energy the tangential and
 /// rolling springs gain or lose without work through their stiffness changes is booked as
@@ -131,7 +128,7 @@ fn frictional_column_collapse_books_friction_within_one_percent() {
 /// a third of what it would be without either stiffness book (so a missing, mis-signed or
 /// wrongly evaluated stiffness book fails the test).
 #[test]
-fn rolling_resistance_column_collapse_books_rolling_within_one_percent() {
+fn rolling_resistance_column_collapse_books_rolling() {
     let dir = common::temp_dir("energy-rolling");
     let text = common::column(4, 4, 0.06, 0.5, "")
         .replace("friction = 0.5", "friction = 0.5\nrolling_friction = 0.1");
@@ -162,10 +159,6 @@ fn rolling_resistance_column_collapse_books_rolling_within_one_percent() {
         last.friction_j,
         last.rolling_j,
         100.0 * worst / start
-    );
-    assert!(
-        worst <= 0.01 * start,
-        "energy sum drifted by {worst:.3e} J of {start:.3e} J"
     );
     assert!(
         worst <= 0.0005 * start,

@@ -46,7 +46,9 @@ fn drop_scene_matches_the_closed_form_in_both_modes() {
             "headline = \"drop\"",
             "headline = \"drop\"\ncoupling = \"restitution\"",
         );
-    for (mode, text, tolerance) in [("force", force, 0.01), ("restitution", restitution, 0.001)] {
+    // Measured: force mode at 50 steps per contact 2.9e-4 from the closed form; restitution mode
+    // exact (it applies the closed form at the measured impact speed).
+    for (mode, text, tolerance) in [("force", force, 1e-3), ("restitution", restitution, 1e-12)] {
         let path = dir.join(format!("drop_{mode}.toml"));
         let scene = parse_scene(&path, &text).unwrap_or_else(|p| panic!("{p}"));
         let summary = run_scene(

@@ -6,9 +6,10 @@ mod common;
 use mdr_sim::scene::validate::parse_scene;
 use mdr_sim::{run_scene, RunOptions};
 
-/// A wide, low column (a < 0.74): the report compares with Lube et al. (2004) in that regime,
-/// (R − R0)/R0 = 1.24 a and H = H0, and the measured deposit is a spread, lower column whose
-/// centre keeps most of its height.
+/// A wide, low column (a < 0.74): the report quotes Lube et al. (2004) for that regime, their
+/// published (R − R0)/R0 = 1.24 a and H = H0 (written out here), and the measured deposit is a
+/// spread, lower column whose centre keeps most of its height. Smooth spheres are not sand: the
+/// run-out itself is not held to Lube's (measured 0.414 against 0.677, H/H0 = 0.763).
 #[test]
 fn low_column_is_compared_with_lube_in_its_regime() {
     let dir = common::temp_dir("column-lube");
@@ -35,8 +36,11 @@ fn low_column_is_compared_with_lube_in_its_regime() {
     );
 }
 
-/// A thin drum (two spheres deep) turning in the rolling regime: a finite angle of repose in
-/// the range of frictional spheres (15°–55°) with a small scatter over the second half.
+/// A thin drum (two spheres deep) turning in the rolling regime: its dynamic angle of repose
+/// within 10° of 33.3°, LAMMPS's angle for the full drum's Hertz variant (an independent code,
+/// docs/performance.md; the full built-in drum gives 38.2°), an allowance for this small drum's
+/// 12 frames (measured 37.9° ± 5.5°) and its side walls; the scatter over the second half below
+/// 10°.
 #[test]
 fn small_drum_has_a_dynamic_angle_of_repose() {
     let dir = common::temp_dir("drum-small");
@@ -79,6 +83,6 @@ fn small_drum_has_a_dynamic_angle_of_repose() {
     eprintln!("{}", h.text);
     let angle = h.get("dynamic_angle_of_repose_deg").unwrap();
     let std = h.get("angle_std_deg").unwrap();
-    assert!((15.0..55.0).contains(&angle), "{angle}");
+    assert!((23.3..43.3).contains(&angle), "{angle}");
     assert!(std < 10.0, "{std}");
 }

@@ -428,12 +428,14 @@ fn hopper_orifice_sweep_runs_once_per_diameter_and_fits_the_rates() {
             .join(format!("out/hopper_D{i}/hopper_D{i}_headline.toml"))
             .exists());
     }
-    if let Some(fit) = sweep.fit {
-        let (a, b) = fit.line;
-        let rho_b = mdr_sim::headline::BULK_SOLID_FRACTION * 2500.0;
-        assert!((fit.c - b.powf(2.5) / (rho_b * 9.81f64.sqrt())).abs() < 1e-12 * fit.c.abs());
-        assert!((fit.k + a / (b * 0.002)).abs() < 1e-9 * fit.k.abs().max(1.0));
-    }
+    // The fit is always made (three or more points) and must be there: a sweep that silently
+    // drops it fails here. The rates of these 0.06 s runs are transients, not Beverloo's
+    // steady flow; the ignored test below checks the physics.
+    let fit = sweep.fit.expect("the sweep's Beverloo fit");
+    let (a, b) = fit.line;
+    let rho_b = mdr_sim::headline::BULK_SOLID_FRACTION * 2500.0;
+    assert!((fit.c - b.powf(2.5) / (rho_b * 9.81f64.sqrt())).abs() < 1e-12 * fit.c.abs());
+    assert!((fit.k + a / (b * 0.002)).abs() < 1e-9 * fit.k.abs().max(1.0));
 }
 
 /// `exact_surface = true` on the hopper's cylinder and orifice plate: with an orifice narrower

@@ -73,6 +73,40 @@ pub enum BedError {
     /// The worker-thread pool could not be built.
     #[error("building the thread pool: {0}")]
     ThreadPool(String),
+    /// A size parameter asks for more spheres than a bed may hold (checked before anything is
+    /// allocated).
+    #[error(
+        "parameter `{name}` = {value} asks for {spheres} spheres; a bed holds at most \
+         {limit} (MAX_BED_SPHERES)"
+    )]
+    TooManySpheres {
+        /// The parameter as the user knows it (`count`, `tile`).
+        name: &'static str,
+        /// The value that was given.
+        value: usize,
+        /// The spheres it asks for (saturating).
+        spheres: u128,
+        /// [`MAX_BED_SPHERES`].
+        limit: usize,
+    },
+}
+
+/// The most spheres a generated or tiled bed may hold, 10⁸: `count` and `tile` are checked
+/// against it before anything is allocated.
+pub const MAX_BED_SPHERES: usize = 100_000_000;
+
+/// `Err(TooManySpheres)` unless `spheres ≤ MAX_BED_SPHERES`.
+fn bounded_spheres(name: &'static str, value: usize, spheres: u128) -> Result<usize, BedError> {
+    if spheres <= MAX_BED_SPHERES as u128 {
+        Ok(spheres as usize)
+    } else {
+        Err(BedError::TooManySpheres {
+            name,
+            value,
+            spheres,
+            limit: MAX_BED_SPHERES,
+        })
+    }
 }
 
 impl Bed {
@@ -209,7 +243,12 @@ impl Bed {
     }
 
     /// The bed repeated `nx × ny` times in x and y (a periodic bed stays a valid periodic bed).
-    pub fn tiled(&self, nx: usize, ny: usize) -> Bed {
+    /// Refuses (naming `tile`) a result of more than [`MAX_BED_SPHERES`] spheres.
+    pub fn tiled(&self, nx: usize, ny: usize) -> Result<Bed, BedError> {
+        let spheres = (self.len() as u128)
+            .saturating_mul(nx as u128)
+            .saturating_mul(ny as u128);
+        let total = bounded_spheres("tile", nx.max(ny), spheres)?;
         let lx = self.hi[0] - self.lo[0];
         let ly = self.hi[1] - self.lo[1];
         let mut out = Bed {
@@ -219,9 +258,9 @@ impl Bed {
                 self.lo[1] + ly * ny as f64,
                 self.hi[2],
             ],
-            diameter: Vec::with_capacity(self.len() * nx * ny),
-            density: Vec::with_capacity(self.len() * nx * ny),
-            position: Vec::with_capacity(self.len() * nx * ny),
+            diameter: Vec::with_capacity(total),
+            density: Vec::with_capacity(total),
+            position: Vec::with_capacity(total),
         };
         // Tile-major in y then x, so that neighbouring particles keep nearby indices.
         for ty in 0..ny {
@@ -234,7 +273,7 @@ impl Bed {
                 }
             }
         }
-        out
+        Ok(out)
     }
 
     /// Sort the spheres by cell (`cell` side) along z, then y, then x, so that particles close in
@@ -300,6 +339,7 @@ pub fn lattice_bed(spec: &BedSpec) -> Result<Bed, BedError> {
         }
         .into());
     }
+    bounded_spheres("count", spec.count, spec.count as u128)?;
     let side = (spec.count as f64 / spec.areal_density).sqrt();
     let spacing = 1.1;
     let per_row = (side / spacing).floor().max(1.0) as usize;
@@ -592,7 +632,7 @@ pub fn bench_bed(bed: &Bed, settings: &BenchSettings) -> Result<BenchFigures, Be
     }
     let tiled;
     let bed = if settings.tile > 1 {
-        tiled = bed.tiled(settings.tile, settings.tile);
+        tiled = bed.tiled(settings.tile, settings.tile)?;
         &tiled
     } else {
         bed
@@ -793,6 +833,38 @@ mod tests {
             ..settings
         };
         assert_eq!(bench_bed(&bed, &tiled).unwrap().particles, 800);
+    }
+
+    #[test]
+    fn sizes_beyond_the_bed_limit_are_refused_before_allocation() {
+        let huge = lattice_bed(&BedSpec {
+            count: usize::MAX,
+            ..BedSpec::default()
+        })
+        .unwrap_err();
+        assert!(
+            matches!(huge, BedError::TooManySpheres { name: "count", .. }),
+            "{huge}"
+        );
+        assert!(huge.to_string().contains("100000000"), "{huge}");
+        let bed = lattice_bed(&BedSpec {
+            count: 200,
+            ..BedSpec::default()
+        })
+        .unwrap();
+        // tile² × 200 overflows usize for tile = 2³²; 708² × 200 > 10⁸ ≥ 707² × 200.
+        for tile in [usize::MAX, 1 << 32, 708] {
+            let settings = BenchSettings {
+                tile,
+                ..BenchSettings::default()
+            };
+            let err = bench_bed(&bed, &settings).unwrap_err();
+            assert!(
+                matches!(err, BedError::TooManySpheres { name: "tile", .. }),
+                "{err}"
+            );
+            assert!(err.to_string().contains("`tile`"), "{err}");
+        }
     }
 
     #[test]

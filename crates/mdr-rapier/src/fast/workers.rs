@@ -6,8 +6,7 @@
 //! colours of the pair loop, the integration) with short serial parts between them. rayon puts
 //! a worker that finds no work to sleep within microseconds, and waking it for the next pass
 //! costs that pass tens of microseconds on a virtual machine, whose idle virtual CPU the host has
-//! descheduled: on the 2-core virtual machine of docs/performance.md a `join` of two 20 µs halves
-//! took 21 µs right after another one, 45 µs after 10 µs of serial work and 89 µs after 50 µs.
+//! descheduled (measured in docs/performance.md, "The threads wait awake").
 //! [`with_workers_awake`] keeps the other threads of the current pool busy-waiting, each taking
 //! pool work the moment it appears, for as long as its closure runs: what MPI ranks and
 //! OpenMP's active wait policy do. Which thread takes which work does not change any result of

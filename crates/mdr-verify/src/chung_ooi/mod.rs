@@ -64,10 +64,16 @@ impl Resolution {
     }
 }
 
-/// Tolerance on contact time and peak force against Hertz (relative).
-pub const HERTZ_TOLERANCE: f64 = 1e-3;
-/// Tolerance on the restitution of an elastic impact (absolute).
-pub const ELASTIC_RESTITUTION_TOLERANCE: f64 = 2e-3;
+/// Tolerance on contact time and peak force against Hertz (relative): the time integrations
+/// reach 5.6·10⁻⁶ at CI resolution (docs/verification.md §3).
+pub const HERTZ_TOLERANCE: f64 = 2e-5;
+/// Tolerance on the restitution of an elastic impact (absolute): the time integrations reach
+/// 1.8·10⁻⁸ at CI resolution.
+pub const ELASTIC_RESTITUTION_TOLERANCE: f64 = 1e-7;
+/// Tolerance on the normal restitution of rapier's elastic oblique impacts (tests 4–8,
+/// absolute): rapier's real geometry (the centre line turns during a sliding contact,
+/// docs/verification.md §3) moves `e_n` by up to 1.9·10⁻³ at CI resolution.
+pub const RAPIER_OBLIQUE_RESTITUTION_TOLERANCE: f64 = 2e-3;
 /// Tolerance on the gross-sliding impulse theory, relative to `μ J_n`.
 pub const SLIDING_TOLERANCE: f64 = 5e-3;
 /// Tolerance on the agreement of rapier and the validator with the same law, relative to `μ J_n`.
@@ -75,8 +81,9 @@ pub const CROSS_TOLERANCE: f64 = 1e-2;
 /// Tolerance on the tangential impulse (relative to `μ J_n`) and spin change (relative) when the
 /// contact surfaces move together (test 7, counter-rotating spheres): round-off only.
 pub const NO_SLIP_TOLERANCE: f64 = 1e-6;
-/// Tolerance on the restitution obtained from plasticity (test 3, absolute).
-pub const PLASTIC_RESTITUTION_TOLERANCE: f64 = 5e-3;
+/// Tolerance on the restitution obtained from plasticity (test 3, absolute): measured
+/// 4.9·10⁻⁶ at CI resolution.
+pub const PLASTIC_RESTITUTION_TOLERANCE: f64 = 2e-5;
 
 /// Run test `number` (1–8).
 pub fn run(number: u8, resolution: Resolution) -> Result<TestReport> {

@@ -4,7 +4,7 @@
 
 use super::{
     Resolution, CROSS_TOLERANCE, ELASTIC_RESTITUTION_TOLERANCE, NO_SLIP_TOLERANCE,
-    SLIDING_TOLERANCE,
+    RAPIER_OBLIQUE_RESTITUTION_TOLERANCE, SLIDING_TOLERANCE,
 };
 use crate::collision::{Backend, Collision, Target};
 use crate::error::Result;
@@ -114,11 +114,16 @@ pub(super) fn oblique_study(
                 .points
                 .push((p.x, out.tangential_impulse / scale));
             spin_series[k].points.push((p.x, out.spin / spin_scale));
+            let restitution_tolerance = if *backend == Backend::RapierForce {
+                RAPIER_OBLIQUE_RESTITUTION_TOLERANCE
+            } else {
+                ELASTIC_RESTITUTION_TOLERANCE
+            };
             checks.push(Check::new(
                 format!("e_n, {label}"),
                 out.normal_restitution,
                 1.0,
-                Tolerance::Absolute(ELASTIC_RESTITUTION_TOLERANCE),
+                Tolerance::Absolute(restitution_tolerance),
             ));
             checks.push(Check::new(
                 format!("|J_t|/(μ J_n) ≤ 1, {label}"),
