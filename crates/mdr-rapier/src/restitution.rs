@@ -220,6 +220,35 @@ pub struct RestitutionReport {
 /// handler); with an own `PhysicsPipeline`, bracket each `step` by
 /// [`RestitutionHooks::prepare`] and [`RestitutionHooks::maintain`] and pass
 /// [`RestitutionHooks::with_user`] (or the hooks themselves) to it.
+///
+/// ```
+/// use mdr_rapier::prelude::*;
+/// use mdr_rapier::rapier::prelude::*;
+///
+/// /// The user's own hooks (here: rapier's defaults).
+/// struct GameHooks;
+/// impl PhysicsHooks for GameHooks {}
+///
+/// let mut world = PhysicsWorld::default();
+/// world.integration_parameters.dt = 1e-4;
+/// let mut hooks =
+///     RestitutionHooks::with_friction_rule(MdrElastoPlastic::paper(), FrictionRule::Colliders)
+///         .unwrap();
+/// let steel = hooks.particles_mut().insert_material(Material::paper_steel());
+/// let floor = ColliderBuilder::new(SharedShape::halfspace(Vector::Y));
+/// hooks.insert_surface(&mut world, floor, None, steel).unwrap();
+/// let ball = SphereBuilder::new(0.00635, steel)
+///     .translation(Vector::new(0.0, 0.007, 0.0))
+///     .linvel(Vector::new(0.0, -1.0, 0.0));
+/// let (ball, _) = hooks.insert_sphere(&mut world, ball).unwrap();
+/// let mut impacts = 0;
+/// for _ in 0..100 {
+///     impacts += hooks.step_with(&mut world, &GameHooks, &()).unwrap().impacts;
+/// }
+/// // One impact, with the law's plastic loss.
+/// let v = world.bodies[ball].linvel().y;
+/// assert!(impacts == 1 && v > 0.5 && v < 1.0);
+/// ```
 #[derive(Debug)]
 pub struct RestitutionHooks {
     model: MdrElastoPlastic,

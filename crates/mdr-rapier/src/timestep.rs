@@ -28,9 +28,8 @@ pub struct TimeStepAdvice {
 /// with `steps_per_contact` (≥ 1) steps.
 ///
 /// ```
-/// use mdr_contact::ContactPair;
-/// use mdr_rapier::stable_time_step;
-/// let advice = stable_time_step(&ContactPair::paper_fig2(), 3.0, 50.0).unwrap();
+/// use mdr_rapier::{stable_time_step, LawPair};
+/// let advice = stable_time_step(&LawPair::paper_fig2(), 3.0, 50.0).unwrap();
 /// assert!(advice.time_step < advice.stability_limit);
 /// assert!((advice.contact_time / advice.time_step - 50.0).abs() < 1e-9);
 /// ```
