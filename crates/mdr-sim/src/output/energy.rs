@@ -130,6 +130,24 @@ impl BalanceDrift {
         }
     }
 
+    /// The same drift against a scale of at least `floor_j` (J). A bed that starts at rest has
+    /// almost no energy scale until it moves; the guard measures its drift against at least the
+    /// work of lifting every particle by its own diameter, the smallest rearrangement a packing
+    /// can make.
+    pub fn at_least(self, floor_j: f64) -> Self {
+        let scale_j = self.scale_j.max(floor_j);
+        let fraction = if self.joules == 0.0 {
+            0.0
+        } else {
+            self.joules / scale_j.max(1e-300)
+        };
+        Self {
+            joules: self.joules,
+            scale_j,
+            fraction,
+        }
+    }
+
     /// The drift over a whole series of rows (`None` when it is empty).
     pub fn of(rows: &[EnergyRow]) -> Option<Self> {
         Some(Self::between(rows.first()?, rows.last()?))
