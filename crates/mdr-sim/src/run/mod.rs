@@ -212,6 +212,8 @@ pub(crate) struct Sim<'a> {
     view: ViewBuffers,
     /// Spheres below `delete_below_m` leave the run (crate::walls::Sink).
     sink: Option<crate::walls::Sink>,
+    /// The floor of the energy guard's scale (J): see [`one_diameter_lift_j`].
+    guard_floor_j: f64,
 }
 
 #[derive(Default)]
@@ -305,6 +307,7 @@ impl<'a> Sim<'a> {
             checkpoints: Vec::new(),
             view: ViewBuffers::default(),
             sink: crate::walls::scene_sink(scene),
+            guard_floor_j: one_diameter_lift_j(scene),
         })
     }
 
@@ -795,26 +798,11 @@ impl<'a> Sim<'a> {
         deepest
     }
 
-    /// The work of lifting every particle of the scene by its own diameter against gravity (J):
-    /// the floor of the energy guard's scale.
-    fn one_diameter_lift_j(&self) -> f64 {
-        let g = self.scene.gravity.norm();
-        self.scene
-            .particles
-            .iter()
-            .map(|p| {
-                let density = self.scene.materials[p.material].1.density();
-                let mass = 4.0 / 3.0 * std::f64::consts::PI * p.radius.powi(3) * density;
-                mass * g * 2.0 * p.radius
-            })
-            .sum()
-    }
-
     /// The energy guard: why the books' drift from their first row is beyond the scene's
     /// `max_energy_drift`, if it is.
     fn energy_guard(&self) -> Option<String> {
         let max = self.scene.max_energy_drift?;
-        let drift = BalanceDrift::of(&self.energy)?.at_least(self.one_diameter_lift_j());
+        let drift = BalanceDrift::of(&self.energy)?.at_least(self.guard_floor_j);
         (drift.fraction.abs() > max).then(|| {
             format!(
                 "the energy balance drifted by {:+.3e} J, {:+.2} % of the energy scale {:.3e} J, beyond \
@@ -920,4 +908,19 @@ fn restore_fast_lists<N: SceneNormal, R: SceneRolling>(
         })?;
     stepper.import_lists(world, state)?;
     Ok(())
+}
+
+/// The work of lifting every particle of the scene by its own diameter against gravity (J):
+/// the floor of the energy guard's scale.
+fn one_diameter_lift_j(scene: &Scene) -> f64 {
+    let g = scene.gravity.norm();
+    scene
+        .particles
+        .iter()
+        .map(|p| {
+            let density = scene.materials[p.material].1.density();
+            let mass = 4.0 / 3.0 * std::f64::consts::PI * p.radius.powi(3) * density;
+            mass * g * 2.0 * p.radius
+        })
+        .sum()
 }
