@@ -64,16 +64,18 @@ pub enum CouplingError {
          `PhysicsPipeline::step` (or step with `RestitutionHooks::step_with`)"
     )]
     TimeStepUnset,
-    /// The hooks' time step differs from the one rapier integrates with.
+    /// The time step the coupling was given differs from the one rapier integrates with (the
+    /// law would advance its histories by one step while rapier moves the bodies by another).
     #[error(
-        "the restitution hooks assume dt = {hooks} s but rapier steps with dt = {world} s; \
-         call `RestitutionHooks::prepare` with the world's integration parameters"
+        "the coupling was given dt = {coupling} s but rapier steps with dt = {world} s; {fix}"
     )]
     TimeStepMismatch {
-        /// The step the hooks were prepared with (s).
-        hooks: f64,
+        /// The step the coupling was given (s).
+        coupling: f64,
         /// The step of the world's integration parameters (s).
         world: f64,
+        /// How to fix it.
+        fix: &'static str,
     },
     /// A force-mode step too long for a contact: symplectic Euler is unstable on it.
     #[error(

@@ -8,10 +8,13 @@
 //!    first touch, dropped at separation);
 //! 4. the per-pair kernel ([`crate::kernel::evaluate_pair`]) in parallel;
 //! 5. forces and torques reduced per body in key order (deterministic for any thread count) and
-//!    written with `reset_forces`/`add_force`;
+//!    added to the forces the user put on the bodies (rapier's `add_force`, kept from step to
+//!    step);
 //! 6. `PhysicsPipeline::step` with one solver iteration: `v_{k+1} = v_k + dt F(x_k, v_k)/m`,
-//!    `x_{k+1} = x_k + dt v_{k+1}` (symplectic Euler; see `docs/coupling.md`).
+//!    `x_{k+1} = x_k + dt v_{k+1}` (symplectic Euler; see `docs/coupling.md`);
+//! 7. every body gets the user's own forces back.
 
+use crate::added_forces::AddedForces;
 use crate::convert::{to_glam, to_na};
 use crate::error::{positive, CouplingError, Result};
 use crate::geometry::{sphere_shape, sphere_sphere, SurfaceContact};
@@ -211,6 +214,8 @@ pub struct ForceModeStepper<
     wrenches: Vec<(Vector3<f64>, Vector3<f64>)>,
     /// Bodies already written this step (by arena index).
     written: Vec<bool>,
+    /// The wrenches written on top of the user's forces, until given back.
+    added: AddedForces,
     unhandled: Vec<UnhandledPair>,
     report: StepReport,
 }
@@ -226,6 +231,7 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> ForceModeStepper<N, T,
             candidates: Vec::new(),
             wrenches: Vec::new(),
             written: Vec::new(),
+            added: AddedForces::default(),
             unhandled: Vec::new(),
             report: StepReport::default(),
         }
@@ -249,6 +255,7 @@ where
             candidates: self.candidates,
             wrenches: self.wrenches,
             written: self.written,
+            added: self.added,
             unhandled: self.unhandled,
             report: self.report,
         }
@@ -446,6 +453,7 @@ where
         self.report.prediction_distance_ok =
             2.0 * self.report.max_speed * dt <= world.integration_parameters.prediction_distance();
         world.step_with_events(hooks, events);
+        self.give_back_user_forces(&mut world.bodies);
         Ok(self.report)
     }
 
@@ -464,9 +472,32 @@ where
         Ok(())
     }
 
+    /// [`ForceModeStepper::check`] for a program that passes its step to
+    /// [`ForceModeStepper::compute_forces`]: also `dt` must be the step rapier integrates with
+    /// (`params.dt`), else [`CouplingError::TimeStepMismatch`] (the law would advance the
+    /// histories by one step while rapier moves the bodies by another).
+    pub fn check_step(
+        &self,
+        params: &IntegrationParameters,
+        colliders: &ColliderSet,
+        dt: f64,
+    ) -> Result<()> {
+        self.check(params, colliders)?;
+        if dt != params.dt {
+            return Err(CouplingError::TimeStepMismatch {
+                coupling: dt,
+                world: params.dt,
+                fix: "pass the integration parameters' dt to compute_forces (set by \
+                      `ForceModeStepper::configure`)",
+            });
+        }
+        Ok(())
+    }
+
     /// Steps 1–4: candidates, geometry, history merge and per-pair wrenches, from the poses and
     /// velocities in `bodies`/`colliders`. Does not touch the bodies. No user hooks: see
-    /// [`ForceModeStepper::compute_forces_with`].
+    /// [`ForceModeStepper::compute_forces_with`]. No checks: a program that runs its own
+    /// pipeline calls [`ForceModeStepper::check_step`] first.
     pub fn compute_forces(
         &mut self,
         bodies: &RigidBodySet,
@@ -647,8 +678,12 @@ where
         Ok(())
     }
 
-    /// Step 5: replace the user forces of every registered dynamic body by the contact wrenches
-    /// of [`ForceModeStepper::compute_forces`].
+    /// Step 5: add the contact wrenches of [`ForceModeStepper::compute_forces`] to the forces
+    /// the user put on every registered dynamic body (`add_force` / `add_torque`, which rapier
+    /// keeps from step to step). After `PhysicsPipeline::step`,
+    /// [`ForceModeStepper::give_back_user_forces`] leaves each body with the user's own forces
+    /// again; without it the next call still adds to the user's own (it recognises its own
+    /// write), but between the steps the bodies hold the user's forces plus the wrenches.
     pub fn apply_forces(&mut self, bodies: &mut RigidBodySet) {
         let started = Instant::now();
         let mut max_speed2: f64 = 0.0;
@@ -671,13 +706,15 @@ where
             }
             self.written[i] = true;
             max_speed2 = max_speed2.max(body.linvel().length_squared());
-            body.reset_forces(false);
-            body.reset_torques(false);
-            if let Some(w) = self.wrenches.get_mut(i) {
-                body.add_force(to_glam(&w.0), false);
-                body.add_torque(to_glam(&w.1), false);
-                *w = (Vector3::zeros(), Vector3::zeros());
-            }
+            let (force, torque) = match self.wrenches.get_mut(i) {
+                Some(w) => {
+                    let wrench = (to_glam(&w.0), to_glam(&w.1));
+                    *w = (Vector3::zeros(), Vector3::zeros());
+                    wrench
+                }
+                None => (Vector::ZERO, Vector::ZERO),
+            };
+            self.added.add(handle, body, force, torque);
         }
         for particle in self.particles.iter() {
             if let Some(handle) = particle.body {
@@ -688,6 +725,13 @@ where
         }
         self.report.max_speed = max_speed2.sqrt();
         self.report.timings.apply = started.elapsed().as_secs_f64();
+    }
+
+    /// Step 7, after `PhysicsPipeline::step`: give every body that
+    /// [`ForceModeStepper::apply_forces`] wrote the user's own force and torque back, as if
+    /// the coupling had never added to them ([`ForceModeStepper::step_with`] does it).
+    pub fn give_back_user_forces(&mut self, bodies: &mut RigidBodySet) {
+        self.added.give_back(bodies);
     }
 }
 

@@ -45,6 +45,7 @@
 //! ```
 #![warn(missing_docs)]
 
+mod added_forces;
 pub mod convert;
 pub mod error;
 pub mod fast;

@@ -253,7 +253,10 @@ pub struct RestitutionReport {
 pub struct RestitutionHooks {
     model: MdrElastoPlastic,
     friction: FrictionRule,
+    /// The step of the last [`RestitutionHooks::prepare`].
     dt: Option<f64>,
+    /// The step declared with [`RestitutionHooks::set_time_step`].
+    declared_dt: Option<f64>,
     prepared: bool,
     history_reach: f64,
     particles: ParticleSet,
@@ -286,6 +289,7 @@ impl RestitutionHooks {
             model,
             friction: rule,
             dt: None,
+            declared_dt: None,
             prepared: false,
             history_reach: DEFAULT_HISTORY_REACH,
             particles: ParticleSet::new(),
@@ -331,11 +335,13 @@ impl RestitutionHooks {
         self.report
     }
 
-    /// The step length the hook assumes when deciding whether a speculative contact closes in
-    /// this step. [`RestitutionHooks::prepare`] (called by the step methods) takes it from the
-    /// integration parameters; this sets it ahead of that.
+    /// Declare the step the program steps rapier with (s, > 0). The hooks always take the
+    /// step from the integration parameters ([`RestitutionHooks::prepare`], called by the step
+    /// methods); once declared, a step whose integration parameters say otherwise is an error
+    /// ([`CouplingError::TimeStepMismatch`]) instead of a silent change of step. Declare the
+    /// new step when changing it.
     pub fn set_time_step(&mut self, dt: f64) -> Result<()> {
-        self.dt = Some(positive("dt", dt)?);
+        self.declared_dt = Some(positive("dt", dt)?);
         Ok(())
     }
 
@@ -430,14 +436,24 @@ impl RestitutionHooks {
         Ok(())
     }
 
-    /// Before a step: take the time step from `params` and check that every registered
-    /// collider is in `colliders` with the hook flag.
+    /// Before a step: take the time step from `params` (it must be the one declared with
+    /// [`RestitutionHooks::set_time_step`], if any) and check that every registered collider
+    /// is in `colliders` with the hook flag.
     pub fn prepare(
         &mut self,
         params: &IntegrationParameters,
         colliders: &ColliderSet,
     ) -> Result<()> {
-        self.set_time_step(params.dt)?;
+        let dt = positive("dt", params.dt)?;
+        if let Some(declared) = self.declared_dt.filter(|&d| d != dt) {
+            return Err(CouplingError::TimeStepMismatch {
+                coupling: declared,
+                world: dt,
+                fix: "set the integration parameters' dt to the declared step, or declare the \
+                      new one with `RestitutionHooks::set_time_step`",
+            });
+        }
+        self.dt = Some(dt);
         for particle in self.particles.iter() {
             let co = colliders
                 .get(particle.collider)

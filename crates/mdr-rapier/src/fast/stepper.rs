@@ -19,8 +19,9 @@
 //! 4. per particle, integrate as rapier does with one solver iteration: `v += (F + m g)/m · dt`,
 //!    `ω += τ/I · dt`, `x += v dt`, the orientation by rapier's linearised update unless switched
 //!    off with [`FastForceStepper::track_orientation`] (parallel);
-//! 5. reaction forces on dynamic rapier bodies, in key order, through `add_force`/`add_torque`;
-//!    then `PhysicsWorld::step` moves the rapier bodies.
+//! 5. reaction forces on dynamic rapier bodies, in key order, added to the forces the user put
+//!    on them (`add_force`/`add_torque`); then `PhysicsWorld::step` moves the rapier bodies, and
+//!    each body gets the user's own forces back.
 //!
 //! Every sum has an order fixed by the particle count and the lists, so results do not depend on
 //! the number of threads.
@@ -34,13 +35,15 @@ use super::neighbours::{NeighbourBuilder, PairList};
 use super::particles::{FastParticles, Species};
 use super::surfaces::{surface_displacement, FastSurface, SurfacePairs};
 use super::workers::map_tasks;
+use crate::added_forces::AddedForces;
 use crate::convert::{to_glam, to_na};
 use crate::error::{positive, CouplingError, Result};
 use crate::geometry::{sphere_sphere, ConvexFaces, SurfaceContact, SurfaceOfRevolution};
 use crate::kernel::{
     evaluate_pair, Arms, ContactKinematics, ContactWorks, PairHistory, PairWrench, SphereArms,
 };
-use crate::particles::{MaterialHandle, SphereBuilder};
+use crate::particles::{MaterialHandle, ParticleShape, SphereBuilder};
+use crate::registration::add_force_flags;
 use mdr_contact::damping::{DampingModel, NoDamping};
 use mdr_contact::material::{effective_modulus, effective_shear_modulus};
 use mdr_contact::model::{
@@ -197,6 +200,8 @@ pub struct FastForceStepper<
     surface_candidates: Vec<(u32, u32)>,
     /// Reaction wrench per surface body, reduced in key order.
     reactions: Vec<(RigidBodyHandle, Vector3<f64>, Vector3<f64>)>,
+    /// The reactions written on top of the user's forces, until given back.
+    added: AddedForces,
     /// Per-particle force and torque sums of the step (see [`FastForceStepper::step`]).
     sums: Vec<(Vector3<f64>, Vector3<f64>)>,
     /// Per particle block of the pair loop: the shares deferred for particles beyond the next
@@ -278,6 +283,7 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> FastForceStepper<N, T,
             old_surface_pairs: SurfacePairs::default(),
             surface_candidates: Vec::new(),
             reactions: Vec::new(),
+            added: AddedForces::default(),
             sums: Vec::new(),
             deferred: Vec::new(),
             orientation: true,
@@ -384,6 +390,7 @@ where
             old_surface_pairs: SurfacePairs::default(),
             surface_candidates: self.surface_candidates,
             reactions: self.reactions,
+            added: self.added,
             sums: self.sums,
             deferred: self.deferred,
             orientation: self.orientation,
@@ -514,17 +521,21 @@ where
         ))
     }
 
-    /// Insert a collider of any shape (wall, box, mesh, container …), optionally on a body, with
-    /// rapier's contact impulses off, and register it as a surface of `material`.
+    /// Insert a collider of any shape (wall, box, mesh, container …), optionally on a body (as
+    /// `PhysicsWorld::insert_collider(collider, parent)`), and register it as a surface of
+    /// `material`. Its solver groups follow force mode's rule ([`crate::registration`]): the
+    /// coupling's solver group leaves its filter, so its contacts with every rapier collider
+    /// (another surface, a user's unregistered body) stay rapier's, as without the plugin; the
+    /// particles, which are not rapier colliders, touch it through the law.
     pub fn insert_surface(
         &mut self,
         world: &mut PhysicsWorld,
-        collider: ColliderBuilder,
+        collider: impl Into<Collider>,
         parent: Option<RigidBodyHandle>,
         material: MaterialHandle,
     ) -> Result<ColliderHandle> {
         self.material(material)?;
-        let c = world.insert_collider(collider.solver_groups(InteractionGroups::none()), parent);
+        let c = world.insert_collider(surface_collider(collider), parent);
         self.register_surface(&world.colliders, c, material)?;
         Ok(c)
     }
@@ -539,20 +550,21 @@ where
         self.register_surface_as(colliders, collider, material, None)
     }
 
-    /// Insert a collider (on `parent`, rapier's contact impulses off) whose contacts follow the
-    /// exact surface of revolution `surface` (given in the collider's local frame) instead of
-    /// its shape: a cylinder, cone or orifice-plate wall that rapier sees as flat pieces (for its
-    /// bounding box and its other uses) touches the spheres as the smooth surface it stands for.
+    /// Insert a collider (on `parent`, solver groups as [`FastForceStepper::insert_surface`]'s)
+    /// whose contacts with the particles follow the exact surface of revolution `surface` (given
+    /// in the collider's local frame) instead of its shape: a cylinder, cone or orifice-plate
+    /// wall that rapier sees as flat pieces (for its bounding box and its other uses) touches
+    /// the spheres as the smooth surface it stands for.
     pub fn insert_surface_of_revolution(
         &mut self,
         world: &mut PhysicsWorld,
-        collider: ColliderBuilder,
+        collider: impl Into<Collider>,
         parent: Option<RigidBodyHandle>,
         material: MaterialHandle,
         surface: SurfaceOfRevolution,
     ) -> Result<ColliderHandle> {
         self.material(material)?;
-        let c = world.insert_collider(collider.solver_groups(InteractionGroups::none()), parent);
+        let c = world.insert_collider(surface_collider(collider), parent);
         self.register_surface_as(&world.colliders, c, material, Some(Arc::new(surface)))?;
         Ok(c)
     }
@@ -784,6 +796,7 @@ where
         self.lap(&mut mark, |t| &mut t.integration);
         self.apply_reactions(&mut world.bodies);
         world.step();
+        self.added.give_back(&mut world.bodies);
         self.lap(&mut mark, |t| &mut t.rapier);
         if let Some(timings) = &mut self.timings {
             timings.steps += 1;
@@ -797,4 +810,11 @@ where
         };
         Ok(self.report)
     }
+}
+
+/// A surface collider with force mode's solver-group rule applied to the user's groups.
+fn surface_collider(collider: impl Into<Collider>) -> Collider {
+    let mut co = collider.into();
+    add_force_flags(&mut co, ParticleShape::Surface);
+    co
 }

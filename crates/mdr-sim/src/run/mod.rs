@@ -4,11 +4,13 @@
 //! One step `k` (force mode, on either path):
 //! 1. a checkpoint, if one is due (the state holds `x_k, v_k` and the histories up to `x_{k−1}`);
 //! 2. the coupling's `compute_forces` at `x_k, v_k` (the law updates every touching pair's
-//!    history; the neighbour-list path first rebuilds its lists if due);
+//!    history; the neighbour-list path first rebuilds its lists if due); rapier's path first
+//!    runs the coupling's checks (`check_step`: configured world, registration groups, the
+//!    scene's step equal to rapier's);
 //! 3. the books take the work increments of every contact, and the samples (energy row, frame,
 //!    headline) are taken here, where positions, velocities and contact states all describe `x_k`;
 //! 4. the integration to `v_{k+1}`, `x_{k+1}` (symplectic Euler) and `PhysicsWorld::step`:
-//!    `apply_forces` + `step` on rapier's path, `advance` on the neighbour-list path (which
+//!    `apply_forces` + `step` + `give_back_user_forces` on rapier's path, `advance` on the neighbour-list path (which
 //!    integrates its particles itself and then steps rapier's wall bodies).
 //!
 //! The loop and the scene events are here; what a run writes is in `outputs`, the same steps
@@ -420,9 +422,11 @@ impl<'a> Sim<'a> {
         let world = &mut self.built.world;
         match &mut self.built.coupling {
             Coupling::Force(stepper) => {
+                stepper.check_step(&world.integration_parameters, &world.colliders, dt)?;
                 stepper.compute_forces(&world.bodies, &world.colliders, &world.narrow_phase, dt)?;
-                // Clears the plugin's force accumulators; the forces are reset before every step.
+                // Clears the plugin's force accumulators; the bodies keep no force of it.
                 stepper.apply_forces(&mut world.bodies);
+                stepper.give_back_user_forces(&mut world.bodies);
                 let records = &data.contacts;
                 for entry in stepper.contacts_mut().entries_mut() {
                     match records.binary_search_by_key(&entry.key.0, |r| r.key) {
@@ -632,6 +636,7 @@ impl<'a> Sim<'a> {
         let world = &self.built.world;
         match &mut self.built.coupling {
             Coupling::Force(stepper) => {
+                stepper.check_step(&world.integration_parameters, &world.colliders, dt)?;
                 stepper.compute_forces(&world.bodies, &world.colliders, &world.narrow_phase, dt)?;
                 self.books.take(
                     stepper,
@@ -656,6 +661,7 @@ impl<'a> Sim<'a> {
             Coupling::Force(stepper) => {
                 stepper.apply_forces(&mut world.bodies);
                 world.step();
+                stepper.give_back_user_forces(&mut world.bodies);
             }
             Coupling::Fast(stepper) => {
                 with_fast!(stepper, s => s.advance(world))?;

@@ -65,7 +65,8 @@ where
         .fold(0.0, f64::max)
     }
 
-    /// Step 5: reaction wrenches on the surfaces' dynamic bodies, in key order.
+    /// Step 5: reaction wrenches on the surfaces' dynamic bodies, in key order, added to the
+    /// forces the user put on them (given back after rapier's step).
     pub(super) fn apply_reactions(&mut self, bodies: &mut RigidBodySet) {
         self.reactions.clear();
         for s in &self.surfaces {
@@ -94,11 +95,7 @@ where
             }
         }
         for (h, f, t) in &self.reactions {
-            let body = &mut bodies[*h];
-            body.reset_forces(false);
-            body.reset_torques(false);
-            body.add_force(to_glam(f), false);
-            body.add_torque(to_glam(t), false);
+            self.added.add(*h, &mut bodies[*h], to_glam(f), to_glam(t));
         }
     }
 }

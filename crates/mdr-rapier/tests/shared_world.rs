@@ -1,0 +1,283 @@
+//! A rapier world shared with the plugin behaves for the user's own bodies as without it: a
+//! constant force the user added to a registered body acts at every step on both force-mode
+//! paths, the neighbour-list path's surfaces keep rapier's contacts with everything that is
+//! not a particle, and a step given to the coupling that differs from rapier's is an error.
+
+use mdr_rapier::fast::{Boundary, FastForceStepper};
+use mdr_rapier::prelude::*;
+use mdr_rapier::rapier::prelude::*;
+
+const R: f64 = 0.01;
+const HALF: f64 = 0.05;
+const DT: f64 = 1e-4;
+const STEPS: usize = 2000;
+
+fn grain() -> Material {
+    Material::builder()
+        .youngs(1.0e6)
+        .poisson(0.3)
+        .density(2500.0)
+        .build()
+        .unwrap()
+}
+
+/// The integration parameters force mode's `configure` sets (one solver iteration, no CCD, no
+/// speed cap), for the plugin-free reference world.
+fn reference_parameters(world: &mut PhysicsWorld) {
+    world.integration_parameters.dt = DT;
+    world.integration_parameters.num_solver_iterations = 1;
+    world.integration_parameters.max_ccd_substeps = 0;
+    world.integration_parameters.normalized_max_linear_velocity = f64::MAX;
+    world.integration_parameters.normalized_prediction_distance =
+        0.2 * R / world.integration_parameters.length_unit;
+}
+
+/// The user's bodies: a cuboid resting on the floor, pushed sideways by a constant force the
+/// user adds once, and a cuboid in the air held up by a constant force equal to its weight.
+struct UserBodies {
+    pushed: RigidBodyHandle,
+    held: RigidBodyHandle,
+    push: Vector,
+}
+
+fn cuboid() -> ColliderBuilder {
+    ColliderBuilder::cuboid(HALF, HALF, HALF).density(2500.0)
+}
+
+/// Insert the two bodies (their colliders through `insert`) and add the user's forces.
+fn user_bodies(
+    world: &mut PhysicsWorld,
+    mut insert: impl FnMut(&mut PhysicsWorld, ColliderBuilder, RigidBodyHandle),
+) -> UserBodies {
+    let pushed = world.insert_body(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(0.0, HALF, 0.0))
+            .can_sleep(false),
+    );
+    insert(world, cuboid(), pushed);
+    let held = world.insert_body(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(0.0, 1.0, 0.0))
+            .can_sleep(false),
+    );
+    insert(world, cuboid(), held);
+    // Sliding friction is 0.5 m g (rapier's default friction); push with 0.9 m g.
+    let weight = world.bodies[pushed].mass() * 9.81;
+    let push = Vector::new(0.9 * weight, 0.0, 0.0);
+    world.bodies[pushed].add_force(push, true);
+    world.bodies[held].add_force(Vector::new(0.0, weight, 0.0), true);
+    UserBodies { pushed, held, push }
+}
+
+/// The same bodies on a plain floor in a world without the plugin, after `STEPS` steps.
+fn without_plugin() -> (Vector, Vector) {
+    let mut world = PhysicsWorld::default();
+    reference_parameters(&mut world);
+    world.insert_collider(
+        ColliderBuilder::new(SharedShape::halfspace(Vector::Y)),
+        None,
+    );
+    let bodies = user_bodies(&mut world, |w, c, b| {
+        w.insert_collider(c, Some(b));
+    });
+    for _ in 0..STEPS {
+        world.step();
+    }
+    (
+        world.bodies[bodies.pushed].translation(),
+        world.bodies[bodies.held].translation(),
+    )
+}
+
+fn assert_as_without_plugin(world: &PhysicsWorld, bodies: &UserBodies) {
+    let (pushed, held) = without_plugin();
+    // The push: a = (0.9 − 0.5) g → x = a t² / 2 = 0.078 m after 0.2 s.
+    assert!(
+        (pushed.x - 0.0785).abs() < 2e-3,
+        "the reference cuboid slid {}",
+        pushed.x
+    );
+    let x = world.bodies[bodies.pushed].translation();
+    let y = world.bodies[bodies.held].translation();
+    assert!(
+        (x - pushed).length() < 1e-9,
+        "pushed cuboid at {x:?}, {pushed:?} without the plugin"
+    );
+    assert!(
+        (y - held).length() < 1e-12 && (y.y - 1.0).abs() < 1e-9,
+        "held cuboid at {y:?}, {held:?} without the plugin"
+    );
+    // Between steps the bodies hold exactly the user's forces.
+    assert_eq!(world.bodies[bodies.pushed].user_force(), bodies.push);
+}
+
+/// Force mode: both cuboids are registered surfaces on dynamic bodies (the spheres would touch
+/// them through the law); a sphere rests on the floor away from them.
+#[test]
+fn a_users_constant_force_on_a_registered_body_acts_as_without_the_plugin() {
+    let mut world = PhysicsWorld::default();
+    let mut stepper = ForceModeStepper::new(ContactModel::new(MdrElastoPlastic::paper()));
+    let m = stepper.particles_mut().insert_material(grain());
+    stepper
+        .insert_surface(
+            &mut world,
+            ColliderBuilder::new(SharedShape::halfspace(Vector::Y)),
+            None,
+            m,
+        )
+        .unwrap();
+    let bodies = user_bodies(&mut world, |w, c, b| {
+        stepper.insert_surface(w, c, Some(b), m).unwrap();
+    });
+    stepper
+        .insert_sphere(
+            &mut world,
+            SphereBuilder::new(R, m).translation(Vector::new(2.0, R, 0.0)),
+        )
+        .unwrap();
+    stepper
+        .configure(&mut world.integration_parameters, DT, 0.2 * R)
+        .unwrap();
+    for _ in 0..STEPS {
+        stepper.step(&mut world).unwrap();
+    }
+    assert_as_without_plugin(&world, &bodies);
+}
+
+/// The neighbour-list path: the floor and both cuboids are its surfaces; one particle rests on
+/// the floor away from them. The cuboid on the floor also needs rapier's contact between two
+/// registered surfaces.
+#[test]
+fn a_users_constant_force_acts_as_without_the_plugin_on_the_neighbour_list_path() {
+    let mut world = PhysicsWorld::default();
+    let mut stepper =
+        FastForceStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
+    let m = stepper.insert_material(grain());
+    stepper
+        .insert_surface(
+            &mut world,
+            ColliderBuilder::new(SharedShape::halfspace(Vector::Y)),
+            None,
+            m,
+        )
+        .unwrap();
+    let bodies = user_bodies(&mut world, |w, c, b| {
+        stepper.insert_surface(w, c, Some(b), m).unwrap();
+    });
+    stepper
+        .insert_sphere(SphereBuilder::new(R, m).translation(Vector::new(2.0, R, 0.0)))
+        .unwrap();
+    stepper
+        .configure(&mut world.integration_parameters, DT)
+        .unwrap();
+    world.integration_parameters.normalized_prediction_distance =
+        0.2 * R / world.integration_parameters.length_unit;
+    for _ in 0..STEPS {
+        stepper.step(&mut world).unwrap();
+    }
+    assert_as_without_plugin(&world, &bodies);
+}
+
+/// The neighbour-list path: a dynamic box the plugin does not know rests on a registered floor
+/// (rapier's contact), and a dynamic box falls onto a registered dynamic box resting on it.
+#[test]
+fn unregistered_bodies_rest_on_the_neighbour_list_paths_surfaces() {
+    let mut world = PhysicsWorld::default();
+    let mut stepper =
+        FastForceStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
+    let m = stepper.insert_material(grain());
+    stepper
+        .insert_surface(
+            &mut world,
+            ColliderBuilder::new(SharedShape::halfspace(Vector::Y)),
+            None,
+            m,
+        )
+        .unwrap();
+    let on_floor = world.insert_body(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(0.5, HALF + 0.01, 0.0))
+            .can_sleep(false),
+    );
+    let on_floor_collider = world.insert_collider(cuboid(), Some(on_floor));
+    let registered = world.insert_body(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(-0.5, HALF, 0.0))
+            .can_sleep(false),
+    );
+    stepper
+        .insert_surface(&mut world, cuboid(), Some(registered), m)
+        .unwrap();
+    let on_top = world.insert_body(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(-0.5, 3.0 * HALF + 0.01, 0.0))
+            .can_sleep(false),
+    );
+    world.insert_collider(cuboid(), Some(on_top));
+    stepper
+        .insert_sphere(SphereBuilder::new(R, m).translation(Vector::new(2.0, R, 0.0)))
+        .unwrap();
+    stepper
+        .configure(&mut world.integration_parameters, DT)
+        .unwrap();
+    for _ in 0..STEPS {
+        stepper.step(&mut world).unwrap();
+    }
+    let bottom = world.colliders[on_floor_collider].compute_aabb().mins.y;
+    assert!(bottom > -2e-3, "unregistered box sank to {bottom}");
+    let top = world.bodies[on_top].translation().y;
+    assert!(
+        (top - 3.0 * HALF).abs() < 3e-3,
+        "box on the registered box at {top}"
+    );
+    assert!(world.bodies[on_floor].linvel().length() < 0.05);
+}
+
+/// Force mode, own pipeline: `check_step` refuses a step handed to `compute_forces` that is not
+/// rapier's; restitution mode refuses a world whose step is not the declared one.
+#[test]
+fn a_step_that_is_not_rapiers_is_an_error() {
+    let mut world = PhysicsWorld::default();
+    let mut stepper = ForceModeStepper::new(ContactModel::new(MdrElastoPlastic::paper()));
+    let m = stepper.particles_mut().insert_material(grain());
+    stepper
+        .insert_sphere(&mut world, SphereBuilder::new(R, m))
+        .unwrap();
+    stepper
+        .configure(&mut world.integration_parameters, DT, 0.2 * R)
+        .unwrap();
+    let (params, colliders) = (&world.integration_parameters, &world.colliders);
+    assert_eq!(stepper.check_step(params, colliders, DT), Ok(()));
+    let err = stepper.check_step(params, colliders, 2.0 * DT).unwrap_err();
+    assert!(
+        matches!(err, CouplingError::TimeStepMismatch { coupling, world, .. }
+            if coupling == 2.0 * DT && world == DT),
+        "{err:?}"
+    );
+    assert!(err.to_string().contains("compute_forces"), "{err}");
+
+    let mut world = PhysicsWorld::default();
+    world.integration_parameters.dt = DT;
+    let mut hooks = RestitutionHooks::new(MdrElastoPlastic::paper(), 0.0).unwrap();
+    let m = hooks
+        .particles_mut()
+        .insert_material(Material::paper_steel());
+    hooks
+        .insert_sphere(&mut world, SphereBuilder::new(R, m))
+        .unwrap();
+    // Undeclared: the hooks take the world's step, whatever it is.
+    hooks.step(&mut world).unwrap();
+    world.integration_parameters.dt = 1.0 / 60.0;
+    hooks.step(&mut world).unwrap();
+    // Declared: a world with another step is refused, the declared one steps.
+    hooks.set_time_step(DT).unwrap();
+    let err = hooks.step(&mut world).unwrap_err();
+    assert!(
+        matches!(err, CouplingError::TimeStepMismatch { coupling, world, .. }
+            if coupling == DT && world == 1.0 / 60.0),
+        "{err:?}"
+    );
+    assert!(err.to_string().contains("set_time_step"), "{err}");
+    world.integration_parameters.dt = DT;
+    hooks.step(&mut world).unwrap();
+}
