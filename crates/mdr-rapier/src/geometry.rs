@@ -4,13 +4,18 @@
 //! rapier's manifolds are not used for the overlap: with contact recycling their points can be
 //! stale by up to the recycle distance, far more than a micrometre overlap. The narrow phase only
 //! provides the candidate pairs.
+//!
+//! Every function takes its points and directions as rapier's vector type or the law crate's
+//! ([`AnyVector`]); a [`SurfaceContact`] reads in either.
 
-use crate::convert::{to_glam, to_na};
+use crate::convert::{to_glam, to_na, AnyVector};
 use nalgebra::Vector3;
-use rapier3d_f64::math::Pose;
+use rapier3d_f64::math::{Pose, Vector};
 use rapier3d_f64::parry::shape::Shape;
 
-/// Where and how deep two bodies touch.
+/// Where and how deep two bodies touch. The fields are in the law crate's vector type (the
+/// per-pair kernel hands them to the law as they are); [`SurfaceContact::normal`] and
+/// [`SurfaceContact::point`] give them in rapier's.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SurfaceContact {
     /// Overlap `δ` (m), > 0.
@@ -21,14 +26,29 @@ pub struct SurfaceContact {
     pub point: Vector3<f64>,
 }
 
+impl SurfaceContact {
+    /// Unit normal from body 2 towards body 1 (the sphere), in rapier's vector type.
+    #[inline]
+    pub fn normal(&self) -> Vector {
+        to_glam(&self.normal)
+    }
+
+    /// Contact point (m), in rapier's vector type.
+    #[inline]
+    pub fn point(&self) -> Vector {
+        to_glam(&self.point)
+    }
+}
+
 /// Sphere 1 (centre `c1`, radius `r1`) against sphere 2; `None` when they do not overlap.
 #[inline]
 pub fn sphere_sphere(
-    c1: &Vector3<f64>,
+    c1: impl AnyVector,
     r1: f64,
-    c2: &Vector3<f64>,
+    c2: impl AnyVector,
     r2: f64,
 ) -> Option<SurfaceContact> {
+    let (c1, c2) = (c1.na(), c2.na());
     let d = c1 - c2;
     let dist2 = d.norm_squared();
     let reach = r1 + r2;
@@ -49,12 +69,13 @@ pub fn sphere_sphere(
 /// Sphere 1 (centre `c1`, radius `r1`) against any shape at `pose`, through the projection of the
 /// centre on the shape's boundary; `None` when they do not overlap.
 pub fn sphere_shape(
-    c1: &Vector3<f64>,
+    c1: impl AnyVector,
     r1: f64,
     shape: &dyn Shape,
     pose: &Pose,
 ) -> Option<SurfaceContact> {
-    let projection = shape.project_point(pose, to_glam(c1), false);
+    let c1 = c1.na();
+    let projection = shape.project_point(pose, to_glam(&c1), false);
     let p = to_na(projection.point);
     let d = c1 - p;
     let dist = d.norm();
@@ -85,12 +106,13 @@ pub fn sphere_shape(
 /// round-off, without its generic projection.
 #[inline]
 pub fn sphere_half_space(
-    c1: &Vector3<f64>,
+    c1: impl AnyVector,
     r1: f64,
-    local_normal: &Vector3<f64>,
+    local_normal: impl AnyVector,
     pose: &Pose,
 ) -> Option<SurfaceContact> {
-    let (normal, signed) = half_space_normal_and_distance(c1, local_normal, pose);
+    let c1 = c1.na();
+    let (normal, signed) = half_space_normal_and_distance(&c1, &local_normal.na(), pose);
     let overlap = r1 - signed;
     if overlap <= 0.0 {
         return None;
@@ -106,8 +128,8 @@ pub fn sphere_half_space(
 /// Signed distance of `x` from the boundary plane of [`sphere_half_space`]'s half-space
 /// (negative inside).
 #[inline]
-pub fn half_space_distance(x: &Vector3<f64>, local_normal: &Vector3<f64>, pose: &Pose) -> f64 {
-    half_space_normal_and_distance(x, local_normal, pose).1
+pub fn half_space_distance(x: impl AnyVector, local_normal: impl AnyVector, pose: &Pose) -> f64 {
+    half_space_normal_and_distance(&x.na(), &local_normal.na(), pose).1
 }
 
 /// The half-space's outward normal in the world and the signed distance `n · (x − o)` of `x`.
@@ -150,6 +172,16 @@ pub enum ConvexProjection {
     Inside,
     /// Outside, with this nearest point of the solid.
     Nearest(Vector3<f64>),
+}
+
+impl ConvexProjection {
+    /// The nearest point of [`ConvexProjection::Nearest`] in rapier's vector type.
+    pub fn nearest(&self) -> Option<Vector> {
+        match self {
+            ConvexProjection::Nearest(q) => Some(to_glam(q)),
+            _ => None,
+        }
+    }
 }
 
 impl ConvexFaces {
@@ -198,7 +230,8 @@ impl ConvexFaces {
 
     /// The nearest point of the solid to `x` (local frame), unless `x` is inside it or farther
     /// than `reach` outside one of its faces' planes.
-    pub fn project(&self, x: &Vector3<f64>, reach: f64) -> ConvexProjection {
+    pub fn project(&self, x: impl AnyVector, reach: f64) -> ConvexProjection {
+        let x = &x.na();
         let mut outside = false;
         for (n, &c) in self.normals.iter().zip(&self.offsets) {
             let d = n.dot(x) - c;
@@ -252,12 +285,13 @@ impl ConvexFaces {
 /// a centre inside the solid goes to `shape`'s own projection.
 #[inline]
 pub fn sphere_convex(
-    c1: &Vector3<f64>,
+    c1: impl AnyVector,
     r1: f64,
     faces: &ConvexFaces,
     shape: &dyn Shape,
     pose: &Pose,
 ) -> Option<SurfaceContact> {
+    let c1 = &c1.na();
     let local = to_na(pose.inverse_transform_point(to_glam(c1)));
     match faces.project(&local, r1) {
         ConvexProjection::Beyond => None,
@@ -283,12 +317,12 @@ pub fn sphere_convex(
 /// Distance from `x` to a convex polyhedron given by its [`ConvexFaces`] when it is at most
 /// `reach` (`Some(0)` inside); `None` when it is more.
 pub fn convex_distance_within(
-    x: &Vector3<f64>,
+    x: impl AnyVector,
     faces: &ConvexFaces,
     pose: &Pose,
     reach: f64,
 ) -> Option<f64> {
-    let local = to_na(pose.inverse_transform_point(to_glam(x)));
+    let local = to_na(pose.inverse_transform_point(x.glam()));
     match faces.project(&local, reach) {
         ConvexProjection::Beyond => None,
         ConvexProjection::Inside => Some(0.0),
@@ -319,10 +353,11 @@ impl SurfaceOfRevolution {
     /// The surface of `profile` (`(radius, axial position)` points, at least two, radius ≥ 0) about
     /// `axis` (normalised here) through `origin`, in the collider's local frame.
     pub fn new(
-        origin: Vector3<f64>,
-        axis: Vector3<f64>,
+        origin: impl AnyVector,
+        axis: impl AnyVector,
         profile: Vec<(f64, f64)>,
     ) -> Result<Self, crate::CouplingError> {
+        let (origin, axis) = (origin.na(), axis.na());
         let out = |name, value: f64, range| crate::CouplingError::OutOfRange { name, value, range };
         let length = axis.norm();
         if !(length.is_finite() && length > 0.0 && origin.iter().all(|c| c.is_finite())) {
@@ -402,10 +437,11 @@ impl SurfaceOfRevolution {
     /// a collider at `pose`; `None` when they do not overlap.
     pub fn sphere_contact(
         &self,
-        c1: &Vector3<f64>,
+        c1: impl AnyVector,
         r1: f64,
         pose: &Pose,
     ) -> Option<SurfaceContact> {
+        let c1 = &c1.na();
         let local = to_na(pose.inverse_transform_point(to_glam(c1)));
         let (dist, normal, _) = self.nearest(&local);
         let overlap = r1 - dist;
@@ -422,8 +458,8 @@ impl SurfaceOfRevolution {
     }
 
     /// Whether the world point `x` is within `reach` of the surface on a collider at `pose`.
-    pub fn within(&self, x: &Vector3<f64>, pose: &Pose, reach: f64) -> bool {
-        let local = to_na(pose.inverse_transform_point(to_glam(x)));
+    pub fn within(&self, x: impl AnyVector, pose: &Pose, reach: f64) -> bool {
+        let local = to_na(pose.inverse_transform_point(x.glam()));
         self.nearest(&local).0 < reach
     }
 }

@@ -1,13 +1,19 @@
 //! The per-pair kernel: contact kinematics → law update on the pair's history → force and
 //! torques on both bodies. Every force-mode path (the plain path over rapier's narrow phase here,
 //! and any faster neighbour-list path) calls this one function, so they agree to round-off.
+//!
+//! The kernel's structures hold the law crate's vectors (`nalgebra::Vector3<f64>`, the type of
+//! [`mdr_contact::model::ContactInput`]), so that the hot loops hand them to the law without a
+//! conversion; [`PairWrench`]'s accessors give its results in rapier's vector type.
 
 use mdr_contact::damping::DampingLaw;
 use mdr_contact::model::{ContactInput, ContactLaw, StateOf, WorkBooks};
 use mdr_contact::normal::NormalLaw;
 use mdr_contact::rolling::{RollingInput, RollingLaw};
 use mdr_contact::tangential::TangentialLaw;
+use crate::convert::to_glam;
 use nalgebra::Vector3;
+use rapier3d_f64::math::Vector;
 
 /// Where the contact point sits relative to the two centres of mass: it decides the contact
 /// point's velocity and the torques of the contact force.
@@ -112,7 +118,8 @@ impl<A: LeverArms> ContactKinematics<A> {
     }
 }
 
-/// Force and torques of one contact.
+/// Force and torques of one contact, in the law crate's vector type (the law's output as it
+/// is); the accessors give them in rapier's.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct PairWrench {
     /// Force on body 1 (N); body 2 receives `−force`.
@@ -121,6 +128,26 @@ pub struct PairWrench {
     pub torque1: Vector3<f64>,
     /// Torque on body 2 about its centre of mass (N·m).
     pub torque2: Vector3<f64>,
+}
+
+impl PairWrench {
+    /// Force on body 1 (N), in rapier's vector type.
+    #[inline]
+    pub fn force(&self) -> Vector {
+        to_glam(&self.force)
+    }
+
+    /// Torque on body 1 (N·m), in rapier's vector type.
+    #[inline]
+    pub fn torque1(&self) -> Vector {
+        to_glam(&self.torque1)
+    }
+
+    /// Torque on body 2 (N·m), in rapier's vector type.
+    #[inline]
+    pub fn torque2(&self) -> Vector {
+        to_glam(&self.torque2)
+    }
 }
 
 /// History of one touching pair: the composed law's state and the rolling law's state.

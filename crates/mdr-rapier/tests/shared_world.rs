@@ -1,10 +1,12 @@
 //! A rapier world shared with the plugin behaves for the user's own bodies as without it: a
 //! constant force the user added to a registered body acts at every step on both force-mode
 //! paths, the neighbour-list path's surfaces keep rapier's contacts with everything that is
-//! not a particle, and a step given to the coupling that differs from rapier's is an error.
+//! not a particle, and a step given to the coupling that differs from rapier's, like every
+//! registration or restore mistake, is a named error.
 
 use mdr_rapier::fast::{Boundary, FastForceStepper};
 use mdr_rapier::prelude::*;
+use mdr_rapier::{CouplingMode, ImpactScene, SceneLaw};
 use mdr_rapier::rapier::prelude::*;
 
 const R: f64 = 0.01;
@@ -280,4 +282,98 @@ fn a_step_that_is_not_rapiers_is_an_error() {
     assert!(err.to_string().contains("set_time_step"), "{err}");
     world.integration_parameters.dt = DT;
     hooks.step(&mut world).unwrap();
+}
+
+/// Every way of registering something that is not there, or not what the coupling needs, is a
+/// named error; so are a scene the chosen mode cannot run, bad pair data and a saved
+/// neighbour-list state restored into another stepper.
+#[test]
+fn registration_and_restore_mistakes_are_named_errors() {
+    let mut world = PhysicsWorld::default();
+    let mut stepper = ForceModeStepper::new(ContactModel::new(MdrElastoPlastic::paper()));
+    let m = stepper.particles_mut().insert_material(grain());
+    let unknown_material = MaterialHandle(7);
+    assert_eq!(
+        stepper
+            .insert_sphere(&mut world, SphereBuilder::new(R, unknown_material))
+            .unwrap_err(),
+        CouplingError::UnknownMaterial(7, 1)
+    );
+    let nowhere = ColliderHandle::from_raw_parts(99, 0);
+    assert_eq!(
+        stepper
+            .register_sphere(nowhere, m, &mut world.colliders)
+            .unwrap_err(),
+        CouplingError::UnknownCollider(nowhere)
+    );
+    let body = world.insert_body(RigidBodyBuilder::dynamic());
+    let cube = world.insert_collider(ColliderBuilder::cuboid(R, R, R), Some(body));
+    assert_eq!(
+        stepper
+            .register_sphere(cube, m, &mut world.colliders)
+            .unwrap_err(),
+        CouplingError::NotABall(cube)
+    );
+    let loose = world.insert_collider(ColliderBuilder::ball(R), None);
+    assert_eq!(
+        stepper
+            .register_sphere(loose, m, &mut world.colliders)
+            .unwrap_err(),
+        CouplingError::NoParentBody(loose)
+    );
+    let no_body = RigidBodyHandle::from_raw_parts(99, 0);
+    assert_eq!(
+        stepper
+            .insert_surface(&mut world, ColliderBuilder::ball(R), Some(no_body), m)
+            .unwrap_err(),
+        CouplingError::UnknownBody(no_body)
+    );
+    // A collider registered and then removed by the user.
+    let (ball_body, ball) = stepper
+        .insert_sphere(&mut world, SphereBuilder::new(R, m))
+        .unwrap();
+    world.remove_body(ball_body);
+    stepper
+        .configure(&mut world.integration_parameters, DT, 0.2 * R)
+        .unwrap();
+    assert_eq!(
+        stepper.step(&mut world).unwrap_err(),
+        CouplingError::UnknownCollider(ball)
+    );
+
+    // A scene the mode cannot run, and a scene whose pair data the law refuses.
+    let mut scene = ImpactScene::paper_drop(1.0);
+    scene.model = SceneLaw::Thornton(Thornton::new(1e9).unwrap());
+    assert!(matches!(
+        scene.run(CouplingMode::Restitution),
+        Err(CouplingError::Unsupported(_))
+    ));
+    let mut scene = ImpactScene::paper_drop(1.0);
+    scene.radius = -1.0;
+    assert!(matches!(scene.pair(), Err(CouplingError::Contact(_))));
+
+    // Neighbour-list state saved from a stepper of two particles, restored into one of one.
+    let fast = |n: usize| {
+        let mut world = PhysicsWorld::default();
+        let mut s = FastForceStepper::new(
+            ContactModel::new(MdrElastoPlastic::paper()),
+            Boundary::Open,
+        );
+        let m = s.insert_material(grain());
+        for k in 0..n {
+            s.insert_sphere(
+                SphereBuilder::new(R, m).translation(Vector::new(3.0 * R * k as f64, 0.0, 0.0)),
+            )
+            .unwrap();
+        }
+        s.configure(&mut world.integration_parameters, DT).unwrap();
+        s.step(&mut world).unwrap();
+        (s, world)
+    };
+    let (two, _) = fast(2);
+    let (mut one, world) = fast(1);
+    assert!(matches!(
+        one.import_lists(&world, two.export_lists()),
+        Err(CouplingError::StateMismatch(_))
+    ));
 }

@@ -12,7 +12,9 @@
 //! the neighbour search never looks at the kind of boundary.
 
 use crate::error::{positive, CouplingError, Result};
+use crate::convert::AnyVector;
 use nalgebra::Vector3;
+use rapier3d_f64::math::Vector;
 
 /// A periodic image: shifts by `(x, y)` box lengths, each in `{−1, 0, 1}`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
@@ -56,6 +58,18 @@ pub struct ImageOffset {
     pub position: Vector3<f64>,
     /// Velocity shift (zero in a plain periodic box).
     pub velocity: Vector3<f64>,
+}
+
+impl ImageOffset {
+    /// Position shift (m), in rapier's vector type.
+    pub fn position_shift(&self) -> Vector {
+        self.position.glam()
+    }
+
+    /// Velocity shift (m/s), in rapier's vector type.
+    pub fn velocity_shift(&self) -> Vector {
+        self.velocity.glam()
+    }
 }
 
 /// The box of the fast path.
@@ -157,10 +171,18 @@ impl Boundary {
         }
     }
 
+    /// `position` mapped back into the box, in rapier's vector type.
+    pub fn wrapped(&self, position: impl AnyVector) -> Vector {
+        let mut x = position.na();
+        self.wrap(&mut x, &mut Vector3::zeros());
+        x.glam()
+    }
+
     /// Whether the image of `position` by `offset` lies within `margin` of the box in x and y
     /// (then it is a ghost the neighbour search must see).
     #[inline]
-    pub fn near_box(&self, position: &Vector3<f64>, margin: f64) -> bool {
+    pub fn near_box(&self, position: impl AnyVector, margin: f64) -> bool {
+        let position = position.na();
         match self {
             Boundary::Open => true,
             Boundary::PeriodicXY { lo, hi } => {

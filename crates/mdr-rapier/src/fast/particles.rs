@@ -2,10 +2,11 @@
 //! by particle, plus a small table of species (material, radius, mass, inertia) so that the
 //! laws can be bound once per species pair instead of once per contact.
 
+use crate::convert::AnyVector;
 use crate::error::{positive, CouplingError, Result};
 use crate::particles::MaterialHandle;
 use nalgebra::Vector3;
-use rapier3d_f64::math::Rotation;
+use rapier3d_f64::math::{Rotation, Vector};
 
 /// Largest number of distinct species (the species-pair law table has this many squared).
 pub const MAX_SPECIES: usize = 256;
@@ -25,7 +26,9 @@ pub struct Species {
     pub inv_inertia: f64,
 }
 
-/// Structure-of-arrays particle data.
+/// Structure-of-arrays particle data. The vector arrays are in the law crate's type (the pair
+/// loop hands them to the law as they are); [`FastParticles::position_of`] and the other
+/// accessors read and write one particle's in rapier's vector type.
 #[derive(Debug, Clone, Default)]
 pub struct FastParticles {
     /// Centres.
@@ -53,6 +56,37 @@ impl FastParticles {
     /// Whether there are no particles.
     pub fn is_empty(&self) -> bool {
         self.position.is_empty()
+    }
+
+    /// Centre of particle `i` (m), in rapier's vector type.
+    pub fn position_of(&self, i: usize) -> Vector {
+        self.position[i].glam()
+    }
+
+    /// Velocity of particle `i` (m/s), in rapier's vector type.
+    pub fn linvel_of(&self, i: usize) -> Vector {
+        self.linvel[i].glam()
+    }
+
+    /// Angular velocity of particle `i` (rad/s), in rapier's vector type.
+    pub fn angvel_of(&self, i: usize) -> Vector {
+        self.angvel[i].glam()
+    }
+
+    /// Move particle `i` to `position` (m). The neighbour lists are not rebuilt by this:
+    /// call `FastForceStepper::request_rebuild` after moving particles by hand.
+    pub fn set_position(&mut self, i: usize, position: impl AnyVector) {
+        self.position[i] = position.na();
+    }
+
+    /// Set the velocity of particle `i` (m/s).
+    pub fn set_linvel(&mut self, i: usize, linvel: impl AnyVector) {
+        self.linvel[i] = linvel.na();
+    }
+
+    /// Set the angular velocity of particle `i` (rad/s).
+    pub fn set_angvel(&mut self, i: usize, angvel: impl AnyVector) {
+        self.angvel[i] = angvel.na();
     }
 
     /// Index of the species, added if new.

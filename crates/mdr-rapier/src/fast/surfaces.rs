@@ -5,7 +5,7 @@
 //! [`crate::geometry::sphere_convex`], surfaces of revolution), histories carried over rebuilds
 //! by `(particle, surface)`.
 
-use crate::convert::to_glam;
+use crate::convert::AnyVector;
 use crate::geometry::{
     convex_distance_within, half_space_distance, sphere_convex, sphere_half_space, sphere_shape,
     ConvexFaces, SurfaceContact, SurfaceOfRevolution,
@@ -13,7 +13,7 @@ use crate::geometry::{
 use crate::kernel::PairWrench;
 use crate::particles::MaterialHandle;
 use nalgebra::Vector3;
-use rapier3d_f64::math::Pose;
+use rapier3d_f64::math::{Pose, Vector};
 use rapier3d_f64::prelude::{Collider, ColliderHandle, RigidBodyHandle};
 use std::sync::Arc;
 
@@ -45,14 +45,20 @@ pub struct FastSurface {
 }
 
 impl FastSurface {
+    /// [`FastSurface::plane`] in rapier's vector type.
+    pub fn plane_normal(&self) -> Option<Vector> {
+        self.plane.map(|n| n.glam())
+    }
+
     /// Contact of a sphere with this surface's collider `co`.
     #[inline]
     pub fn sphere_contact(
         &self,
         co: &Collider,
-        center: &Vector3<f64>,
+        center: impl AnyVector,
         radius: f64,
     ) -> Option<SurfaceContact> {
+        let center = &center.na();
         if let Some(surface) = &self.revolution {
             return surface.sphere_contact(center, radius, co.position());
         }
@@ -66,7 +72,8 @@ impl FastSurface {
     }
 
     /// Whether the centre `x` is within `reach` of the collider `co`.
-    pub fn within(&self, co: &Collider, x: &Vector3<f64>, reach: f64) -> bool {
+    pub fn within(&self, co: &Collider, x: impl AnyVector, reach: f64) -> bool {
+        let x = &x.na();
         if let Some(surface) = &self.revolution {
             return surface.within(x, co.position(), reach);
         }
@@ -77,7 +84,7 @@ impl FastSurface {
             Some(faces) => convex_distance_within(x, faces, co.position(), reach).is_some(),
             None => {
                 co.shape()
-                    .distance_to_point(co.position(), to_glam(x), true)
+                    .distance_to_point(co.position(), x.glam(), true)
                     < reach
             }
         }
