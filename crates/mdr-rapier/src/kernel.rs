@@ -6,12 +6,12 @@
 //! [`mdr_contact::model::ContactInput`]), so that the hot loops hand them to the law without a
 //! conversion; [`PairWrench`]'s accessors give its results in rapier's vector type.
 
+use crate::convert::to_glam;
 use mdr_contact::damping::DampingLaw;
 use mdr_contact::model::{ContactInput, ContactLaw, StateOf, WorkBooks};
 use mdr_contact::normal::NormalLaw;
 use mdr_contact::rolling::{RollingInput, RollingLaw};
 use mdr_contact::tangential::TangentialLaw;
-use crate::convert::to_glam;
 use nalgebra::Vector3;
 use rapier3d_f64::math::Vector;
 

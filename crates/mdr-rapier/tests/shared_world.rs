@@ -6,8 +6,8 @@
 
 use mdr_rapier::fast::{Boundary, FastForceStepper};
 use mdr_rapier::prelude::*;
-use mdr_rapier::{CouplingMode, ImpactScene, SceneLaw};
 use mdr_rapier::rapier::prelude::*;
+use mdr_rapier::{CouplingMode, ImpactScene, SceneLaw};
 
 const R: f64 = 0.01;
 const HALF: f64 = 0.05;
@@ -355,15 +355,15 @@ fn registration_and_restore_mistakes_are_named_errors() {
     // Neighbour-list state saved from a stepper of two particles, restored into one of one.
     let fast = |n: usize| {
         let mut world = PhysicsWorld::default();
-        let mut s = FastForceStepper::new(
-            ContactModel::new(MdrElastoPlastic::paper()),
-            Boundary::Open,
-        );
+        let mut s =
+            FastForceStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
         let m = s.insert_material(grain());
         for k in 0..n {
-            s.insert_sphere(
-                SphereBuilder::new(R, m).translation(Vector::new(3.0 * R * k as f64, 0.0, 0.0)),
-            )
+            s.insert_sphere(SphereBuilder::new(R, m).translation(Vector::new(
+                3.0 * R * k as f64,
+                0.0,
+                0.0,
+            )))
             .unwrap();
         }
         s.configure(&mut world.integration_parameters, DT).unwrap();
@@ -376,4 +376,81 @@ fn registration_and_restore_mistakes_are_named_errors() {
         one.import_lists(&world, two.export_lists()),
         Err(CouplingError::StateMismatch(_))
     ));
+}
+
+/// A rapier program passes and reads rapier's own vector type (`Vector`) throughout: the
+/// geometry functions give the same contact for rapier's vectors as for the law crate's, and
+/// every accessor reads the same numbers as the field behind it.
+#[test]
+fn vectors_pass_and_read_in_rapiers_type() {
+    use mdr_rapier::geometry::{sphere_half_space, sphere_sphere, SurfaceOfRevolution};
+    use mdr_rapier::kernel::PairWrench;
+    use nalgebra::Vector3;
+
+    let (c1, c2) = (Vector::new(0.0, 0.0, 1.9), Vector::new(0.1, 0.0, 0.0));
+    let a = sphere_sphere(c1, 1.0, c2, 1.0).unwrap();
+    let b = sphere_sphere(
+        &Vector3::new(0.0, 0.0, 1.9),
+        1.0,
+        &Vector3::new(0.1, 0.0, 0.0),
+        1.0,
+    )
+    .unwrap();
+    assert_eq!(a, b);
+    // Overlap 2 − |c1 − c2|, normal along c1 − c2, point in the middle of the overlap.
+    let d = c1 - c2;
+    assert!((a.overlap - (2.0 - d.length())).abs() < 1e-15);
+    assert!((a.normal() - d / d.length()).length() < 1e-15);
+    assert!((a.point() - (c2 + a.normal() * (1.0 - 0.5 * a.overlap))).length() < 1e-15);
+    assert_eq!(a.normal(), Vector::new(a.normal.x, a.normal.y, a.normal.z));
+
+    let pose = Pose::from_translation(Vector::new(0.0, -0.5, 0.0));
+    let floor = sphere_half_space(Vector::new(0.3, 0.4, 0.0), 1.0, Vector::Y, &pose).unwrap();
+    assert!((floor.overlap - 0.1).abs() < 1e-15 && floor.normal() == Vector::Y);
+
+    let wrench = PairWrench {
+        force: Vector3::new(1.0, 2.0, 3.0),
+        torque1: Vector3::new(-1.0, 0.0, 0.5),
+        torque2: Vector3::new(0.0, 4.0, 0.0),
+    };
+    assert_eq!(wrench.force(), Vector::new(1.0, 2.0, 3.0));
+    assert_eq!(wrench.torque1(), Vector::new(-1.0, 0.0, 0.5));
+    assert_eq!(wrench.torque2(), Vector::new(0.0, 4.0, 0.0));
+
+    // A cylinder of radius 2 about z through the origin: a unit sphere at 2.5 from the axis
+    // overlaps it by 0.5.
+    let cylinder =
+        SurfaceOfRevolution::new(Vector::ZERO, Vector::Z, vec![(2.0, -1.0), (2.0, 1.0)]).unwrap();
+    let c = cylinder
+        .sphere_contact(Vector::new(2.5, 0.0, 0.0), 1.0, &Pose::IDENTITY)
+        .unwrap();
+    assert!((c.overlap - 0.5).abs() < 1e-15 && (c.normal() - Vector::X).length() < 1e-15);
+
+    let boundary = Boundary::periodic_xy((0.0, 1.0), (0.0, 2.0)).unwrap();
+    let wrapped = boundary.wrapped(Vector::new(1.25, -0.5, 3.0));
+    assert!((wrapped - Vector::new(0.25, 1.5, 3.0)).length() < 1e-15);
+    assert!(boundary.near_box(Vector::new(1.05, 1.0, 0.0), 0.1));
+    assert!(!boundary.near_box(Vector::new(1.2, 1.0, 0.0), 0.1));
+
+    let mut stepper =
+        FastForceStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
+    let m = stepper.insert_material(grain());
+    let i = stepper
+        .insert_sphere(
+            SphereBuilder::new(R, m)
+                .translation(Vector::new(1.0, 2.0, 3.0))
+                .linvel(Vector::new(0.0, -1.0, 0.0))
+                .angvel(Vector::Z),
+        )
+        .unwrap();
+    let p = stepper.particles_mut();
+    assert_eq!(p.position_of(i), Vector::new(1.0, 2.0, 3.0));
+    assert_eq!(p.linvel_of(i), Vector::new(0.0, -1.0, 0.0));
+    assert_eq!(p.angvel_of(i), Vector::Z);
+    p.set_position(i, Vector::X);
+    p.set_linvel(i, Vector::Y);
+    p.set_angvel(i, Vector::ZERO);
+    assert_eq!(p.position[i], Vector3::x());
+    assert_eq!(p.linvel[i], Vector3::y());
+    assert_eq!(p.angvel_of(i), Vector::ZERO);
 }

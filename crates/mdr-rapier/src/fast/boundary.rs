@@ -11,8 +11,8 @@
 //! Neighbour lists store the image of each pair; ghosts for binning are made from the offsets, so
 //! the neighbour search never looks at the kind of boundary.
 
-use crate::error::{positive, CouplingError, Result};
 use crate::convert::AnyVector;
+use crate::error::{positive, CouplingError, Result};
 use nalgebra::Vector3;
 use rapier3d_f64::math::Vector;
 

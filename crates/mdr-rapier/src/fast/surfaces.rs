@@ -82,11 +82,7 @@ impl FastSurface {
         }
         match &self.convex {
             Some(faces) => convex_distance_within(x, faces, co.position(), reach).is_some(),
-            None => {
-                co.shape()
-                    .distance_to_point(co.position(), x.glam(), true)
-                    < reach
-            }
+            None => co.shape().distance_to_point(co.position(), x.glam(), true) < reach,
         }
     }
 }
