@@ -180,8 +180,19 @@ fn a_users_constant_force_acts_as_without_the_plugin_on_the_neighbour_list_path(
     assert_as_without_plugin(&world, &bodies);
 }
 
+/// The user's hook: colliders flagged with `FILTER_CONTACT_PAIRS` touch nothing.
+struct PassThrough;
+
+impl PhysicsHooks for PassThrough {
+    fn filter_contact_pair(&self, _: &PairFilterContext) -> Option<SolverFlags> {
+        None
+    }
+}
+
 /// The neighbour-list path: a dynamic box the plugin does not know rests on a registered floor
-/// (rapier's contact), and a dynamic box falls onto a registered dynamic box resting on it.
+/// (rapier's contact, reported to the user's event handler), a dynamic box falls onto a
+/// registered dynamic box resting on it, and a box whose pairs the user's hook rejects falls
+/// through the floor.
 #[test]
 fn unregistered_bodies_rest_on_the_neighbour_list_paths_surfaces() {
     let mut world = PhysicsWorld::default();
@@ -201,7 +212,19 @@ fn unregistered_bodies_rest_on_the_neighbour_list_paths_surfaces() {
             .translation(Vector::new(0.5, HALF + 0.01, 0.0))
             .can_sleep(false),
     );
-    let on_floor_collider = world.insert_collider(cuboid(), Some(on_floor));
+    let on_floor_collider = world.insert_collider(
+        cuboid().active_events(ActiveEvents::COLLISION_EVENTS),
+        Some(on_floor),
+    );
+    let ghost = world.insert_body(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(1.0, HALF + 0.01, 0.0))
+            .can_sleep(false),
+    );
+    world.insert_collider(
+        cuboid().active_hooks(ActiveHooks::FILTER_CONTACT_PAIRS),
+        Some(ghost),
+    );
     let registered = world.insert_body(
         RigidBodyBuilder::dynamic()
             .translation(Vector::new(-0.5, HALF, 0.0))
@@ -222,9 +245,23 @@ fn unregistered_bodies_rest_on_the_neighbour_list_paths_surfaces() {
     stepper
         .configure(&mut world.integration_parameters, DT)
         .unwrap();
+    let (collisions, received) = std::sync::mpsc::channel();
+    let (forces, _) = std::sync::mpsc::channel();
+    let (tears, _) = std::sync::mpsc::channel();
+    let events = ChannelEventCollector::new(collisions, forces, tears);
     for _ in 0..STEPS {
-        stepper.step(&mut world).unwrap();
+        stepper
+            .step_with(&mut world, &PassThrough, &events)
+            .unwrap();
     }
+    assert!(
+        received.try_iter().any(|e| e.started()),
+        "the user's handler saw the box land"
+    );
+    // Free fall, symplectic Euler: g dt² N (N + 1) / 2 after N steps.
+    let fallen = HALF + 0.01 - world.bodies[ghost].translation().y;
+    let free_fall = 9.81 * DT * DT * (STEPS * (STEPS + 1)) as f64 / 2.0;
+    assert!((fallen - free_fall).abs() < 1e-9, "ghost fell {fallen}");
     let bottom = world.colliders[on_floor_collider].compute_aabb().mins.y;
     assert!(bottom > -2e-3, "unregistered box sank to {bottom}");
     let top = world.bodies[on_top].translation().y;

@@ -737,8 +737,20 @@ where
     /// `world.step()`. The same as [`FastForceStepper::compute_forces`] followed by
     /// [`FastForceStepper::advance`].
     pub fn step(&mut self, world: &mut PhysicsWorld) -> Result<FastStepReport> {
+        self.step_with(world, &(), &())
+    }
+
+    /// [`FastForceStepper::step`] with the user's hooks and event handler for rapier's own
+    /// pairs (`world.step_with_events(hooks, events)`); the particles are not rapier colliders,
+    /// so the hooks and events see the rapier bodies' pairs only.
+    pub fn step_with(
+        &mut self,
+        world: &mut PhysicsWorld,
+        hooks: &dyn PhysicsHooks,
+        events: &dyn EventHandler,
+    ) -> Result<FastStepReport> {
         self.compute_forces(world, false)?;
-        self.advance(world)
+        self.advance_with(world, hooks, events)
     }
 
     /// First half of a step at the current state `x_k, v_k`: rebuild the lists if due, then every
@@ -781,6 +793,17 @@ where
     /// [`FastForceStepper::compute_forces`] (called first if it was not), put the reactions on
     /// dynamic rapier bodies, then `world.step()`.
     pub fn advance(&mut self, world: &mut PhysicsWorld) -> Result<FastStepReport> {
+        self.advance_with(world, &(), &())
+    }
+
+    /// [`FastForceStepper::advance`] with the user's hooks and event handler for rapier's step
+    /// (`world.step_with_events(hooks, events)`).
+    pub fn advance_with(
+        &mut self,
+        world: &mut PhysicsWorld,
+        hooks: &dyn PhysicsHooks,
+        events: &dyn EventHandler,
+    ) -> Result<FastStepReport> {
         if self.pending.is_none() {
             self.compute_forces(world, false)?;
         }
@@ -795,7 +818,7 @@ where
         self.max_displacement = self.integrate(&gravity, dt).sqrt();
         self.lap(&mut mark, |t| &mut t.integration);
         self.apply_reactions(&mut world.bodies);
-        world.step();
+        world.step_with_events(hooks, events);
         self.added.give_back(&mut world.bodies);
         self.lap(&mut mark, |t| &mut t.rapier);
         if let Some(timings) = &mut self.timings {
