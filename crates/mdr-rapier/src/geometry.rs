@@ -692,14 +692,14 @@ mod tests {
     fn surface_of_revolution_distance_matches_sampling() {
         // A funnel: cone from radius 2 at a = 0 to 20 at a = 40, tilted axis, off origin.
         let cone = SurfaceOfRevolution::new(
-            Vector3::new(1.0, -2.0, 0.5),
-            Vector3::new(0.2, 0.1, 1.0),
+            &Vector3::new(1.0, -2.0, 0.5),
+            &Vector3::new(0.2, 0.1, 1.0),
             vec![(2.0, 0.0), (20.0, 40.0)],
         )
         .unwrap();
         let capped = SurfaceOfRevolution::new(
-            Vector3::zeros(),
-            Vector3::z(),
+            &Vector3::zeros(),
+            &Vector3::z(),
             vec![(0.0, -1.0), (3.0, -1.0), (3.0, 1.0), (0.0, 1.0)],
         )
         .unwrap();
@@ -737,8 +737,8 @@ mod tests {
         // the axis overlaps by 0.1 whatever its azimuth (no facets), with the normal pointing to
         // the axis; above the rim (z = 5.3) it touches the rim circle.
         let cylinder = SurfaceOfRevolution::new(
-            Vector3::zeros(),
-            Vector3::z(),
+            &Vector3::zeros(),
+            &Vector3::z(),
             vec![(2.0, -5.0), (2.0, 5.0)],
         )
         .unwrap();
@@ -765,22 +765,24 @@ mod tests {
     #[test]
     fn surface_of_revolution_rejects_bad_input() {
         let ok = vec![(1.0, 0.0), (1.0, 1.0)];
-        assert!(SurfaceOfRevolution::new(Vector3::zeros(), Vector3::zeros(), ok.clone()).is_err());
         assert!(
-            SurfaceOfRevolution::new(Vector3::zeros(), Vector3::z(), vec![(1.0, 0.0)]).is_err()
+            SurfaceOfRevolution::new(&Vector3::zeros(), &Vector3::zeros(), ok.clone()).is_err()
+        );
+        assert!(
+            SurfaceOfRevolution::new(&Vector3::zeros(), &Vector3::z(), vec![(1.0, 0.0)]).is_err()
         );
         assert!(SurfaceOfRevolution::new(
-            Vector3::zeros(),
-            Vector3::z(),
+            &Vector3::zeros(),
+            &Vector3::z(),
             vec![(-1.0, 0.0), (1.0, 1.0)]
         )
         .is_err());
         assert!(SurfaceOfRevolution::new(
-            Vector3::zeros(),
-            Vector3::z(),
+            &Vector3::zeros(),
+            &Vector3::z(),
             vec![(f64::NAN, 0.0), (1.0, 1.0)]
         )
         .is_err());
-        assert!(SurfaceOfRevolution::new(Vector3::zeros(), Vector3::z(), ok).is_ok());
+        assert!(SurfaceOfRevolution::new(&Vector3::zeros(), &Vector3::z(), ok).is_ok());
     }
 }

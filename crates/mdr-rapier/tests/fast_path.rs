@@ -847,12 +847,8 @@ fn spheres_touch_an_exact_cylinder_at_its_radius_in_every_direction() {
     fast.configure(&mut world.integration_parameters, 1e-4)
         .unwrap();
     let body = world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(5.0, 0.0, 0.0)));
-    let cylinder = SurfaceOfRevolution::new(
-        nalgebra::Vector3::zeros(),
-        nalgebra::Vector3::z(),
-        vec![(2.0, -5.0), (2.0, 5.0)],
-    )
-    .unwrap();
+    let cylinder =
+        SurfaceOfRevolution::new(Vector::ZERO, Vector::Z, vec![(2.0, -5.0), (2.0, 5.0)]).unwrap();
     fast.insert_surface_of_revolution(
         &mut world,
         ColliderBuilder::cuboid(2.5, 2.5, 5.0),

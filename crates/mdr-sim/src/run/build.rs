@@ -342,8 +342,8 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
                 .map(|piece| piece_collider(piece).map(|b| (b.position, b.shape)))
                 .collect::<Result<Vec<_>, _>>()?;
             let surface = SurfaceOfRevolution::new(
-                revolution.center,
-                revolution.axis,
+                &revolution.center,
+                &revolution.axis,
                 revolution.profile.clone(),
             )?;
             let c = with_fast!(s, s => s.insert_surface_of_revolution(
