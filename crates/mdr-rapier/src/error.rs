@@ -95,6 +95,26 @@ pub enum CouplingError {
         /// The other collider.
         collider2: ColliderHandle,
     },
+    /// A neighbour-list step too long for the fastest contact its particles could make at the
+    /// last build: symplectic Euler is unstable on it.
+    #[error(
+        "time step {dt:e} s exceeds the stability limit {limit:e} s of a {kind} contact at the \
+         approach speed {speed} m/s the particles reach (Hertz contact time {contact_time:e} s); \
+         reduce dt, e.g. to `stable_time_step(pair, v_max, 50.0)`"
+    )]
+    FastTimeStepTooLarge {
+        /// The step (s).
+        dt: f64,
+        /// Stability limit `2 √(m / k_max)` of that contact (s).
+        limit: f64,
+        /// Hertz contact time at that approach speed (s).
+        contact_time: f64,
+        /// The approach speed: twice the largest particle speed between spheres, the largest
+        /// particle speed plus the surface's against a surface (m/s).
+        speed: f64,
+        /// `sphere–sphere` or `sphere–surface`.
+        kind: &'static str,
+    },
     /// A saved fast-path state (neighbour lists, histories) does not fit the stepper it is
     /// restored into.
     #[error("the saved neighbour-list state does not fit this stepper: {0}")]

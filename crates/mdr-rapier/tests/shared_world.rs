@@ -491,3 +491,58 @@ fn vectors_pass_and_read_in_rapiers_type() {
     assert_eq!(p.linvel[i], Vector3::y());
     assert_eq!(p.angvel_of(i), Vector::ZERO);
 }
+
+/// The neighbour-list path refuses, at a build, a step above the stability limit of the
+/// fastest contact its particles could make: two grains approaching at 2 m/s each (4 m/s), or
+/// one at 3 m/s against the floor; half the limit runs.
+#[test]
+fn an_unstable_step_on_the_neighbour_list_path_is_an_error() {
+    let run = |dt: f64, spheres: &[(Vector, Vector)]| {
+        let mut world = PhysicsWorld::default();
+        let mut stepper =
+            FastForceStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
+        let m = stepper.insert_material(grain());
+        stepper
+            .insert_surface(
+                &mut world,
+                ColliderBuilder::new(SharedShape::halfspace(Vector::Y)),
+                None,
+                m,
+            )
+            .unwrap();
+        for &(x, v) in spheres {
+            stepper
+                .insert_sphere(SphereBuilder::new(R, m).translation(x).linvel(v))
+                .unwrap();
+        }
+        stepper
+            .configure(&mut world.integration_parameters, dt)
+            .unwrap();
+        stepper.step(&mut world).map(|_| ())
+    };
+    let head_on = [
+        (Vector::new(-0.1, 0.5, 0.0), Vector::new(2.0, 0.0, 0.0)),
+        (Vector::new(0.1, 0.5, 0.0), Vector::new(-2.0, 0.0, 0.0)),
+    ];
+    let pair = LawPair::sphere_on_sphere(R, &grain(), R, &grain()).unwrap();
+    let limit = stable_time_step(&pair, 4.0, 1.0).unwrap().stability_limit;
+    let err = run(1.01 * limit, &head_on).unwrap_err();
+    assert!(
+        matches!(err, CouplingError::FastTimeStepTooLarge { limit: l, speed, kind, .. }
+            if (l / limit - 1.0).abs() < 1e-12 && speed == 4.0 && kind == "sphere–sphere"),
+        "{err:?}"
+    );
+    assert!(err.to_string().contains("stable_time_step"), "{err}");
+    assert_eq!(run(0.5 * limit, &head_on), Ok(()));
+
+    let falling = [(Vector::new(0.0, 0.5, 0.0), Vector::new(0.0, -3.0, 0.0))];
+    let pair = LawPair::sphere_on_half_space(R, &grain(), &grain()).unwrap();
+    let limit = stable_time_step(&pair, 3.0, 1.0).unwrap().stability_limit;
+    let err = run(1.01 * limit, &falling).unwrap_err();
+    assert!(
+        matches!(err, CouplingError::FastTimeStepTooLarge { limit: l, speed, kind, .. }
+            if (l / limit - 1.0).abs() < 1e-12 && speed == 3.0 && kind == "sphere–surface"),
+        "{err:?}"
+    );
+    assert_eq!(run(0.5 * limit, &falling), Ok(()));
+}

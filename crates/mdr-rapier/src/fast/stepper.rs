@@ -44,6 +44,7 @@ use crate::kernel::{
 };
 use crate::particles::{MaterialHandle, ParticleShape, SphereBuilder};
 use crate::registration::add_force_flags;
+use crate::timestep::stable_time_step;
 use mdr_contact::damping::{DampingModel, NoDamping};
 use mdr_contact::material::{effective_modulus, effective_shear_modulus};
 use mdr_contact::model::{
@@ -775,6 +776,7 @@ where
             || self.surfaces_moved(&world.colliders) > half_skin;
         if rebuilt {
             self.rebuild(&world.bodies, &world.colliders)?;
+            self.check_stability(&world.bodies, dt)?;
         }
         self.lap(&mut mark, |t| &mut t.builds);
         let surface_contacts = self.surface_wrenches(&world.bodies, &world.colliders, dt);
@@ -832,6 +834,81 @@ where
             max_displacement: self.max_displacement,
         };
         Ok(self.report)
+    }
+}
+
+impl<N, T, D, R, B> FastForceStepper<N, T, D, R, B>
+where
+    N: NormalModel,
+    T: TangentialModel,
+    D: DampingModel,
+    R: RollingModel,
+    B: WorkBooks,
+{
+    /// At each neighbour-list build: `dt` must stay below the stability limit `2 √(m/k_max)`
+    /// ([`stable_time_step`]) of the Hertz contact that any two species could make at twice the
+    /// largest particle speed, and that any species could make with any surface at the largest
+    /// particle speed plus the surface body's speed, else [`CouplingError::FastTimeStepTooLarge`].
+    fn check_stability(&self, bodies: &RigidBodySet, dt: f64) -> Result<()> {
+        let p = &self.particles;
+        let v_max = p
+            .linvel
+            .iter()
+            .map(|v| v.norm_squared())
+            .fold(0.0, f64::max)
+            .sqrt();
+        let table = &p.species_table;
+        let nm = self.materials.len();
+        let check = |pair: ContactPair, speed: f64, kind: &'static str| -> Result<()> {
+            if !(speed > 0.0 && speed.is_finite()) {
+                return Ok(());
+            }
+            let advice = stable_time_step(&pair, speed, 1.0)?;
+            if dt > advice.stability_limit {
+                return Err(CouplingError::FastTimeStepTooLarge {
+                    dt,
+                    limit: advice.stability_limit,
+                    contact_time: advice.contact_time,
+                    speed,
+                    kind,
+                });
+            }
+            Ok(())
+        };
+        // Two particles at least for a sphere–sphere contact.
+        let pairs = if p.len() > 1 { table.len() } else { 0 };
+        for (k, a) in table.iter().enumerate() {
+            for b in &table[k..pairs.max(k)] {
+                let (e, g) = self.moduli[a.material.0 as usize * nm + b.material.0 as usize];
+                let pair = ContactPair::new(
+                    e,
+                    g,
+                    a.radius * b.radius / (a.radius + b.radius),
+                    a.mass * b.mass / (a.mass + b.mass),
+                )?;
+                check(pair, 2.0 * v_max, "sphere–sphere")?;
+            }
+            for s in &self.surfaces {
+                let (e, g) = self.moduli[a.material.0 as usize * nm + s.material.0 as usize];
+                let body = s.body.and_then(|h| bodies.get(h));
+                let body_speed = body.map_or(0.0, |b| {
+                    let spin = b.angvel().length();
+                    b.linvel().length()
+                        + if spin > 0.0 && s.bounding_radius.is_finite() {
+                            spin * s.bounding_radius
+                        } else {
+                            0.0
+                        }
+                });
+                let mass = match body.filter(|b| b.is_dynamic()) {
+                    Some(b) => a.mass * b.mass() / (a.mass + b.mass()),
+                    None => a.mass,
+                };
+                let pair = ContactPair::new(e, g, a.radius, mass)?;
+                check(pair, v_max + body_speed, "sphere–surface")?;
+            }
+        }
+        Ok(())
     }
 }
 
