@@ -69,6 +69,18 @@ fn every_branch_reports_the_closed_form_quantities() {
         assert_eq!(law.max_overlap(&state), d);
         assert_eq!(law.residual_overlap(&state), 0.0);
         assert_eq!(law.dissipated_work(&state), 0.0);
+        // Below u_c the stored energy is Hertz's, on loading and on unloading.
+        assert_close(
+            "stored, elastic",
+            law.elastic_energy(&state, d),
+            x.hertz_work(d),
+        );
+        assert_close(
+            "stored, elastic unloading",
+            law.stored_energy(d, 0.5 * d),
+            x.hertz_work(0.5 * d),
+        );
+        assert_eq!(law.stored_energy(d, 0.0), 0.0);
 
         // Plastic loading to d_max = 3 u_c: F = F_H(d) − (1 − θ) F_H(d − u_c),
         // k = 2E*√R(√d − (1 − θ)√(d − u_c)).
