@@ -192,9 +192,14 @@ fn without_hardening_unloading_ends_at_s() {
         assert_eq!(law.update(&mut state, d).force, 0.0, "d = {d}");
     }
     assert_eq!(law.elastic_energy(&state, 0.99 * s), 0.0);
-    // All the loading work beyond the elastic outer part is dissipated.
+    // Only the outer part, s < d' < d_max, stores energy; the rest of the loading work is
+    // dissipated.
     let w_load = x.hertz_work(d_max) - x.hertz_work(s);
     assert_close("loading work", law.loading_work(d_max), w_load);
+    let c = 4.0 / 3.0 * x.e * x.r.sqrt();
+    let outer = 0.4 * c * (d_max.powf(2.5) - s.powf(2.5)) - c * s.powf(1.5) * (d_max - s);
+    assert_close("stored", law.stored_energy(d_max, d_max), outer);
+    assert_close("dissipated", law.dissipated_work(&state), w_load - outer);
 }
 
 /// `v_y` from `m v_y²/2 = (8/15) E* √R u_c^{5/2}` (docs/theory.md §4) and the loading work
