@@ -262,3 +262,45 @@ fn parameters_and_an_absolute_hardening_modulus() {
         .unwrap_err();
     assert!(err.to_string().contains("theta"), "{err}");
 }
+
+/// A re-impact on a flattened contact within the energy it can store is elastic, and its
+/// deepest overlap is where the flattened profile (Hertz of radius `R/θ` about the residual
+/// depth) has stored the kinetic energy: `(8/15) E* √(R/θ) (D − e_r)^{5/2} = m v²/2`; one that
+/// reaches past `s` stores the outer part as well. Both against the closed form written out.
+#[test]
+fn elastic_re_impact_reaches_the_depth_that_stores_its_energy() {
+    let pair = ContactPair::paper_fig2();
+    let theta = 0.37;
+    let law = MdrElastoPlastic::paper().bind(&pair).unwrap();
+    let x = Reference::new(&pair, 3.8e5);
+    let m = pair.reduced_mass();
+    let d_max = 4.0 * x.u_c;
+    let s = d_max - x.u_c;
+    let residual = (1.0 - theta) * s;
+    let state = MdrState { max_overlap: d_max };
+    let c = 4.0 / 3.0 * x.e * x.r.sqrt();
+    // On the flattened profile: choose D, give the energy it stores.
+    let depth = residual + 0.6 * (s - residual);
+    let kinetic = 0.4 * c / theta.sqrt() * (depth - residual).powf(2.5);
+    let speed = (2.0 * kinetic / m).sqrt();
+    let impact = law.impact(&state, m, speed);
+    assert_eq!(impact.restitution, 1.0);
+    assert_eq!(impact.state, state);
+    assert!(
+        close(impact.max_overlap, depth, 1e-12),
+        "{} vs {depth}",
+        impact.max_overlap
+    );
+    // Past s, still below d_max: the flattened part up to s plus the outer part.
+    let depth = s + 0.5 * x.u_c;
+    let kinetic = 0.4 * c / theta.sqrt() * (s - residual).powf(2.5)
+        + 0.4 * c * (depth.powf(2.5) - s.powf(2.5))
+        - (1.0 - theta) * c * s.powf(1.5) * (depth - s);
+    let impact = law.impact(&state, m, (2.0 * kinetic / m).sqrt());
+    assert_eq!(impact.restitution, 1.0);
+    assert!(
+        close(impact.max_overlap, depth, 1e-12),
+        "{} vs {depth}",
+        impact.max_overlap
+    );
+}
