@@ -304,3 +304,71 @@ fn elastic_re_impact_reaches_the_depth_that_stores_its_energy() {
         impact.max_overlap
     );
 }
+
+/// The energy route of a plastic impact against the closed form written out: for a chosen
+/// deepest overlap `D`, the speed whose kinetic energy is the loading work
+/// `(8/15) E* √R [D^{5/2} − (1 − θ)(D − u_c)^{5/2}]` gives back `D` to 1e-13 and
+/// `e_n² = W_stored(D)/W_load(D)` (docs/theory.md §4), on a virgin contact and on one loaded
+/// before (where only the work past the old `d_max` is new).
+#[test]
+fn energy_route_finds_the_overlap_that_spends_the_kinetic_energy() {
+    let pair = ContactPair::paper_fig2();
+    let m = pair.reduced_mass();
+    for theta in [0.37, 0.1] {
+        let law = MdrElastoPlastic::new(3.8e5, theta)
+            .unwrap()
+            .bind(&pair)
+            .unwrap();
+        let x = Reference::new(&pair, 3.8e5);
+        let c = 4.0 / 3.0 * x.e * x.r.sqrt();
+        let w_load = |d: f64| x.hertz_work(d) - (1.0 - theta) * x.hertz_work(d - x.u_c);
+        let w_stored = |d_max: f64, d: f64| {
+            let s = d_max - x.u_c;
+            if s <= 0.0 {
+                return x.hertz_work(d);
+            }
+            let residual = (1.0 - theta) * s;
+            0.4 * c / theta.sqrt() * (d.min(s) - residual).max(0.0).powf(2.5)
+                + if d > s {
+                    0.4 * c * (d.powf(2.5) - s.powf(2.5))
+                        - (1.0 - theta) * c * s.powf(1.5) * (d - s)
+                } else {
+                    0.0
+                }
+        };
+        for ratio in [1.5, 4.0, 30.0, 1000.0] {
+            let depth = ratio * x.u_c;
+            let kinetic = w_load(depth);
+            let impact = law.impact(&MdrState::default(), m, (2.0 * kinetic / m).sqrt());
+            assert!(
+                close(impact.max_overlap, depth, 1e-13),
+                "θ = {theta}, D = {ratio} u_c: {} vs {depth}",
+                impact.max_overlap
+            );
+            assert_eq!(impact.state.max_overlap, impact.max_overlap);
+            let e = (w_stored(depth, depth) / kinetic).sqrt();
+            assert!(
+                close(impact.restitution, e, 1e-12),
+                "θ = {theta}, D = {ratio} u_c: e = {} vs {e}",
+                impact.restitution
+            );
+            // Again on a contact already loaded to D/2: reloading absorbs W_stored(D/2) first.
+            let before = MdrState {
+                max_overlap: 0.5 * depth,
+            };
+            let kinetic = w_stored(0.5 * depth, 0.5 * depth) + w_load(depth) - w_load(0.5 * depth);
+            let impact = law.impact(&before, m, (2.0 * kinetic / m).sqrt());
+            assert!(
+                close(impact.max_overlap, depth, 1e-13),
+                "θ = {theta}, D = {ratio} u_c after D/2: {} vs {depth}",
+                impact.max_overlap
+            );
+            let e = (w_stored(depth, depth) / kinetic).sqrt();
+            assert!(
+                close(impact.restitution, e, 1e-12),
+                "θ = {theta}, D = {ratio} u_c after D/2: e = {} vs {e}",
+                impact.restitution
+            );
+        }
+    }
+}
