@@ -87,14 +87,15 @@ fn energy_route_matches_time_stepping() {
                 pair.hertz_contact_time(speed),
                 20_000,
             );
+            // 20,000 steps per contact: measured ≤ 1.2e-9 in e_n, ≤ 1.8e-9 in d_max.
             assert!(
-                (route.restitution - run.restitution).abs() < 1e-4,
+                (route.restitution - run.restitution).abs() < 5e-9,
                 "θ = {theta}, v/v_y = {ratio}: energy route {} vs time stepping {}",
                 route.restitution,
                 run.restitution
             );
-            assert!((route.max_overlap / run.max_overlap - 1.0).abs() < 1e-4);
-            assert!((route.state.max_overlap / state.max_overlap - 1.0).abs() < 1e-4);
+            assert!((route.max_overlap / run.max_overlap - 1.0).abs() < 1e-8);
+            assert!((route.state.max_overlap / state.max_overlap - 1.0).abs() < 1e-8);
         }
     }
 }
@@ -172,8 +173,9 @@ fn a_slower_second_impact_on_the_same_spot_is_elastic() {
         pair.hertz_contact_time(slower),
         20_000,
     );
+    // Measured 2.8e-11.
     assert!(
-        (run.restitution - 1.0).abs() < 1e-4,
+        (run.restitution - 1.0).abs() < 1e-10,
         "e = {}",
         run.restitution
     );

@@ -55,9 +55,10 @@ fn grow_and_shear(form: MindlinForm, steps: usize) -> (f64, f64) {
 #[test]
 fn force_form_follows_the_spring_bed_on_a_growing_contact() {
     let (bed, force_form) = grow_and_shear(MindlinForm::Force, 400);
-    // Discretisation of the bed (4001 springs) and of the loading path (400 steps): 1 %.
+    // Discretisation of the bed (4001 springs) and of the loading path (400 steps): measured
+    // 5.7e-6.
     assert!(
-        (bed - force_form).abs() < 0.01 * bed,
+        (bed - force_form).abs() < 3e-5 * bed,
         "spring bed {bed} vs force form {force_form}"
     );
 }
@@ -67,9 +68,10 @@ fn displacement_form_overestimates_a_growing_contact() {
     let (bed, displacement_form) = grow_and_shear(MindlinForm::Displacement, 400);
     // With a ∝ √δ growing linearly in time, the incremental force is ∫ a dδ_x ≈ (2/3) a_end δ_x,
     // while the displacement form gives a_end δ_x: 3/2 of it.
+    // Measured 1.5 − 2.8e-3 (the first steps, where a ∝ √δ is coarsely resolved).
     let ratio = displacement_form / bed;
     assert!(
-        (ratio - 1.5).abs() < 0.02,
+        (ratio - 1.5).abs() < 1e-2,
         "displacement form / spring bed = {ratio}"
     );
 }

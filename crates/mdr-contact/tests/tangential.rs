@@ -1,6 +1,6 @@
 //! Tangential laws (`docs/theory.md` §5): the MDR spring bed with per-spring
 //! stick/slip reproduces Cattaneo–Mindlin partial slip, `F_x = μ F_N (1 − (c/a)³)` with
-//! `F_x = μ F_N (1 − (1 − δ_x/δ_slip)^{3/2})`, `δ_slip = μ E* d / G*`, within 1 %; without slip
+//! `F_x = μ F_N (1 − (1 − δ_x/δ_slip)^{3/2})`, `δ_slip = μ E* d / G*`, within 1e-6 μ F_N; without slip
 //! the O(1) Mindlin law equals the spring bed (`F = 2 G* a δ_x`).
 
 use mdr_contact::normal::{SpringBed, SpringBedState};
@@ -29,7 +29,9 @@ fn cattaneo_mindlin(normal_force: f64, slip_displacement: f64, displacement: f64
 }
 
 /// Load tangentially in `steps` equal increments up to `1.2 δ_slip` at constant normal overlap
-/// and compare with Cattaneo–Mindlin at every step (1 % of the local value, plus 1e-4 μ F_N).
+/// and compare with Cattaneo–Mindlin at every step: within 1e-6 μ F_N (measured 1.7e-7 with 4,001
+/// springs); through the stick radius `c` within 5e-3 μ F_N (measured 2.4e-3: `c` moves from
+/// spring to spring).
 fn check_partial_slip(
     bed: &SpringBed,
     normal_state: &SpringBedState,
@@ -47,7 +49,7 @@ fn check_partial_slip(
         let displacement = k as f64 * increment;
         let expected = cattaneo_mindlin(normal_force, slip_displacement, displacement);
         assert!(
-            (force - expected).abs() <= 0.01 * expected + 1e-4 * MU * normal_force,
+            (force - expected).abs() <= 1e-6 * MU * normal_force,
             "δ_x/δ_slip = {}: spring bed {force}, Cattaneo–Mindlin {expected}",
             displacement / slip_displacement
         );
@@ -56,7 +58,7 @@ fn check_partial_slip(
             let c = law.stick_radius(bed, normal_state, &state);
             let from_stick = MU * normal_force * (1.0 - (c / contact_radius).powi(3));
             assert!(
-                (force - from_stick).abs() <= 0.01 * MU * normal_force,
+                (force - from_stick).abs() <= 5e-3 * MU * normal_force,
                 "stick radius {c}: {force} vs {from_stick}"
             );
         }
@@ -182,7 +184,8 @@ fn gross_slip_caps_at_coulomb_and_dissipates_mu_f_n_per_slip_length() {
     let back = law.update(&bed, &normal_state, &mut state, -1e-9);
     let a = (pair.effective_radius() * d).sqrt();
     let drop = force - back;
-    assert!((drop / (2.0 * pair.effective_shear_modulus() * a * 1e-9) - 1.0).abs() < 0.01);
+    // Measured 1.1e-4 (the bed's discrete stiffness against 2 G* a).
+    assert!((drop / (2.0 * pair.effective_shear_modulus() * a * 1e-9) - 1.0).abs() < 5e-4);
 }
 
 #[test]

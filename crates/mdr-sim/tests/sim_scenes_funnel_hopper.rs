@@ -430,7 +430,7 @@ fn hopper_orifice_sweep_runs_once_per_diameter_and_fits_the_rates() {
     }
     // The fit is always made (three or more points) and must be there: a sweep that silently
     // drops it fails here. The rates of these 0.06 s runs are transients, not Beverloo's
-    // steady flow; the ignored test below checks the physics.
+    // steady flow; `small_hopper_discharges_at_beverloo_rate` checks the physics.
     let fit = sweep.fit.expect("the sweep's Beverloo fit");
     let (a, b) = fit.line;
     let rho_b = mdr_sim::headline::BULK_SOLID_FRACTION * 2500.0;
@@ -482,18 +482,92 @@ fn exact_cylinder_and_orifice_plate_hold_the_spheres_and_let_them_drain() {
     );
 }
 
-/// The physics of the sweep (minutes on a loaded machine: `cargo test -p mdr-sim --test
-/// sim_scenes_funnel_hopper -- --ignored`): ~760 soft spheres, orifices of 5, 6, 7 d, 0.2 s
-/// each: the rate grows with the orifice and the fitted correlation passes through the rates.
+/// Least-squares slope of `(x, y)` points.
+fn slope(points: &[(f64, f64)]) -> f64 {
+    let n = points.len() as f64;
+    let mx = points.iter().map(|p| p.0).sum::<f64>() / n;
+    let my = points.iter().map(|p| p.1).sum::<f64>() / n;
+    points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>()
+        / points.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>()
+}
+
+/// The discharge physics at CI size (two runs of ~1,500 soft spheres, 0.25 s each, orifices of
+/// 5 d and 6 d in a hopper 12.5 d wide), against Beverloo, Leniger & van de Velde (Chem. Eng. Sci.
+/// 15, 260, 1961) with the commonly quoted `C = 0.58`, `k = 1.5`, `ρ_b = 0.6 ρ_p`:
+/// - each steady rate within 20 % of `W = C ρ_b √g (D − k d)^{5/2}` (measured 1.130 and 1.002;
+///   the correlation's own spread, `C` = 0.55–0.65 and `k` = 1.3–1.7 at `D = 5 d`, is ±15 %);
+/// - the flow is steady: the rates over the first and the second half of the fit window agree
+///   within 20 % while the fill height falls (measured 2.6 % and 11.7 %; a rate that followed the
+///   fill height, as a liquid's `√h` does, or a transient would not).
+///
+/// Fitting `C` and `k` themselves needs wider orifices and a deeper bed: the ignored test below
+/// runs the built-in hopper for them.
+#[test]
+fn small_hopper_discharges_at_beverloo_rate() {
+    let dir = common::temp_dir("hopper-beverloo");
+    for orifice in [0.010, 0.012] {
+        let text = hopper(2000, 0.25, "[]")
+            .replace("orifice_sweep_m = []\n", "")
+            .replace(
+                "orifice_diameter_m = 0.012",
+                &format!("orifice_diameter_m = {orifice}"),
+            );
+        let tag = format!("D{}", (orifice * 1000.0) as usize);
+        let path = common::write(&dir, &format!("{tag}.toml"), &text);
+        let scene = mdr_sim::load_scene(&path).unwrap_or_else(|p| panic!("{p}"));
+        let summary = run_scene(
+            &scene,
+            &RunOptions::new(dir.join(&tag)).quiet(true).no_frames(true),
+        )
+        .expect("run");
+        let h = &summary.headline;
+        eprintln!("{}", h.text);
+        let rate = h.get("mass_flow_rate_kg_per_s").expect("rate");
+        let ratio = h.get("ratio_to_beverloo").expect("ratio");
+        assert!(
+            (ratio - 1.0).abs() < 0.2,
+            "D = {orifice}: W = {rate:e} kg/s = {ratio} × Beverloo"
+        );
+        // Steadiness: the discharged mass in the fit window, split in two halves.
+        let start = h.get("fit_window_start_s").expect("window");
+        let total: f64 = scene
+            .particles
+            .iter()
+            .map(|p| scene.materials[p.material].1.sphere_mass(p.radius))
+            .sum();
+        let csv = std::fs::read_to_string(dir.join(format!("{tag}/hopper_headline.csv")))
+            .expect("headline CSV");
+        let window: Vec<(f64, f64)> = csv
+            .lines()
+            .skip(1)
+            .map(|l| {
+                let f: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+                (f[0], f[1])
+            })
+            .filter(|(t, m)| *t >= start && *m > 0.0 && *m <= 0.9 * total)
+            .collect();
+        assert!(window.len() >= 16, "{} rows in the window", window.len());
+        let (first, second) = window.split_at(window.len() / 2);
+        let (w1, w2) = (slope(first), slope(second));
+        eprintln!("D = {orifice}: window rates {w1:.4e}, {w2:.4e} kg/s");
+        assert!(
+            (w2 / w1 - 1.0).abs() < 0.2,
+            "D = {orifice}: the rate changes within the window: {w1:e} then {w2:e} kg/s"
+        );
+    }
+}
+
+/// Beverloo's `C` and `k` fitted to the built-in hopper's three orifices (6, 8, 10 d; 20,734
+/// spheres, 0.8 s each; `cargo test --release -p mdr-sim --test
+/// sim_scenes_funnel_hopper -- --ignored`) within the literature's ranges: `C` = 0.55–0.65 and
+/// `k` = 1.3–2.9 reported for the correlation (Beverloo, Leniger & van de Velde 1961), and every
+/// rate within 10 % of it with `C = 0.58`, `k = 1.5`.
 #[test]
 #[ignore]
-fn hopper_orifice_sweep_rates_grow_with_the_orifice() {
-    let dir = common::temp_dir("hopper-sweep");
-    let path = common::write(
-        &dir,
-        "hopper.toml",
-        &hopper(1000, 0.2, "[0.010, 0.012, 0.014]"),
-    );
+fn builtin_hopper_fits_literature_beverloo_c_and_k() {
+    let dir = common::temp_dir("hopper-builtin");
+    let path =
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/hopper.toml");
     let scene = mdr_sim::load_scene(&path).unwrap_or_else(|p| panic!("{p}"));
     let sweep = mdr_sim::headline::run_orifice_sweep(
         &scene,
@@ -501,17 +575,13 @@ fn hopper_orifice_sweep_rates_grow_with_the_orifice() {
     )
     .expect("sweep");
     eprintln!("{}", sweep.text);
-    for w in sweep.points.windows(2) {
+    for (d, w, beverloo) in &sweep.points {
         assert!(
-            w[1].1 > w[0].1,
-            "the rate grows with the orifice: {:?}",
-            sweep.points
+            (w / beverloo - 1.0).abs() < 0.1,
+            "D = {d}: {w} vs {beverloo}"
         );
     }
     let fit = sweep.fit.expect("fit");
-    for (d, w, _) in &sweep.points {
-        let (a, b) = fit.line;
-        let back = (a + b * d).powf(2.5);
-        assert!((back / w - 1.0).abs() < 0.1, "D = {d}: fit {back} vs {w}");
-    }
+    assert!((0.55..=0.65).contains(&fit.c), "C = {}", fit.c);
+    assert!((1.3..=2.9).contains(&fit.k), "k = {}", fit.k);
 }
