@@ -250,6 +250,53 @@ impl AdhesiveMdrLaw {
         crater.height(a) - self.critical_elongation(a)
     }
 
+    /// Energy the springs held when they let go while the attached radius fell from `previous`
+    /// to `a` on a continuous unloading path (eq. A6): on the retreating front each spring lets
+    /// go at `Δl_max(x)`, `π Δγ (previous² − a²)` in all; when the whole contact lets go, the
+    /// front first retreats to the weakest edge `a*` (eq. A7) and the springs inside it let go
+    /// at once with the energy they hold at `δ(a*)`.
+    fn released_work(&self, crater: &Crater, previous: f64, a: f64) -> f64 {
+        let annulus =
+            |outer: f64, inner: f64| PI * self.work_of_adhesion * (outer * outer - inner * inner);
+        if a > 0.0 {
+            return annulus(previous, a);
+        }
+        let (edge, overlap) = self.weakest_edge(crater, previous);
+        annulus(previous, edge) + crater.spring_energy(self.mdr.effective_modulus(), overlap, edge)
+    }
+
+    /// `(a*, δ(a*))` with `δ(a*)` the smallest `δ(a')` over `0 < a' ≤ a` (eq. A7): `δ` is
+    /// convex in `√a'`, so the minimum is at its stationary point on either branch of the
+    /// crater, at the plastic radius, or at the edge `a`.
+    fn weakest_edge(&self, crater: &Crater, a: f64) -> (f64, f64) {
+        let c = self.detach_coefficient;
+        let r = crater.radius;
+        let b_sq = crater.plastic_radius_sq;
+        let mut best = (a, self.edge_overlap(crater, a));
+        let mut consider = |x: f64| {
+            let overlap = self.edge_overlap(crater, x);
+            if overlap < best.1 {
+                best = (x, overlap);
+            }
+        };
+        // Outer branch h = a²/R: dδ/dt = 4t³/R − c = 0 (t = √a).
+        let outer = (c * r / 4.0).powf(2.0 / 3.0);
+        if outer * outer >= b_sq && outer <= a {
+            consider(outer);
+        }
+        if b_sq > 0.0 && b_sq < a * a {
+            consider(b_sq.sqrt());
+        }
+        if crater.theta > 0.0 {
+            // Inner branch h = θa²/R + (1 − θ)s: 4θt³/R = c.
+            let inner = (c * r / (4.0 * crater.theta)).powf(2.0 / 3.0);
+            if inner * inner < b_sq && inner <= a {
+                consider(inner);
+            }
+        }
+        best
+    }
+
     /// The elastic JKR pull-off force `(3/2) π Δγ R` (N).
     pub fn jkr_pull_off_force(&self) -> f64 {
         self.pull_off
@@ -284,10 +331,7 @@ impl NormalLaw for AdhesiveMdrLaw {
         let previous = state.contact_radius;
         let a = self.attached_radius(&crater, previous, d);
         if a < previous {
-            // The springs between a and the old edge let go with the energy they held.
-            let modulus = self.mdr.effective_modulus();
-            state.adhesive_work += crater.spring_energy(modulus, d, previous)
-                - crater.spring_energy(modulus, d, a);
+            state.adhesive_work += self.released_work(&crater, previous, a);
         }
         state.contact_radius = a;
         if a == 0.0 {
@@ -347,34 +391,13 @@ impl NormalLaw for AdhesiveMdrLaw {
         self.work_of_adhesion > 0.0 && state.contact_radius > 0.0
     }
 
-    /// `min δ(a')` over the attached disc `0 < a' ≤ a` (eq. A7): `δ` is convex in `√a'`, so the
-    /// minimum is at its stationary point on either branch of the crater, at the plastic
-    /// radius, or at the edge.
+    /// `min δ(a')` over the attached disc `0 < a' ≤ a` (eq. A7).
     fn detachment_overlap(&self, state: &AdhesiveMdrState) -> f64 {
-        let a = state.contact_radius;
         if !self.holds(state) {
             return self.residual_overlap(state);
         }
         let crater = self.crater(state.max_overlap);
-        let c = self.detach_coefficient;
-        let r = crater.radius;
-        let b_sq = crater.plastic_radius_sq;
-        let mut best = self.edge_overlap(&crater, a);
-        // Outer branch h = a²/R: dδ/dt = 4t³/R − c = 0.
-        let outer = (c * r / 4.0).powf(2.0 / 3.0);
-        if outer >= b_sq && outer <= a {
-            best = best.min(self.edge_overlap(&crater, outer));
-        }
-        if b_sq > 0.0 && b_sq < a * a {
-            best = best.min(self.edge_overlap(&crater, b_sq.sqrt()));
-        }
-        if crater.theta > 0.0 {
-            let inner = (c * r / (4.0 * crater.theta)).powf(2.0 / 3.0);
-            if inner * inner < b_sq && inner <= a {
-                best = best.min(self.edge_overlap(&crater, inner));
-            }
-        }
-        best
+        self.weakest_edge(&crater, state.contact_radius).1
     }
 
     fn pull_off_force(&self) -> f64 {

@@ -137,16 +137,24 @@ impl NormalLaw for AdhesiveSpringBed {
                 state.attached[i] = true;
             }
         }
-        // The outermost attached spring lets go past Δl_max(a), then the next one inwards.
+        // The outermost attached spring lets go past Δl_max(a), then the next one inwards. On
+        // the continuous path from the last overlap, spring i lets go at the overlap
+        // `level = min(δ_i, level of the spring outside it)`, `δ_i = h_i − Δl_max(x_i)`, with
+        // the energy it holds there.
         let k = self.bed.effective_modulus() * self.bed.spacing();
+        let mut level = f64::INFINITY;
         for i in (0..n).rev() {
             if !state.attached[i] {
                 continue;
             }
-            let stretch = self.elongation(state, i, overlap);
-            if stretch <= self.critical_elongation(self.bed.positions()[i]) {
+            let limit = self.critical_elongation(self.bed.positions()[i]);
+            if self.elongation(state, i, overlap) <= limit {
                 break;
             }
+            let height =
+                self.bed.heights()[i] + self.bed.plastic_offset(state.bed.max_displacements[i]);
+            level = level.min(height - limit);
+            let stretch = height - level;
             state.attached[i] = false;
             state.adhesive_work += self.bed.weights()[i] * 0.5 * k * stretch * stretch;
         }
@@ -218,8 +226,8 @@ impl NormalLaw for AdhesiveSpringBed {
         (0..state.attached.len())
             .filter(|&i| state.attached[i])
             .map(|i| {
-                let h = self.bed.heights()[i]
-                    + self.bed.plastic_offset(state.bed.max_displacements[i]);
+                let h =
+                    self.bed.heights()[i] + self.bed.plastic_offset(state.bed.max_displacements[i]);
                 h - self.critical_elongation(self.bed.positions()[i])
             })
             .fold(f64::INFINITY, f64::min)
