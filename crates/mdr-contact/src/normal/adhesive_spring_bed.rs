@@ -72,12 +72,18 @@ impl AdhesiveSpringBed {
     /// `n_springs` springs over the default half-width (see [`SpringBed::sphere`]); its
     /// pull-off force is the JKR `(3/2) π Δγ R`.
     pub fn sphere(pair: &ContactPair, model: &AdhesiveMdr, n_springs: usize) -> Result<Self> {
-        let mut bed = Self::new(
+        Ok(Self::new(
             SpringBed::sphere(pair, model.params(), n_springs)?,
             model.work_of_adhesion(),
-        )?;
-        bed.pull_off = 1.5 * PI * model.work_of_adhesion() * pair.effective_radius();
-        Ok(bed)
+        )?
+        .with_sphere_pull_off(pair))
+    }
+
+    /// The same bed with the JKR pull-off force `(3/2) π Δγ R` of a sphere of the pair's
+    /// effective radius `R` (for a bed built with [`AdhesiveSpringBed::new`] on a sphere).
+    pub fn with_sphere_pull_off(mut self, pair: &ContactPair) -> Self {
+        self.pull_off = 1.5 * PI * self.work_of_adhesion * pair.effective_radius();
+        self
     }
 
     /// The same bed over another half-width (m, > 0).
