@@ -314,6 +314,7 @@ pub fn fit<'py>(
         q_c: setup.model.critical_line_load(),
         theta_ratio: setup.law.hardening_ratio(),
         scale,
+        work_of_adhesion: 0.0,
     };
     let pair = setup.pair;
     let (report, model) = py
