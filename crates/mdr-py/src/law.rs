@@ -319,7 +319,12 @@ impl MdrLaw {
                 state.borrow_mut().store(&history);
                 force
             }
-            None => self.setup.adhesive.evaluate(&State::default(), overlap).force,
+            None => {
+                self.setup
+                    .adhesive
+                    .evaluate(&State::default(), overlap)
+                    .force
+            }
         })
     }
 }
