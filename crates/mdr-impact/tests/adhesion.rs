@@ -221,3 +221,23 @@ fn work_of_adhesion_is_checked() {
         .to_string()
         .contains("work-of-adhesion"));
 }
+
+/// Oblique adhesive impacts: no angle creates energy, the friction cap on `F_n + 2F_c` slows
+/// the sliding more than without adhesion, and a slow impact sticks.
+#[test]
+fn oblique_adhesive_impacts_are_passive_and_grip_harder() {
+    let oblique = |gamma: f64, speed: f64| {
+        elastic_impact(speed)
+            .work_of_adhesion(gamma)
+            .angle_degrees(60.0)
+            .friction(0.3)
+            .run()
+            .unwrap()
+    };
+    let sticky = oblique(GAMMA, 0.5);
+    let plain = oblique(0.0, 0.5);
+    assert!(!sticky.stuck);
+    assert!(sticky.kinetic_energy_out <= sticky.kinetic_energy_in * (1.0 + 1e-9));
+    assert!(sticky.tangential_velocity < plain.tangential_velocity);
+    assert!(oblique(GAMMA, 0.02).stuck);
+}
