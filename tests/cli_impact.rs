@@ -41,7 +41,7 @@ fn curve_csv_contract() {
     let mut lines = text.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "v0_m_per_s,e_n,e_n_scaled,d_max_m,d_residual_m,contact_time_s,f_max_n"
+        "v0_m_per_s,e_n,e_n_scaled,d_max_m,d_residual_m,contact_time_s,f_max_n,stuck"
     );
     let rows: Vec<Vec<f64>> = lines
         .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
@@ -112,7 +112,7 @@ fn trace_and_oblique_csv_contracts() {
     let mut lines = oblique.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "angle_deg,e_n,e_t,rebound_angle_deg,omega_rad_per_s"
+        "angle_deg,e_n,e_t,rebound_angle_deg,omega_rad_per_s,stuck"
     );
     assert_eq!(lines.count(), 3);
 }

@@ -208,6 +208,12 @@ fn refuse_validator_only_flags(a: &CommonArgs) -> anyhow::Result<()> {
     if a.scale.is_some() {
         bail!("invalid value for --scale: `sim` reports the model's raw e_n (no scale)");
     }
+    if a.work_of_adhesion.is_some_and(|w| w != 0.0) {
+        bail!(
+            "invalid value for --work-of-adhesion: rapier runs the non-adhesive law; adhesive \
+             impacts are the validator's (`mdr-dem impact … --work-of-adhesion`)"
+        );
+    }
     Ok(())
 }
 

@@ -9,7 +9,9 @@
 //! - [`profile`]: axisymmetric profiles and their MDR 1D profiles (eq. 1), closed form and numerical.
 //! - [`normal`]: normal laws — [`normal::Hertz`], the MDR closed form
 //!   [`normal::MdrElastoPlastic`] (O(1)), the discrete MDR spring bed [`normal::SpringBed`]
-//!   (eqs. 2, 6, 9–13, any profile), [`normal::Thornton`].
+//!   (eqs. 2, 6, 9–13, any profile), [`normal::Thornton`]; with adhesion (Heß's rule on the
+//!   plastic springs), the closed form [`normal::AdhesiveMdrLaw`] and the spring bed
+//!   [`normal::AdhesiveSpringBed`].
 //! - [`tangential`]: the O(1) Mindlin law with a Coulomb cap, and the MDR spring-bed law with
 //!   per-spring stick/slip [`tangential::SpringBedTangential`].
 //! - [`damping`]: optional viscous damping.
@@ -56,6 +58,7 @@ pub mod prelude {
         NoBooks, WorkBooks,
     };
     pub use crate::normal::{
+        AdhesiveMdr, AdhesiveMdrLaw, AdhesiveMdrState, AdhesiveSpringBed, AdhesiveSpringBedState,
         Hertz, HertzLaw, MdrElastoPlastic, MdrLaw, MdrState, NormalLaw, NormalModel,
         NormalResponse, SphereSpringBed, SpringBed, SpringBedState, Thornton, ThorntonLaw,
         ThorntonState, ThorntonUnloading,

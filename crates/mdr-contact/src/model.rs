@@ -236,7 +236,8 @@ impl ContactInput {
 pub struct ContactOutput {
     /// Total force on body 1 (N); body 2 receives the opposite.
     pub force: Vector3<f64>,
-    /// Normal force including damping (N, ≥ 0: no tension).
+    /// Normal force including damping (N; negative only for the tension of a held adhesive
+    /// contact, see [`NormalLaw::holds`]).
     pub normal_force: f64,
     /// The normal law's own response (elastic–plastic part).
     pub normal: NormalResponse,
@@ -315,8 +316,9 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
         // One dashpot coefficient for the normal damping and the tangential dashpot.
         let dashpot = self.damping.normal_coefficient(&normal, input.overlap);
         let damping = dashpot * approach_rate;
-        // No tension: damping may not pull the bodies together.
-        let normal_force = (normal.force + damping).max(0.0);
+        // Damping may not pull the bodies together: it may cancel a repulsive force, and never
+        // adds to the adhesive tension of a held contact.
+        let normal_force = (normal.force + damping).max(normal.force.min(0.0));
         let applied_damping = normal_force - normal.force;
         // Both dashpots' work of this step, booked once below.
         let mut damping_power = applied_damping * approach_rate;
@@ -325,9 +327,10 @@ impl<NL: NormalLaw, TL: TangentialLaw, DL: DampingLaw> ContactLaw<NL, TL, DL> {
             &TangentialInput {
                 normal: input.normal,
                 displacement_increment: input.relative_velocity * input.dt,
-                // The Coulomb cap uses the total normal force, damping included.
+                // The Coulomb cap uses the total normal force, damping included, plus twice the
+                // pull-off force of an adhesive law (Thornton & Yin 1991; zero otherwise).
                 normal_response: NormalResponse {
-                    force: normal_force,
+                    force: normal_force + 2.0 * self.normal.pull_off_force(),
                     ..normal
                 },
             },

@@ -1,19 +1,25 @@
 //! Least-squares fit of the MDR law to measured restitution data: any subset of
-//! {`q_c`, `Θ/E*`, scale} is adjusted so that `scale · e_n(v; q_c, Θ/E*)` (energy route,
-//! docs/theory.md §4) matches the measured `(v0, e)` pairs.
+//! {`q_c`, `Θ/E*`, scale, `Δγ`} is adjusted so that `scale · e_n(v; q_c, Θ/E*, Δγ)` matches the
+//! measured `(v0, e)` pairs. Without adhesion `e_n` comes from the energy route (docs/theory.md
+//! §4); with it, from time integration (docs/theory.md, "Adhesive impacts"). The work of
+//! adhesion `Δγ` can be fitted when the data show sticking (points with `e = 0`): the sticking
+//! speed is what determines it.
 //!
 //! The optimiser is argmin's Nelder–Mead on the sum of squared residuals, in internal coordinates
-//! that keep the parameters in range (`ln q_c`, logit of `Θ/E*`). The uncertainties come from the
+//! that keep the parameters in range (`ln q_c`, logit of `Θ/E*`, `ln Δγ`). The uncertainties come from the
 //! Jacobian `J` of the residuals in the natural parameters at the optimum:
 //! `cov = s² (JᵀJ)⁻¹`, `s² = SSE / (n − p)`.
 
 use crate::error::{ImpactError, Result};
+use crate::impact::Impact;
+use crate::law::NormalSpec;
 use crate::output::Measurement;
 use argmin::core::{CostFunction, Executor, State};
 use argmin::solver::neldermead::NelderMead;
 use mdr_contact::normal::{MdrElastoPlastic, MdrState, NormalModel};
 use mdr_contact::ContactPair;
 use nalgebra::{DMatrix, DVector};
+use std::f64::consts::PI;
 
 /// A parameter the fit may adjust.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -24,28 +30,33 @@ pub enum FitParameter {
     HardeningRatio,
     /// The scale factor applied to the model's `e_n` (docs/theory.md §7).
     Scale,
+    /// The work of adhesion `Δγ` (J/m²); needs data that show sticking.
+    WorkOfAdhesion,
 }
 
 impl FitParameter {
-    /// Name as used by `--free` and in JSON: `qc`, `theta_ratio`, `scale`.
+    /// Name as used by `--free` and in JSON: `qc`, `theta_ratio`, `scale`, `work_of_adhesion`.
     pub fn name(&self) -> &'static str {
         match self {
             Self::CriticalLineLoad => "qc",
             Self::HardeningRatio => "theta_ratio",
             Self::Scale => "scale",
+            Self::WorkOfAdhesion => "work_of_adhesion",
         }
     }
 
-    /// Parse a `--free` entry (`qc`/`q_c`, `theta_ratio`/`theta-ratio`, `scale`).
+    /// Parse a `--free` entry (`qc`/`q_c`, `theta_ratio`/`theta-ratio`, `scale`,
+    /// `work_of_adhesion`/`work-of-adhesion`).
     pub fn parse(text: &str) -> Result<Self> {
         match text.trim() {
             "qc" | "q_c" => Ok(Self::CriticalLineLoad),
             "theta_ratio" | "theta-ratio" => Ok(Self::HardeningRatio),
             "scale" => Ok(Self::Scale),
+            "work_of_adhesion" | "work-of-adhesion" => Ok(Self::WorkOfAdhesion),
             other => Err(ImpactError::invalid(
                 "free",
                 other,
-                "a comma-separated subset of qc,theta_ratio,scale",
+                "a comma-separated subset of qc,theta_ratio,scale,work_of_adhesion",
             )),
         }
     }
@@ -60,6 +71,8 @@ pub struct FitValues {
     pub theta_ratio: f64,
     /// Scale factor.
     pub scale: f64,
+    /// Work of adhesion `Δγ` (J/m²).
+    pub work_of_adhesion: f64,
 }
 
 impl FitValues {
@@ -69,6 +82,7 @@ impl FitValues {
             q_c: 3.8e5,
             theta_ratio: 0.37,
             scale: crate::PAPER_SCALE,
+            work_of_adhesion: 0.0,
         }
     }
 
@@ -77,6 +91,7 @@ impl FitValues {
             FitParameter::CriticalLineLoad => self.q_c,
             FitParameter::HardeningRatio => self.theta_ratio,
             FitParameter::Scale => self.scale,
+            FitParameter::WorkOfAdhesion => self.work_of_adhesion,
         }
     }
 
@@ -85,6 +100,7 @@ impl FitValues {
             FitParameter::CriticalLineLoad => self.q_c = value,
             FitParameter::HardeningRatio => self.theta_ratio = value,
             FitParameter::Scale => self.scale = value,
+            FitParameter::WorkOfAdhesion => self.work_of_adhesion = value,
         }
     }
 }
@@ -106,12 +122,25 @@ pub struct FitReport {
     pub yield_speed: f64,
 }
 
-/// Model prediction `scale · e_n(v)` for every speed; `None` if the values are out of range.
+/// Model prediction `scale · e_n(v)` for every speed; an error if the values are out of range.
 pub fn predict(pair: &ContactPair, values: &FitValues, speeds: &[f64]) -> Result<Vec<f64>> {
-    let law = MdrElastoPlastic::new(values.q_c, values.theta_ratio)
-        .map_err(ImpactError::parameter("qc"))?
+    let params = MdrElastoPlastic::new(values.q_c, values.theta_ratio)
+        .map_err(ImpactError::parameter("qc"))?;
+    let law = params
         .bind(pair)
         .map_err(ImpactError::parameter("theta-ratio"))?;
+    if values.work_of_adhesion != 0.0 {
+        // Adhesion: time integration (the energy route has none); stuck impacts give 0.
+        return speeds
+            .iter()
+            .map(|&v| {
+                Impact::new(*pair, NormalSpec::Mdr(params), v)
+                    .work_of_adhesion(values.work_of_adhesion)
+                    .run()
+                    .map(|o| values.scale * o.normal_restitution)
+            })
+            .collect();
+    }
     let mass = pair.reduced_mass();
     Ok(speeds
         .iter()
@@ -135,6 +164,7 @@ impl Problem<'_> {
                 FitParameter::CriticalLineLoad => xi.exp(),
                 FitParameter::HardeningRatio => 1.0 / (1.0 + (-xi).exp()),
                 FitParameter::Scale => xi,
+                FitParameter::WorkOfAdhesion => xi.exp(),
             };
             values.set(*p, v);
         }
@@ -151,6 +181,7 @@ impl Problem<'_> {
                     (t / (1.0 - t)).ln()
                 }
                 FitParameter::Scale => values.scale,
+                FitParameter::WorkOfAdhesion => values.work_of_adhesion.ln(),
             })
             .collect()
     }
@@ -211,7 +242,27 @@ pub fn fit(
             p + 1
         )));
     }
-    let plastic_free = free.iter().filter(|p| **p != FitParameter::Scale).count();
+    let plastic_free = free
+        .iter()
+        .filter(|p| {
+            matches!(
+                p,
+                FitParameter::CriticalLineLoad | FitParameter::HardeningRatio
+            )
+        })
+        .count();
+    let mut initial = initial;
+    if !(initial.work_of_adhesion.is_finite() && initial.work_of_adhesion >= 0.0) {
+        return Err(ImpactError::invalid(
+            "work-of-adhesion",
+            initial.work_of_adhesion,
+            "a work of adhesion ≥ 0 J/m² (finite)",
+        ));
+    }
+    if free.contains(&FitParameter::WorkOfAdhesion) {
+        initial.work_of_adhesion = initial_work_of_adhesion(pair, &initial, data)?;
+    }
+    let initial = initial;
     let problem = Problem {
         pair,
         base: initial,
@@ -228,6 +279,7 @@ pub fn fit(
                 FitParameter::CriticalLineLoad => 0.7 * width,
                 FitParameter::HardeningRatio => 1.0 * width,
                 FitParameter::Scale => 0.05 * width,
+                FitParameter::WorkOfAdhesion => 0.7 * width,
             })
             .collect();
         let mut simplex = vec![x.clone()];
@@ -282,6 +334,8 @@ pub fn fit(
         let value = values.get(*param);
         let h = match param {
             FitParameter::HardeningRatio => 1e-5_f64.min(0.5 * value.min(1.0 - value)).max(1e-9),
+            // Time-integrated e_n: a step well above the integrator's resolution.
+            FitParameter::WorkOfAdhesion => 1e-3 * value,
             _ => 1e-5 * value.abs().max(1e-12),
         };
         let mut plus = values;
@@ -335,5 +389,52 @@ pub fn fit(
         n_points: n,
         n_plastic,
         yield_speed,
+    })
+}
+
+/// A starting `Δγ` for the fit from the data's sticking speed `v_s` (between the fastest stuck
+/// point and the slowest rebounding one): the elastic sticking speed of Heß's rule,
+/// `v_s = 1.309 (F_c⁵ / (E*² R m³))^{1/6}` with `F_c = (3/2) π Δγ R` (docs/theory.md, "Adhesive
+/// impacts"), solved for `Δγ`. The data must show sticking.
+fn initial_work_of_adhesion(
+    pair: &ContactPair,
+    values: &FitValues,
+    data: &[Measurement],
+) -> Result<f64> {
+    let stuck = data
+        .iter()
+        .filter(|m| m.restitution == 0.0)
+        .map(|m| m.speed)
+        .fold(0.0_f64, f64::max);
+    if stuck == 0.0 {
+        return Err(ImpactError::Underdetermined(
+            "the data show no sticking (no point with e_n = 0): they do not determine \
+             work_of_adhesion; fix it with --work-of-adhesion"
+                .into(),
+        ));
+    }
+    let rebounding = data
+        .iter()
+        .filter(|m| m.restitution > 0.0 && m.speed > stuck)
+        .map(|m| m.speed)
+        .fold(f64::INFINITY, f64::min);
+    let sticking_speed = if rebounding.is_finite() {
+        (stuck * rebounding).sqrt()
+    } else {
+        stuck
+    };
+    let (e, r, m) = (
+        pair.effective_modulus(),
+        pair.effective_radius(),
+        pair.reduced_mass(),
+    );
+    // v_s⁶ = C⁶ F_c⁵ / (E*² R m³)  →  F_c = (v_s⁶ E*² R m³ / C⁶)^{1/5}.
+    let c: f64 = 1.309;
+    let pull_off = (sticking_speed.powi(6) * e * e * r * m.powi(3) / c.powi(6)).powf(0.2);
+    let guess = pull_off / (1.5 * PI * r);
+    Ok(if values.work_of_adhesion > 0.0 {
+        values.work_of_adhesion
+    } else {
+        guess
     })
 }

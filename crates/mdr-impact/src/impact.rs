@@ -4,7 +4,10 @@ use crate::energy::energy_route;
 use crate::error::{ImpactError, Result};
 use crate::integrate::{integrate_normal, integrate_oblique, NormalRun, ObliqueRun, TracePoint};
 use crate::law::{Method, NormalSpec, Route, TangentialSpec, BED_HALF_WIDTH_MARGIN};
-use mdr_contact::normal::{Hertz, MdrElastoPlastic, MdrState, NormalLaw, NormalModel, SpringBed};
+use mdr_contact::normal::{
+    AdhesiveMdr, AdhesiveSpringBed, Hertz, MdrElastoPlastic, MdrState, NormalLaw, NormalModel,
+    SpringBed,
+};
 use mdr_contact::tangential::{Mindlin, SpringBedTangential, TangentialModel};
 use mdr_contact::ContactPair;
 
@@ -32,6 +35,7 @@ pub struct Impact {
     friction: f64,
     tangential: TangentialSpec,
     steps_per_contact: usize,
+    work_of_adhesion: f64,
 }
 
 /// What one impact produced.
@@ -64,6 +68,14 @@ pub struct ImpactOutcome {
     pub kinetic_energy_in: f64,
     /// Kinetic energy (translation and rotation) after the impact (J).
     pub kinetic_energy_out: f64,
+    /// Whether the sphere stuck (adhesion): `e_n = 0`, the sphere turned back towards the
+    /// target while the contact held (docs/theory.md, "Adhesive impacts").
+    pub stuck: bool,
+    /// Largest tensile force during the impact (N, ≥ 0; zero without adhesion).
+    pub pull_off_force: f64,
+    /// Overlap at which the contact let go (m): the residual depth without adhesion, below it
+    /// (typically negative) with adhesion; NaN when stuck.
+    pub release_overlap: f64,
 }
 
 /// Code run with a bound normal law, whichever it is (the laws have different state types).
@@ -87,7 +99,20 @@ impl Impact {
             friction: 0.0,
             tangential: TangentialSpec::Mindlin,
             steps_per_contact: DEFAULT_STEPS_PER_CONTACT,
+            work_of_adhesion: 0.0,
         }
+    }
+
+    /// Work of adhesion `Δγ` (J/m², finite, ≥ 0; default 0): Heß's adhesion rule on the MDR
+    /// springs ([`AdhesiveMdr`]). Only with the MDR law.
+    pub fn work_of_adhesion(mut self, work_of_adhesion: f64) -> Self {
+        self.work_of_adhesion = work_of_adhesion;
+        self
+    }
+
+    /// `Δγ` (J/m²).
+    pub fn adhesion(&self) -> f64 {
+        self.work_of_adhesion
     }
 
     /// The paper's Fig. 2 setup (docs/theory.md §7) at speed `speed` (m/s).
@@ -168,6 +193,10 @@ impl Impact {
         self.pair.hertz_contact_time(self.normal_speed()) / self.steps_per_contact as f64
     }
 
+    fn is_adhesive(&self) -> bool {
+        self.work_of_adhesion > 0.0
+    }
+
     fn is_head_on(&self) -> bool {
         self.angle_degrees == 0.0 && self.spin == 0.0
     }
@@ -196,6 +225,37 @@ impl Impact {
                 self.steps_per_contact,
                 "at least 10 steps per contact",
             ));
+        }
+        if !(self.work_of_adhesion.is_finite() && self.work_of_adhesion >= 0.0) {
+            return Err(ImpactError::invalid(
+                "work-of-adhesion",
+                self.work_of_adhesion,
+                "a work of adhesion ≥ 0 J/m² (finite)",
+            ));
+        }
+        if self.is_adhesive() {
+            if !matches!(self.normal, NormalSpec::Mdr(_)) {
+                return Err(ImpactError::invalid(
+                    "work-of-adhesion",
+                    self.work_of_adhesion,
+                    "adhesion is part of the MDR law: use it with --law mdr",
+                ));
+            }
+            if self.tangential == TangentialSpec::SpringBed && !self.is_head_on() {
+                return Err(ImpactError::invalid(
+                    "tangential",
+                    "springs",
+                    "the spring-bed tangential law has no adhesion; use the mindlin tangential \
+                     law with a work of adhesion",
+                ));
+            }
+            if self.route == Route::Energy {
+                return Err(ImpactError::invalid(
+                    "route",
+                    "energy",
+                    "the energy route has no adhesion: integrate in time",
+                ));
+            }
         }
         if let Method::Springs { springs } = self.method {
             if !matches!(self.normal, NormalSpec::Mdr(_)) {
@@ -244,6 +304,20 @@ impl Impact {
     /// Bind the normal law to the pair and hand it to `visitor`.
     pub(crate) fn visit_law<V: LawVisitor>(&self, visitor: V) -> Result<V::Output> {
         match (self.normal, self.method) {
+            (NormalSpec::Mdr(model), Method::Closed) if self.is_adhesive() => visitor.visit(
+                &self
+                    .adhesive_model(&model)?
+                    .bind(&self.pair)
+                    .map_err(ImpactError::parameter("theta-ratio"))?,
+            ),
+            (NormalSpec::Mdr(model), Method::Springs { springs }) if self.is_adhesive() => {
+                let bed = self.spring_bed(&model, springs)?;
+                visitor.visit(
+                    &AdhesiveSpringBed::new(bed, self.work_of_adhesion)
+                        .map_err(ImpactError::parameter("work-of-adhesion"))?
+                        .with_sphere_pull_off(&self.pair),
+                )
+            }
             (NormalSpec::Mdr(model), Method::Closed) => visitor.visit(
                 &model
                     .bind(&self.pair)
@@ -263,6 +337,11 @@ impl Impact {
                     .map_err(ImpactError::parameter("law"))?,
             ),
         }
+    }
+
+    fn adhesive_model(&self, model: &MdrElastoPlastic) -> Result<AdhesiveMdr> {
+        AdhesiveMdr::new(*model, self.work_of_adhesion)
+            .map_err(ImpactError::parameter("work-of-adhesion"))
     }
 
     /// The discrete bed of `springs` springs for this impact. Its half-width is
@@ -312,6 +391,7 @@ impl Impact {
                 matches!(self.normal, NormalSpec::Mdr(_))
                     && self.method == Method::Closed
                     && self.is_head_on()
+                    && !self.is_adhesive()
             }
         };
         if use_energy {
@@ -328,6 +408,9 @@ impl Impact {
                 residual_overlap: run.residual_overlap,
                 contact_time: run.contact_time,
                 peak_force: run.peak_force,
+                pull_off_force: 0.0,
+                release_overlap: run.residual_overlap,
+                stuck: false,
             }));
         }
         if self.is_head_on() {
@@ -390,6 +473,9 @@ impl Impact {
             peak_force: run.normal.peak_force,
             kinetic_energy_in: kinetic(v_n, v_t, self.spin),
             kinetic_energy_out: kinetic(v_n_out, run.tangential_velocity, run.spin),
+            stuck: run.normal.stuck,
+            pull_off_force: run.normal.pull_off_force,
+            release_overlap: run.normal.release_overlap,
         }
     }
 
@@ -432,6 +518,9 @@ impl Impact {
             peak_force: run.peak_force,
             kinetic_energy_in: 0.5 * mass * self.speed * self.speed,
             kinetic_energy_out: 0.5 * mass * v_out * v_out,
+            stuck: run.stuck,
+            pull_off_force: run.pull_off_force,
+            release_overlap: run.release_overlap,
         }
     }
 }

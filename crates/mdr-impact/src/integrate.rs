@@ -2,6 +2,13 @@
 //! Verlet, the step set from the Hertz contact time. The exit velocity is taken at the instant the
 //! normal force vanishes (linear interpolation of the overlap to the law's residual depth inside
 //! the last step), so `e_n` (eq. 14) does not carry a half-step error.
+//!
+//! An adhesive contact holds past that point ([`NormalLaw::holds`]): the integration goes on
+//! through negative overlaps, with the tensile force, until the contact lets go. The impact is
+//! **stuck** (`e_n = 0`) when the sphere, moving away while the contact holds, turns back
+//! towards the target: from then on the neck's tension has taken all the kinetic energy the
+//! sphere had left, and without other losses it oscillates in the adhesive well, each let-go of
+//! springs only dissipating more; it never reaches the let-go overlap again.
 
 use crate::error::{ImpactError, Result};
 use mdr_contact::normal::{NormalLaw, NormalResponse, SpringBed};
@@ -41,6 +48,28 @@ pub(crate) struct NormalRun {
     pub contact_time: f64,
     /// Largest normal force (N).
     pub peak_force: f64,
+    /// Largest tensile force (N, ≥ 0; zero without adhesion).
+    pub pull_off_force: f64,
+    /// Overlap at which the contact let go (m): the residual depth without adhesion, typically
+    /// negative with it; NaN when stuck.
+    pub release_overlap: f64,
+    /// Whether the sphere stuck (`e_n = 0`).
+    pub stuck: bool,
+}
+
+impl NormalRun {
+    fn stuck(state_max: f64, residual: f64, contact_time: f64, peak: f64, pull: f64) -> Self {
+        Self {
+            restitution: 0.0,
+            max_overlap: state_max,
+            residual_overlap: residual,
+            contact_time,
+            peak_force: peak,
+            pull_off_force: pull,
+            release_overlap: f64::NAN,
+            stuck: true,
+        }
+    }
 }
 
 /// Linear fraction of the last step at which the overlap crosses `residual`.
@@ -68,6 +97,9 @@ pub(crate) fn integrate_normal<L: NormalLaw>(
     // rate = dδ/dt (positive while approaching).
     let (mut overlap, mut rate, mut force) = (0.0_f64, speed, 0.0_f64);
     let mut peak_force = 0.0_f64;
+    let mut tension = 0.0_f64;
+    // Whether the contact held at the previous step, and down to which overlap it could.
+    let (mut held, mut reach) = (false, 0.0_f64);
     if let Some(t) = trace.as_deref_mut() {
         t.push(TracePoint {
             time: 0.0,
@@ -84,17 +116,25 @@ pub(crate) fn integrate_normal<L: NormalLaw>(
         overlap += dt * half_rate;
         let response = law.update(&mut state, overlap);
         let new_force = response.force;
-        if new_force <= 0.0 && half_rate < 0.0 {
-            // Separation inside this step: the force vanished where the overlap crossed the
-            // residual depth; integrate only that part of the step, force linear in time.
+        let holds = law.holds(&state);
+        if new_force <= 0.0 && half_rate < 0.0 && !holds {
+            // Separation inside this step. Without adhesion the force vanished where the
+            // overlap crossed the residual depth: integrate only that part of the step, force
+            // linear in time. A held contact let go at its reach, with the force still tensile:
+            // the whole step's half kick applies.
             let residual = law.residual_overlap(&state);
-            let tau = exit_fraction(previous_overlap, overlap, residual);
+            let (tau, release) = if held {
+                (1.0, reach.clamp(overlap, previous_overlap))
+            } else {
+                let tau = exit_fraction(previous_overlap, overlap, residual);
+                (tau, previous_overlap + tau * (overlap - previous_overlap))
+            };
             let exit_rate = rate - 0.5 * tau * dt * force * inverse_mass;
             let contact_time = (step as f64 - 1.0 + tau) * dt;
             if let Some(t) = trace.as_deref_mut() {
                 t.push(TracePoint {
                     time: contact_time,
-                    overlap: previous_overlap + tau * (overlap - previous_overlap),
+                    overlap: release,
                     velocity: -exit_rate,
                     force: 0.0,
                     contact_radius: 0.0,
@@ -107,11 +147,40 @@ pub(crate) fn integrate_normal<L: NormalLaw>(
                 residual_overlap: residual,
                 contact_time,
                 peak_force,
+                pull_off_force: tension,
+                release_overlap: release,
+                stuck: false,
             });
         }
         force = new_force;
         peak_force = peak_force.max(force);
+        tension = tension.max(-force);
+        let previous_rate = rate;
         rate = half_rate - 0.5 * dt * force * inverse_mass;
+        held = holds;
+        if holds {
+            reach = law.detachment_overlap(&state);
+            if previous_rate < 0.0 && rate >= 0.0 {
+                // Turned back while held: stuck.
+                if let Some(t) = trace.as_deref_mut() {
+                    t.push(TracePoint {
+                        time: step as f64 * dt,
+                        overlap,
+                        velocity: -rate,
+                        force,
+                        contact_radius: response.contact_radius,
+                        plastic_work: law.dissipated_work(&state),
+                    });
+                }
+                return Ok(NormalRun::stuck(
+                    law.max_overlap(&state),
+                    law.residual_overlap(&state),
+                    f64::NAN,
+                    peak_force,
+                    tension,
+                ));
+            }
+        }
         if let Some(t) = trace.as_deref_mut() {
             t.push(TracePoint {
                 time: step as f64 * dt,
@@ -150,7 +219,7 @@ impl<N: NormalLaw> TangentialStep<N> for MindlinLaw {
     type State = <MindlinLaw as TangentialLaw>::State;
     fn step(
         &self,
-        _normal_law: &N,
+        normal_law: &N,
         _normal_state: &N::State,
         normal: &NormalResponse,
         state: &mut Self::State,
@@ -161,7 +230,11 @@ impl<N: NormalLaw> TangentialStep<N> for MindlinLaw {
             &TangentialInput {
                 normal: Vector3::z(),
                 displacement_increment: Vector3::new(slip, 0.0, 0.0),
-                normal_response: *normal,
+                // Coulomb limit on F_n + 2 F_c (Thornton & Yin; zero offset without adhesion).
+                normal_response: NormalResponse {
+                    force: normal.force + 2.0 * normal_law.pull_off_force(),
+                    ..*normal
+                },
             },
         )
         .force
@@ -222,6 +295,8 @@ pub(crate) fn integrate_oblique<N: NormalLaw, T: TangentialStep<N>>(
     // Tangential force on the sphere along x, and the state of x and ω.
     let (mut vx, mut omega, mut fx) = (tangential_speed, spin, 0.0_f64);
     let mut peak_force = 0.0_f64;
+    let mut tension = 0.0_f64;
+    let (mut held, mut reach) = (false, 0.0_f64);
     for step in 1..=max_steps {
         let half_rate = rate - 0.5 * dt * force * inverse_mass;
         let half_vx = vx + 0.5 * dt * fx * inverse_mass;
@@ -238,9 +313,15 @@ pub(crate) fn integrate_oblique<N: NormalLaw, T: TangentialStep<N>>(
             &mut tangential_state,
             slip,
         );
-        if normal.force <= 0.0 && half_rate < 0.0 {
+        let holds = normal_law.holds(&normal_state);
+        if normal.force <= 0.0 && half_rate < 0.0 && !holds {
             let residual = normal_law.residual_overlap(&normal_state);
-            let tau = exit_fraction(previous_overlap, overlap, residual);
+            let (tau, release) = if held {
+                (1.0, reach.clamp(overlap, previous_overlap))
+            } else {
+                let tau = exit_fraction(previous_overlap, overlap, residual);
+                (tau, previous_overlap + tau * (overlap - previous_overlap))
+            };
             let part = 0.5 * tau * dt;
             return Ok(ObliqueRun {
                 normal: NormalRun {
@@ -249,6 +330,9 @@ pub(crate) fn integrate_oblique<N: NormalLaw, T: TangentialStep<N>>(
                     residual_overlap: residual,
                     contact_time: (step as f64 - 1.0 + tau) * dt,
                     peak_force,
+                    pull_off_force: tension,
+                    release_overlap: release,
+                    stuck: false,
                 },
                 tangential_velocity: vx + part * fx * inverse_mass,
                 spin: omega - part * radius * fx * inverse_inertia,
@@ -257,9 +341,29 @@ pub(crate) fn integrate_oblique<N: NormalLaw, T: TangentialStep<N>>(
         force = normal.force;
         fx = tangential_force;
         peak_force = peak_force.max(force);
+        tension = tension.max(-force);
+        let previous_rate = rate;
         rate = half_rate - 0.5 * dt * force * inverse_mass;
         vx = half_vx + 0.5 * dt * fx * inverse_mass;
         omega = half_omega - 0.5 * dt * radius * fx * inverse_inertia;
+        held = holds;
+        if holds {
+            reach = normal_law.detachment_overlap(&normal_state);
+            if previous_rate < 0.0 && rate >= 0.0 {
+                // Turned back while held: stuck; the tangential motion is what it is now.
+                return Ok(ObliqueRun {
+                    normal: NormalRun::stuck(
+                        normal_law.max_overlap(&normal_state),
+                        normal_law.residual_overlap(&normal_state),
+                        f64::NAN,
+                        peak_force,
+                        tension,
+                    ),
+                    tangential_velocity: vx,
+                    spin: omega,
+                });
+            }
+        }
     }
     Err(ImpactError::NoSeparation {
         steps: max_steps,

@@ -6,9 +6,10 @@
 //! restitution data, and simulates oblique impacts with friction and rotation. The contact laws
 //! themselves come from `mdr-contact`; nothing here re-implements them.
 //!
-//! - [`Impact`] → [`ImpactOutcome`]: one impact (time integration or the energy route).
+//! - [`Impact`] → [`ImpactOutcome`]: one impact (time integration or the energy route); with
+//!   [`Impact::work_of_adhesion`] an adhesive one that may stick ([`ImpactOutcome::stuck`]).
 //! - [`Sweep`]: many speeds or angles in parallel, results in input order.
-//! - [`fit`]: least-squares fit of `q_c`, `Θ/E*` and the scale factor.
+//! - [`fit`]: least-squares fit of `q_c`, `Θ/E*`, the scale factor and the work of adhesion.
 //! - [`plot`]: SVG and PNG figures.
 #![warn(missing_docs)]
 

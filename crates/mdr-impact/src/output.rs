@@ -7,7 +7,8 @@ use crate::integrate::TracePoint;
 use std::path::{Path, PathBuf};
 
 /// Header of `impact curve`.
-pub const CURVE_HEADER: [&str; 7] = [
+/// `stuck` is 1 where the sphere stuck (adhesion; `e_n = 0`), else 0.
+pub const CURVE_HEADER: [&str; 8] = [
     "v0_m_per_s",
     "e_n",
     "e_n_scaled",
@@ -15,6 +16,7 @@ pub const CURVE_HEADER: [&str; 7] = [
     "d_residual_m",
     "contact_time_s",
     "f_max_n",
+    "stuck",
 ];
 
 /// Header of `impact trace`.
@@ -28,12 +30,13 @@ pub const TRACE_HEADER: [&str; 6] = [
 ];
 
 /// Header of `impact oblique`.
-pub const OBLIQUE_HEADER: [&str; 5] = [
+pub const OBLIQUE_HEADER: [&str; 6] = [
     "angle_deg",
     "e_n",
     "e_t",
     "rebound_angle_deg",
     "omega_rad_per_s",
+    "stuck",
 ];
 
 /// Header of measured data for `impact fit` and `--data`.
@@ -59,6 +62,15 @@ fn table<const N: usize>(header: [&str; N], rows: impl Iterator<Item = [f64; N]>
     text
 }
 
+/// 1 for a stuck impact, 0 otherwise.
+fn stuck_flag(outcome: &ImpactOutcome) -> f64 {
+    if outcome.stuck {
+        1.0
+    } else {
+        0.0
+    }
+}
+
 /// The `impact curve` table: one row per outcome, `e_n_scaled = scale · e_n`.
 pub fn curve_csv(outcomes: &[ImpactOutcome], scale: f64) -> String {
     table(
@@ -72,6 +84,7 @@ pub fn curve_csv(outcomes: &[ImpactOutcome], scale: f64) -> String {
                 o.residual_overlap,
                 o.contact_time,
                 o.peak_force,
+                stuck_flag(o),
             ]
         }),
     )
@@ -105,6 +118,7 @@ pub fn oblique_csv(outcomes: &[ImpactOutcome]) -> String {
                 o.tangential_restitution.unwrap_or(f64::NAN),
                 o.rebound_angle_degrees,
                 o.spin,
+                stuck_flag(o),
             ]
         }),
     )

@@ -27,6 +27,7 @@ pub fn argument_for(name: &str, target: bool) -> &'static str {
         ("theta_ratio" | "theta", _) => "theta_ratio",
         ("yield_stress" | "yield_pressure", _) => "yield_stress",
         ("mu", _) => "mu",
+        ("work_of_adhesion", _) => "work_of_adhesion",
         ("n_springs" | "half_width" | "spacing", _) => "springs",
         _ => "a material or law argument",
     }
@@ -59,6 +60,7 @@ pub fn impact(speed_argument: &'static str) -> impl Fn(ImpactError) -> PyErr {
                 "target-poisson" => "target_poisson",
                 "target-radius" => "target_radius",
                 "target-density" => "target_density",
+                "work-of-adhesion" => "work_of_adhesion",
                 other => other,
             };
             invalid(argument, &e)

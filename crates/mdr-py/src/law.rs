@@ -5,7 +5,8 @@
 
 use crate::arrays::{array1, Values};
 use crate::errors::{self, invalid};
-use mdr_contact::normal::{MdrElastoPlastic, MdrLaw as BoundLaw, MdrState as State};
+use mdr_contact::normal::{AdhesiveMdr, AdhesiveMdrLaw, AdhesiveMdrState as State};
+use mdr_contact::normal::{MdrElastoPlastic, MdrLaw as BoundLaw, MdrState as PlainState};
 use mdr_contact::normal::{NormalLaw, NormalModel};
 use mdr_contact::{ContactPair, Material};
 use mdr_impact::{Impact, Method, NormalSpec, DEFAULT_SPRINGS, DEFAULT_STEPS_PER_CONTACT};
@@ -26,10 +27,11 @@ pub struct Params {
     pub target_poisson: Option<f64>,
     pub qc: Option<f64>,
     pub theta_ratio: Option<f64>,
+    pub work_of_adhesion: Option<f64>,
 }
 
 /// The names of [`Params`], as keyword arguments.
-pub const PARAM_NAMES: [&str; 10] = [
+pub const PARAM_NAMES: [&str; 11] = [
     "radius",
     "density",
     "youngs",
@@ -40,6 +42,7 @@ pub const PARAM_NAMES: [&str; 10] = [
     "target_poisson",
     "qc",
     "theta_ratio",
+    "work_of_adhesion",
 ];
 
 impl Params {
@@ -63,6 +66,7 @@ impl Params {
                 "target_poisson" => &mut params.target_poisson,
                 "qc" => &mut params.qc,
                 "theta_ratio" => &mut params.theta_ratio,
+                "work_of_adhesion" => &mut params.work_of_adhesion,
                 other if others.contains(&other) => continue,
                 other => {
                     return Err(PyTypeError::new_err(format!(
@@ -124,11 +128,17 @@ impl Params {
             MdrElastoPlastic::new(self.qc.unwrap_or(3.8e5), self.theta_ratio.unwrap_or(0.37))
                 .map_err(errors::contact(false))?;
         let law = model.bind(&pair).map_err(errors::contact(false))?;
+        let work_of_adhesion = self.work_of_adhesion.unwrap_or(0.0);
+        let adhesive = AdhesiveMdr::new(model, work_of_adhesion)
+            .map_err(errors::contact(false))?
+            .bind(&pair)
+            .map_err(errors::contact(false))?;
         Ok(Setup {
             params: *self,
             pair,
             model,
             law,
+            adhesive,
         })
     }
 }
@@ -140,6 +150,8 @@ pub struct Setup {
     pub pair: ContactPair,
     pub model: MdrElastoPlastic,
     pub law: BoundLaw,
+    /// The law with the work of adhesion (the plain law when it is 0).
+    pub adhesive: AdhesiveMdrLaw,
 }
 
 impl Setup {
@@ -147,33 +159,78 @@ impl Setup {
     pub fn half_space(&self) -> bool {
         self.params.target_radius.is_none()
     }
+
+    /// `Δγ` (J/m²).
+    pub fn work_of_adhesion(&self) -> f64 {
+        self.adhesive.work_of_adhesion()
+    }
+
+    /// An impact of this pair with the MDR law (and its adhesion) at `speed`.
+    pub fn impact(&self, speed: f64) -> Impact {
+        Impact::new(self.pair, NormalSpec::Mdr(self.model), speed)
+            .work_of_adhesion(self.work_of_adhesion())
+    }
 }
 
-/// History of one MDR contact: the largest overlap reached so far.
+/// History of one MDR contact: the largest overlap reached so far and, with adhesion, the
+/// radius of the attached springs and the adhesive work booked so far.
 #[pyclass(module = "mdr_dem", from_py_object)]
 #[derive(Debug, Clone, Copy, Default)]
 pub struct MdrState {
     /// Largest overlap so far, d_max (m).
     #[pyo3(get, set)]
     pub max_overlap: f64,
+    /// Radius of the attached springs (m); with adhesion it stays positive while the contact
+    /// holds, also at negative overlaps.
+    #[pyo3(get, set)]
+    pub contact_radius: f64,
+    /// Energy the springs held when they let go, summed (J).
+    #[pyo3(get, set)]
+    pub adhesive_work: f64,
+}
+
+impl MdrState {
+    fn history(&self) -> State {
+        State {
+            max_overlap: self.max_overlap,
+            contact_radius: self.contact_radius,
+            adhesive_work: self.adhesive_work,
+        }
+    }
+
+    fn store(&mut self, history: &State) {
+        self.max_overlap = history.max_overlap;
+        self.contact_radius = history.contact_radius;
+        self.adhesive_work = history.adhesive_work;
+    }
 }
 
 #[pymethods]
 impl MdrState {
     #[new]
-    #[pyo3(signature = (max_overlap = 0.0))]
-    fn new(max_overlap: f64) -> PyResult<Self> {
-        if !(max_overlap.is_finite() && max_overlap >= 0.0) {
-            return Err(invalid(
-                "max_overlap",
-                format!("{max_overlap} (must be finite and ≥ 0, in m)"),
-            ));
+    #[pyo3(signature = (max_overlap = 0.0, contact_radius = 0.0, adhesive_work = 0.0))]
+    fn new(max_overlap: f64, contact_radius: f64, adhesive_work: f64) -> PyResult<Self> {
+        for (name, value) in [
+            ("max_overlap", max_overlap),
+            ("contact_radius", contact_radius),
+            ("adhesive_work", adhesive_work),
+        ] {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(invalid(name, format!("{value} (must be finite and ≥ 0)")));
+            }
         }
-        Ok(Self { max_overlap })
+        Ok(Self {
+            max_overlap,
+            contact_radius,
+            adhesive_work,
+        })
     }
 
     fn __repr__(&self) -> String {
-        format!("MdrState(max_overlap={:e})", self.max_overlap)
+        format!(
+            "MdrState(max_overlap={:e}, contact_radius={:e}, adhesive_work={:e})",
+            self.max_overlap, self.contact_radius, self.adhesive_work
+        )
     }
 }
 
@@ -213,6 +270,15 @@ pub struct ImpactTrace {
     /// Peak force (N).
     #[pyo3(get)]
     peak_force: f64,
+    /// Whether the sphere stuck (adhesion; restitution 0).
+    #[pyo3(get)]
+    stuck: bool,
+    /// Largest tensile force (N, ≥ 0; 0 without adhesion).
+    #[pyo3(get)]
+    pull_off_force: f64,
+    /// Overlap at which the contact let go (m); NaN when stuck.
+    #[pyo3(get)]
+    release_overlap: f64,
 }
 
 #[pymethods]
@@ -220,12 +286,13 @@ impl ImpactTrace {
     fn __repr__(&self) -> String {
         format!(
             "ImpactTrace(restitution={:.6}, max_overlap={:e}, residual_overlap={:e}, \
-             contact_time={:e}, peak_force={:.4})",
+             contact_time={:e}, peak_force={:.4}, stuck={})",
             self.restitution,
             self.max_overlap,
             self.residual_overlap,
             self.contact_time,
-            self.peak_force
+            self.peak_force,
+            if self.stuck { "True" } else { "False" }
         )
     }
 }
@@ -247,14 +314,17 @@ impl MdrLaw {
         }
         Ok(match state {
             Some(state) => {
-                let mut history = State {
-                    max_overlap: state.borrow().max_overlap,
-                };
-                let force = self.setup.law.update(&mut history, overlap).force;
-                state.borrow_mut().max_overlap = history.max_overlap;
+                let mut history = state.borrow().history();
+                let force = self.setup.adhesive.update(&mut history, overlap).force;
+                state.borrow_mut().store(&history);
                 force
             }
-            None => self.setup.law.evaluate(&State::default(), overlap).force,
+            None => {
+                self.setup
+                    .adhesive
+                    .evaluate(&State::default(), overlap)
+                    .force
+            }
         })
     }
 }
@@ -264,7 +334,7 @@ impl MdrLaw {
     #[new]
     #[pyo3(signature = (*, radius = 0.00635, density = 7800.0, youngs = 2.0e11, poisson = 0.286,
         target_radius = None, target_density = None, target_youngs = None, target_poisson = None,
-        qc = 3.8e5, theta_ratio = 0.37))]
+        qc = 3.8e5, theta_ratio = 0.37, work_of_adhesion = 0.0))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         radius: f64,
@@ -277,6 +347,7 @@ impl MdrLaw {
         target_poisson: Option<f64>,
         qc: f64,
         theta_ratio: f64,
+        work_of_adhesion: f64,
     ) -> PyResult<Self> {
         let params = Params {
             radius: Some(radius),
@@ -289,6 +360,7 @@ impl MdrLaw {
             target_poisson,
             qc: Some(qc),
             theta_ratio: Some(theta_ratio),
+            work_of_adhesion: Some(work_of_adhesion),
         };
         Ok(Self {
             setup: params.resolve()?,
@@ -311,6 +383,7 @@ impl MdrLaw {
             p.target_poisson,
             p.qc,
             p.theta_ratio,
+            p.work_of_adhesion,
         ];
         for (name, value) in PARAM_NAMES.iter().zip(values) {
             dict.set_item(name, value)?;
@@ -328,6 +401,27 @@ impl MdrLaw {
     #[getter]
     fn theta_ratio(&self) -> f64 {
         self.setup.law.hardening_ratio()
+    }
+
+    /// Work of adhesion Δγ (J/m²).
+    #[getter]
+    fn work_of_adhesion(&self) -> f64 {
+        self.setup.work_of_adhesion()
+    }
+
+    /// Elastic (JKR) pull-off force (3/2) π Δγ R (N); 0 without adhesion.
+    #[getter]
+    fn pull_off_force(&self) -> f64 {
+        self.setup.adhesive.pull_off_force()
+    }
+
+    /// Overlap (m) below which a contact with history `state` has let go: with adhesion, the
+    /// smallest (typically negative) overlap it holds to while unloading; otherwise the
+    /// residual overlap.
+    fn detachment_overlap(&self, state: &Bound<'_, MdrState>) -> f64 {
+        self.setup
+            .adhesive
+            .detachment_overlap(&state.borrow().history())
     }
 
     /// Effective modulus E* (Pa), eq. (3).
@@ -388,17 +482,15 @@ impl MdrLaw {
         if let Some(bad) = values.data.iter().find(|v| !v.is_finite()) {
             return Err(invalid("overlaps", format!("{bad} (must be finite, in m)")));
         }
-        let mut history = State {
-            max_overlap: state.map_or(0.0, |s| s.borrow().max_overlap),
-        };
-        let law = self.setup.law;
+        let mut history = state.map_or(State::default(), |s| s.borrow().history());
+        let law = self.setup.adhesive;
         let forces = values
             .data
             .iter()
             .map(|&d| law.update(&mut history, d).force)
             .collect();
         if let Some(state) = state {
-            state.borrow_mut().max_overlap = history.max_overlap;
+            state.borrow_mut().store(&history);
         }
         values.shaped(py, forces)
     }
@@ -406,24 +498,37 @@ impl MdrLaw {
     /// Residual (plastic) overlap of a contact with history `state` (m): where the force vanishes
     /// on unloading.
     fn residual_overlap(&self, state: &Bound<'_, MdrState>) -> f64 {
-        let history = State {
-            max_overlap: state.borrow().max_overlap,
-        };
-        self.setup.law.residual_overlap(&history)
+        self.setup
+            .adhesive
+            .residual_overlap(&state.borrow().history())
     }
 
     /// Coefficient of restitution e_n of a first impact at `v0` (m/s, > 0; a float or any
-    /// array-like), closed form (the energy route e_n² = W_unload / W_load, eq. 14 with
-    /// docs/theory.md), unscaled: as `mdr-dem impact curve` column `e_n`.
+    /// array-like), unscaled: as `mdr-dem impact curve` column `e_n`. Without adhesion the
+    /// closed form (the energy route e_n² = W_unload / W_load, eq. 14 with docs/theory.md);
+    /// with it, time integration of the closed-form law, 0 where the sphere sticks.
     fn restitution(&self, py: Python<'_>, v0: &Bound<'_, PyAny>) -> PyResult<Py<PyAny>> {
         let values = Values::read_positive(py, "v0", v0)?;
-        let law = self.setup.law;
-        let mass = self.setup.pair.reduced_mass();
+        let setup = self.setup;
+        if setup.work_of_adhesion() > 0.0 {
+            let e = py
+                .detach(|| {
+                    values
+                        .data
+                        .iter()
+                        .map(|&v| setup.impact(v).run().map(|o| o.normal_restitution))
+                        .collect::<mdr_impact::Result<Vec<f64>>>()
+                })
+                .map_err(errors::impact("v0"))?;
+            return values.shaped(py, e);
+        }
+        let law = setup.law;
+        let mass = setup.pair.reduced_mass();
         let e = py.detach(|| {
             values
                 .data
                 .iter()
-                .map(|&v| law.impact(&State::default(), mass, v).restitution)
+                .map(|&v| law.impact(&PlainState::default(), mass, v).restitution)
                 .collect()
         });
         values.shaped(py, e)
@@ -449,7 +554,9 @@ impl MdrLaw {
         }
         let method = parse_method(method, springs)?.unwrap_or(Method::Closed);
         check_steps(steps)?;
-        let impact = Impact::new(self.setup.pair, NormalSpec::Mdr(self.setup.model), v0)
+        let impact = self
+            .setup
+            .impact(v0)
             .method(method)
             .steps_per_contact(steps);
         let (outcome, points) = py.detach(|| impact.trace()).map_err(errors::impact("v0"))?;
@@ -467,6 +574,9 @@ impl MdrLaw {
             residual_overlap: outcome.residual_overlap,
             contact_time: outcome.contact_time,
             peak_force: outcome.peak_force,
+            stuck: outcome.stuck,
+            pull_off_force: outcome.pull_off_force,
+            release_overlap: outcome.release_overlap,
         })
     }
 
@@ -490,10 +600,17 @@ impl MdrLaw {
             }
         }
         text.push_str(&format!(
-            ", qc={:e}, theta_ratio={})",
+            ", qc={:e}, theta_ratio={}",
             self.qc(),
             self.theta_ratio()
         ));
+        if self.setup.work_of_adhesion() > 0.0 {
+            text.push_str(&format!(
+                ", work_of_adhesion={}",
+                self.setup.work_of_adhesion()
+            ));
+        }
+        text.push(')');
         text
     }
 }

@@ -24,6 +24,10 @@ fn normal_spec(
     yield_stress: Option<f64>,
 ) -> PyResult<NormalSpec> {
     Ok(match (law, elastic) {
+        // Adhesion is the MDR law's: its elastic limit is JKR, not Hertz.
+        ("mdr", true) if setup.work_of_adhesion() > 0.0 => {
+            NormalSpec::Mdr(mdr_contact::normal::MdrElastoPlastic::elastic())
+        }
         ("mdr" | "thornton" | "hertz", true) | ("hertz", false) => NormalSpec::Hertz,
         ("mdr", false) => NormalSpec::Mdr(setup.model),
         ("thornton", false) => {
@@ -63,6 +67,15 @@ fn check_mu(mu: f64) -> PyResult<f64> {
     }
 }
 
+/// 1 for a stuck impact (adhesion, e_n = 0), 0 otherwise: the CSV's `stuck` column.
+fn stuck_flag(outcome: &ImpactOutcome) -> f64 {
+    if outcome.stuck {
+        1.0
+    } else {
+        0.0
+    }
+}
+
 /// A column of outcomes.
 fn column(
     py: Python<'_>,
@@ -73,7 +86,7 @@ fn column(
 }
 
 /// e_n(v0) sweep (as `mdr-dem impact curve`): a dict of arrays with the CSV's columns
-/// `v0_m_per_s, e_n, e_n_scaled, d_max_m, d_residual_m, contact_time_s, f_max_n`, and
+/// `v0_m_per_s, e_n, e_n_scaled, d_max_m, d_residual_m, contact_time_s, f_max_n, stuck`, and
 /// `yield_speed_m_per_s`. `v0`: speeds (m/s); without it, `points` log-spaced speeds from
 /// `v_min` to `v_max`.
 #[pyfunction]
@@ -131,6 +144,7 @@ pub fn curve<'py>(
         }
     };
     let template = Impact::new(setup.pair, spec, 1.0)
+        .work_of_adhesion(setup.work_of_adhesion())
         .method(method)
         .steps_per_contact(steps);
     let (outcomes, yield_speed) = py
@@ -155,6 +169,7 @@ pub fn curve<'py>(
     )?;
     dict.set_item("contact_time_s", column(py, &outcomes, |o| o.contact_time))?;
     dict.set_item("f_max_n", column(py, &outcomes, |o| o.peak_force))?;
+    dict.set_item("stuck", column(py, &outcomes, stuck_flag))?;
     dict.set_item("yield_speed_m_per_s", yield_speed)?;
     Ok(dict)
 }
@@ -180,6 +195,12 @@ pub struct FitResult {
     /// 1σ uncertainty of the scale; None if fixed.
     #[pyo3(get)]
     scale_uncertainty: Option<f64>,
+    /// Fitted (or fixed) work of adhesion Δγ (J/m²).
+    #[pyo3(get)]
+    work_of_adhesion: f64,
+    /// 1σ uncertainty of Δγ (J/m²); None if fixed.
+    #[pyo3(get)]
+    work_of_adhesion_uncertainty: Option<f64>,
     /// measured e − model e at each data point.
     #[pyo3(get)]
     residuals: Py<PyAny>,
@@ -220,6 +241,7 @@ impl FitResult {
         let params = Params {
             qc: Some(self.qc),
             theta_ratio: Some(self.theta_ratio),
+            work_of_adhesion: Some(self.work_of_adhesion),
             ..self.setup.params
         };
         Ok(MdrLaw {
@@ -228,13 +250,14 @@ impl FitResult {
     }
 
     /// The fitted values and uncertainties as a dict, with the keys of
-    /// `mdr-dem impact fit --json` (q_c, theta_ratio, scale, rmse, n_points, uncertainty,
-    /// yield_speed_m_per_s).
+    /// `mdr-dem impact fit --json` (q_c, theta_ratio, scale, work_of_adhesion, rmse, n_points,
+    /// uncertainty, yield_speed_m_per_s).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let dict = PyDict::new(py);
         dict.set_item("q_c", self.qc)?;
         dict.set_item("theta_ratio", self.theta_ratio)?;
         dict.set_item("scale", self.scale)?;
+        dict.set_item("work_of_adhesion", self.work_of_adhesion)?;
         dict.set_item("rmse", self.rmse)?;
         dict.set_item("n_points", self.n_points)?;
         let uncertainty = PyDict::new(py);
@@ -242,6 +265,7 @@ impl FitResult {
             ("q_c", self.qc_uncertainty),
             ("theta_ratio", self.theta_ratio_uncertainty),
             ("scale", self.scale_uncertainty),
+            ("work_of_adhesion", self.work_of_adhesion_uncertainty),
         ] {
             if let Some(v) = value {
                 uncertainty.set_item(key, v)?;
@@ -269,9 +293,11 @@ impl FitResult {
 }
 
 /// Least-squares fit of the MDR law to measured restitution (as `mdr-dem impact fit`):
-/// `scale · e_n(v; q_c, Θ/E*)` (energy route) is matched to `(v0, e)`. `free`: the parameters to
-/// adjust, a subset of ("qc", "theta_ratio", "scale") (default: all three); `qc`, `theta_ratio`
-/// (in `material`) and `scale` are the starting values, and the values of the fixed ones.
+/// `scale · e_n(v; q_c, Θ/E*, Δγ)` is matched to `(v0, e)`. `free`: the parameters to adjust,
+/// a subset of ("qc", "theta_ratio", "scale", "work_of_adhesion") (default: the first three;
+/// work_of_adhesion needs data with sticking points, e = 0); `qc`, `theta_ratio`,
+/// `work_of_adhesion` (in `material`) and `scale` are the starting values, and the values of the
+/// fixed ones.
 #[pyfunction]
 #[pyo3(signature = (v0, e, *, free = None, scale = PAPER_SCALE, **material))]
 pub fn fit<'py>(
@@ -314,6 +340,7 @@ pub fn fit<'py>(
         q_c: setup.model.critical_line_load(),
         theta_ratio: setup.law.hardening_ratio(),
         scale,
+        work_of_adhesion: setup.work_of_adhesion(),
     };
     let pair = setup.pair;
     let (report, model) = py
@@ -338,6 +365,8 @@ pub fn fit<'py>(
         qc_uncertainty: sigma(FitParameter::CriticalLineLoad),
         theta_ratio_uncertainty: sigma(FitParameter::HardeningRatio),
         scale_uncertainty: sigma(FitParameter::Scale),
+        work_of_adhesion: report.values.work_of_adhesion,
+        work_of_adhesion_uncertainty: sigma(FitParameter::WorkOfAdhesion),
         residuals: array1(py, residuals),
         rmse: report.rmse,
         n_points: report.n_points,
@@ -448,6 +477,7 @@ pub fn oblique<'py>(
         ));
     }
     let template = Impact::new(setup.pair, spec, speed)
+        .work_of_adhesion(setup.work_of_adhesion())
         .method(method)
         .tangential(tangential)
         .spin(spin)
@@ -474,5 +504,6 @@ pub fn oblique<'py>(
         column(py, &outcomes, |o| o.rebound_angle_degrees),
     )?;
     dict.set_item("omega_rad_per_s", column(py, &outcomes, |o| o.spin))?;
+    dict.set_item("stuck", column(py, &outcomes, stuck_flag))?;
     Ok(dict)
 }

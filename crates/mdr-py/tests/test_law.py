@@ -286,7 +286,14 @@ def test_fit_with_fixed_parameters_keeps_them():
 
 def test_oblique_head_on_limit_and_columns():
     out = mdr_dem.oblique(1.0, [0.0, 30.0, 60.0], tangential="mindlin", method="closed")
-    assert list(out) == ["angle_deg", "e_n", "e_t", "rebound_angle_deg", "omega_rad_per_s"]
+    assert list(out) == [
+        "angle_deg",
+        "e_n",
+        "e_t",
+        "rebound_angle_deg",
+        "omega_rad_per_s",
+        "stuck",
+    ]
     np.testing.assert_array_equal(out["angle_deg"], [0.0, 30.0, 60.0])
     # Mindlin with a closed-form normal law: the normal restitution does not depend on friction.
     assert out["e_n"][0] == pytest.approx(mdr_dem.MdrLaw().restitution(1.0), abs=2e-3)

@@ -109,6 +109,10 @@ pub struct CommonArgs {
     /// MDR law's].
     #[arg(long, allow_negative_numbers = true, value_name = "PA")]
     pub yield_stress: Option<f64>,
+    /// Work of adhesion Δγ (J/m², ≥ 0): Heß's adhesion rule on the MDR springs; the contact
+    /// holds past zero overlap until it lets go, and slow impacts stick (e_n = 0) [default: 0].
+    #[arg(long, allow_negative_numbers = true, value_name = "J_PER_M2")]
+    pub work_of_adhesion: Option<f64>,
     /// Friction coefficient μ (oblique impacts) [default: 0.2].
     #[arg(long, allow_negative_numbers = true)]
     pub mu: Option<f64>,
@@ -169,6 +173,7 @@ impl CommonArgs {
             theta_ratio,
             law,
             yield_stress,
+            work_of_adhesion,
             mu,
             scale,
             method,
@@ -187,6 +192,7 @@ pub(super) struct Settings {
     pub(super) method: Option<Method>,
     pub(super) steps: usize,
     pub(super) mu: f64,
+    pub(super) work_of_adhesion: f64,
     pub(super) scale: f64,
     pub(super) quiet: bool,
     pub(super) half_space: bool,
@@ -207,6 +213,7 @@ fn flag_for(name: &str, target: bool) -> &'static str {
         ("theta_ratio" | "theta", _) => "--theta-ratio",
         ("yield_stress", _) => "--yield-stress",
         ("mu", _) => "--mu",
+        ("work_of_adhesion", _) => "--work-of-adhesion",
         ("n_springs" | "half_width" | "spacing", _) => "--springs",
         _ => "a material or law flag",
     }
@@ -287,9 +294,12 @@ pub(crate) fn normal_laws(
             .yield_overlap();
         2.0 * e_star / std::f64::consts::PI * (u_c / pair.effective_radius()).sqrt()
     };
+    let adhesive = work_of_adhesion(a)? > 0.0;
     let mut laws = Vec::new();
     for name in a.law.clone().unwrap_or_else(|| vec![LawName::Mdr]) {
         let spec = match (name, a.elastic) {
+            // Adhesion is the MDR law's: its elastic limit is JKR, not Hertz.
+            (LawName::Mdr, true) if adhesive => NormalSpec::Mdr(MdrElastoPlastic::elastic()),
             (_, true) | (LawName::Hertz, _) => NormalSpec::Hertz,
             (LawName::Mdr, false) => NormalSpec::Mdr(mdr),
             (LawName::Thornton, false) => NormalSpec::Thornton(
@@ -306,7 +316,24 @@ pub(crate) fn normal_laws(
             "invalid value for --law: give at least one of mdr, thornton, hertz"
         ));
     }
+    if adhesive && laws.iter().any(|l| !matches!(l, NormalSpec::Mdr(_))) {
+        return Err(anyhow!(
+            "invalid value for --law: --work-of-adhesion is part of the MDR law; use it with \
+             --law mdr"
+        ));
+    }
     Ok((mdr, laws))
+}
+
+/// `--work-of-adhesion` (J/m²), default 0.
+pub(crate) fn work_of_adhesion(a: &CommonArgs) -> anyhow::Result<f64> {
+    let w = a.work_of_adhesion.unwrap_or(0.0);
+    if !(w.is_finite() && w >= 0.0) {
+        return Err(anyhow!(
+            "invalid value for --work-of-adhesion: {w} (must be a finite number ≥ 0, J/m²)"
+        ));
+    }
+    Ok(w)
 }
 
 /// `--mu`, default 0.2.
@@ -351,6 +378,7 @@ impl Settings {
         };
         let (mdr, laws) = normal_laws(&a, &pair)?;
         let mu = friction(&a)?;
+        let work_of_adhesion = work_of_adhesion(&a)?;
         let scale = positive("--scale", a.scale.unwrap_or(PAPER_SCALE))?;
         let steps = a.steps.unwrap_or(DEFAULT_STEPS_PER_CONTACT);
         if steps < 10 {
@@ -388,6 +416,7 @@ impl Settings {
             method,
             steps,
             mu,
+            work_of_adhesion,
             scale,
             quiet: a.quiet,
             half_space,
@@ -399,6 +428,7 @@ impl Settings {
             .method(self.method.unwrap_or(Method::Closed))
             .steps_per_contact(self.steps)
             .friction(self.mu)
+            .work_of_adhesion(self.work_of_adhesion)
     }
 
     pub(super) fn progress(&self) -> Progress {

@@ -17,10 +17,12 @@ pub struct FitArgs {
     /// Measured data, CSV with header `v0_m_per_s,e_n`.
     #[arg(long, value_name = "FILE.csv")]
     data: PathBuf,
-    /// Parameters to fit, comma-separated subset of qc,theta_ratio,scale.
+    /// Parameters to fit, comma-separated subset of qc,theta_ratio,scale,work_of_adhesion
+    /// (work_of_adhesion needs data that show sticking: points with e_n = 0).
     #[arg(long, default_value = "qc,theta_ratio,scale")]
     free: String,
-    /// Print one JSON object (keys q_c, theta_ratio, scale, rmse, n_points, and uncertainties).
+    /// Print one JSON object (keys q_c, theta_ratio, scale, work_of_adhesion, rmse, n_points,
+    /// and uncertainties).
     #[arg(long)]
     json: bool,
     /// Plot of the data and the fitted curve (.svg or .png).
@@ -50,6 +52,7 @@ pub(super) fn run_fit(args: &FitArgs) -> anyhow::Result<()> {
         q_c: settings.mdr.critical_line_load(),
         theta_ratio: hardening,
         scale: settings.scale,
+        work_of_adhesion: settings.work_of_adhesion,
     };
     let report = fit(&settings.pair, initial, &free, &data).map_err(|e| match e {
         ImpactError::Underdetermined(_) => anyhow!("--data: {e}"),
@@ -67,6 +70,7 @@ pub(super) fn run_fit(args: &FitArgs) -> anyhow::Result<()> {
             "q_c": report.values.q_c,
             "theta_ratio": report.values.theta_ratio,
             "scale": report.values.scale,
+            "work_of_adhesion": report.values.work_of_adhesion,
             "rmse": report.rmse,
             "n_points": report.n_points,
         });
@@ -75,6 +79,7 @@ pub(super) fn run_fit(args: &FitArgs) -> anyhow::Result<()> {
             (FitParameter::CriticalLineLoad, "q_c"),
             (FitParameter::HardeningRatio, "theta_ratio"),
             (FitParameter::Scale, "scale"),
+            (FitParameter::WorkOfAdhesion, "work_of_adhesion"),
         ] {
             if let Some(s) = sigma(p) {
                 uncertainty.insert(key.into(), s.into());
@@ -99,6 +104,11 @@ pub(super) fn run_fit(args: &FitArgs) -> anyhow::Result<()> {
             FitParameter::HardeningRatio,
         );
         show("scale", report.values.scale, FitParameter::Scale);
+        show(
+            "Δγ (J/m²)",
+            report.values.work_of_adhesion,
+            FitParameter::WorkOfAdhesion,
+        );
         println!("{:>12} = {:.3e}", "rmse", report.rmse);
         println!("{:>12} = {}", "n_points", report.n_points);
         println!(

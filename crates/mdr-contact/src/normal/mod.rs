@@ -7,11 +7,15 @@
 //! - a **law** ([`NormalLaw`]) is a model bound to one [`ContactPair`] (its `E*`, `R`), with the
 //!   pair-dependent constants precomputed, and maps an overlap history to a force.
 
+mod adhesive_mdr;
+mod adhesive_spring_bed;
 mod hertz;
 mod mdr;
 mod spring_bed;
 mod thornton;
 
+pub use adhesive_mdr::{AdhesiveMdr, AdhesiveMdrLaw, AdhesiveMdrState};
+pub use adhesive_spring_bed::{AdhesiveSpringBed, AdhesiveSpringBedState, SphereAdhesiveSpringBed};
 pub use hertz::{Hertz, HertzLaw};
 pub use mdr::{EnergyRouteImpact, Hardening, MdrElastoPlastic, MdrLaw, MdrState};
 pub use spring_bed::{SphereSpringBed, SpringBed, SpringBedState};
@@ -27,20 +31,31 @@ use crate::material::ContactPair;
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct NormalResponse {
-    /// Repulsive normal force (N), never negative (no adhesion).
+    /// Normal force (N): positive pushes the bodies apart; negative (adhesive laws only, while
+    /// [`NormalLaw::holds`]) pulls them together.
     pub force: f64,
-    /// Contact radius `a` (m); zero when the bodies do not touch.
+    /// Contact radius `a` (m): the radius of the springs in contact (for adhesive laws, of the
+    /// attached springs, which may be stretched); zero when the bodies do not touch.
     pub contact_radius: f64,
     /// Tangent stiffness `dF/dδ` (N/m) on the current branch, for time-step estimates and the
-    /// tangential law.
+    /// tangential law. For adhesive laws it is the stiffness `2E* a` of the attached springs,
+    /// an upper bound of `|dF/dδ|` while the contact's edge retreats.
     pub stiffness: f64,
 }
 
 /// A normal contact law bound to one pair: overlap history → force.
 ///
 /// `update` advances the history (the state) to a new overlap `δ` (m, positive when the bodies
-/// interpenetrate). A non-positive overlap means the bodies are apart; the state keeps its
-/// plastic memory, so a later re-touch on the same spot sees the flattened profile.
+/// interpenetrate). The state keeps its plastic memory, so a later re-touch on the same spot sees
+/// the flattened profile.
+///
+/// Without adhesion the force is never negative and a contact ends where the force vanishes
+/// (at [`NormalLaw::residual_overlap`]). An adhesive law ([`AdhesiveMdrLaw`],
+/// [`AdhesiveSpringBed`]) may return a negative (tensile) force, also at negative overlaps,
+/// while [`NormalLaw::holds`] is true; the contact lets go at the latest when the overlap falls
+/// below [`NormalLaw::detachment_overlap`], so a caller keeps updating a held contact (and keeps
+/// the pair in its neighbour list) until then. The work the let-go springs held is part of
+/// [`NormalLaw::dissipated_work`].
 pub trait NormalLaw: Send + Sync {
     /// Per-contact history.
     type State: Clone + Default + std::fmt::Debug + Send + Sync;
@@ -60,9 +75,11 @@ pub trait NormalLaw: Send + Sync {
     /// Overlap at which the force vanishes on unloading: the residual (plastic) indentation (m).
     fn residual_overlap(&self, state: &Self::State) -> f64;
 
-    /// Work dissipated by plasticity so far (J). A function of the largest overlap
-    /// ([`NormalLaw::max_overlap`]) alone, as the plastic memory of these laws is: callers that
-    /// book it every step recompute it only when that grew.
+    /// Work dissipated so far (J): by plasticity and, for adhesive laws, the energy the springs
+    /// held when they let go (the adhesive hysteresis). Without adhesion it is a function of the
+    /// largest overlap ([`NormalLaw::max_overlap`]) alone; with adhesion it also grows while the
+    /// contact [`NormalLaw::holds`]: callers that cache it recompute it when the largest overlap
+    /// grew or the contact held at the previous step.
     fn dissipated_work(&self, state: &Self::State) -> f64;
 
     /// Elastic energy stored at `overlap` for this history (J): the work the contact returns
@@ -71,6 +88,30 @@ pub trait NormalLaw: Send + Sync {
 
     /// Indentation at which the law first leaves the elastic branch (m), `inf` if never.
     fn yield_overlap(&self) -> f64;
+
+    /// Whether the contact holds adhesively after the last update: springs are attached and the
+    /// law gives a force (possibly tensile) below the residual overlap, down to
+    /// [`NormalLaw::detachment_overlap`]. Always false without adhesion.
+    #[inline(always)]
+    fn holds(&self, _state: &Self::State) -> bool {
+        false
+    }
+
+    /// The overlap (m) below which the contact, as it stands, has let go: for a held adhesive
+    /// contact the smallest overlap it reaches while unloading (typically negative, a
+    /// separation); otherwise the residual overlap, where the force vanishes.
+    fn detachment_overlap(&self, state: &Self::State) -> f64 {
+        self.residual_overlap(state)
+    }
+
+    /// The elastic (JKR) pull-off force `(3/2) π Δγ R` (N) of an adhesive law, zero without
+    /// adhesion. The tangential Coulomb limit uses the load `F_n + 2 F_c` with this `F_c`
+    /// (Thornton & Yin 1991; LAMMPS `jkr`), so an adhesive contact resists sliding under zero
+    /// or tensile load.
+    #[inline(always)]
+    fn pull_off_force(&self) -> f64 {
+        0.0
+    }
 }
 
 /// Material-level parameters of a normal law; [`NormalModel::bind`] makes the law of one pair.

@@ -311,6 +311,15 @@ impl SpringBed {
     /// (both m), and whether it is on its plastic loading branch.
     #[inline]
     fn spring_force(&self, u: f64, u_max: f64) -> (f64, bool) {
+        let (force, plastic) = self.signed_spring_force(u, u_max);
+        // No tension without adhesion.
+        (force.max(0.0), plastic)
+    }
+
+    /// As `spring_force`, but a stretched spring carries tension (an attached spring of the
+    /// adhesive bed).
+    #[inline]
+    pub(crate) fn signed_spring_force(&self, u: f64, u_max: f64) -> (f64, bool) {
         let e = self.effective_modulus;
         let u_c = self.critical_displacement;
         if u >= u_max && u > u_c {
@@ -318,9 +327,14 @@ impl SpringBed {
             let force = e * self.spacing * (u_c + self.hardening_ratio * (u - u_c));
             return (force, true);
         }
-        // Elastic branch, eq. (10), with the offset of eq. (13); no tension.
-        let offset = (1.0 - self.hardening_ratio) * (u_max - u_c).max(0.0);
-        ((e * self.spacing * (u - offset)).max(0.0), false)
+        // Elastic branch, eq. (10), with the offset of eq. (13).
+        (e * self.spacing * (u - self.plastic_offset(u_max)), false)
+    }
+
+    /// Plastic offset `u_pl = (1 − θ)(u_max − u_crit)₊` of a spring (eq. 13, m).
+    #[inline]
+    pub(crate) fn plastic_offset(&self, u_max: f64) -> f64 {
+        (1.0 - self.hardening_ratio) * (u_max - self.critical_displacement).max(0.0)
     }
 
     /// Normal force of each stored spring (N, one spring, not weighted) at the state's last

@@ -18,7 +18,13 @@ class MdrState:
 
     max_overlap: float
     """Largest overlap so far, d_max (m)."""
-    def __init__(self, max_overlap: float = 0.0) -> None: ...
+    contact_radius: float
+    """Radius of the attached springs (m); with adhesion positive while the contact holds."""
+    adhesive_work: float
+    """Energy the springs held when they let go, summed (J)."""
+    def __init__(
+        self, max_overlap: float = 0.0, contact_radius: float = 0.0, adhesive_work: float = 0.0
+    ) -> None: ...
 
 class ImpactTrace:
     """Time history of one head-on impact (one point per time step)."""
@@ -45,6 +51,12 @@ class ImpactTrace:
     """Contact time (s)."""
     peak_force: float
     """Peak force (N)."""
+    stuck: bool
+    """Whether the sphere stuck (adhesion; restitution 0)."""
+    pull_off_force: float
+    """Largest tensile force (N, ≥ 0)."""
+    release_overlap: float
+    """Overlap at which the contact let go (m); NaN when stuck."""
 
 class MdrLaw:
     """The MDR elasto-plastic law (Lyashenko & Popov 2018) bound to one pair.
@@ -67,9 +79,11 @@ class MdrLaw:
         target_poisson: Optional[float] = None,
         qc: float = 3.8e5,
         theta_ratio: float = 0.37,
+        work_of_adhesion: float = 0.0,
     ) -> None:
         """radius (m), density (kg/m³), youngs (Pa), poisson (-), target_* likewise, qc: critical
-        line load (N/m, eq. 7), theta_ratio: hardening ratio Θ/E* (eq. 12)."""
+        line load (N/m, eq. 7), theta_ratio: hardening ratio Θ/E* (eq. 12), work_of_adhesion:
+        Δγ (J/m², ≥ 0; Heß's adhesion rule on the springs)."""
     def parameters(self) -> dict[str, Optional[float]]:
         """The keyword arguments this law was built with."""
     @property
@@ -96,6 +110,15 @@ class MdrLaw:
     @property
     def half_space(self) -> bool:
         """Whether the target is a half-space."""
+    @property
+    def work_of_adhesion(self) -> float:
+        """Work of adhesion Δγ (J/m²)."""
+    @property
+    def pull_off_force(self) -> float:
+        """Elastic (JKR) pull-off force (3/2) π Δγ R (N)."""
+    def detachment_overlap(self, state: MdrState) -> float:
+        """Overlap (m) below which a contact with history `state` has let go (negative while an
+        adhesive contact holds)."""
     def force(self, overlap: float, state: Optional[MdrState] = None) -> float:
         """Normal force (N) at overlap (m); advances `state` in place when given."""
     @overload
@@ -111,7 +134,8 @@ class MdrLaw:
     @overload
     def restitution(self, v0: ArrayLike) -> FloatArray: ...
     def restitution(self, v0: Any) -> Any:
-        """Closed-form e_n of a first impact at v0 (m/s), unscaled (`impact curve` column e_n)."""
+        """e_n of a first impact at v0 (m/s), unscaled (`impact curve` column e_n): closed form,
+        or with adhesion time-integrated, 0 where the sphere sticks."""
     def impact(
         self,
         v0: float,
@@ -130,6 +154,7 @@ class CurveResult(TypedDict):
     d_residual_m: FloatArray
     contact_time_s: FloatArray
     f_max_n: FloatArray
+    stuck: FloatArray
     yield_speed_m_per_s: float
 
 def curve(
@@ -174,6 +199,10 @@ class FitResult:
     """1σ of Θ/E*; None if fixed."""
     scale_uncertainty: Optional[float]
     """1σ of the scale; None if fixed."""
+    work_of_adhesion: float
+    """Fitted (or fixed) work of adhesion Δγ (J/m²)."""
+    work_of_adhesion_uncertainty: Optional[float]
+    """1σ of Δγ (J/m²); None if fixed."""
     residuals: FloatArray
     """Measured e minus the fitted model at each point."""
     rmse: float
@@ -223,6 +252,7 @@ class ObliqueResult(TypedDict):
     e_t: FloatArray
     rebound_angle_deg: FloatArray
     omega_rad_per_s: FloatArray
+    stuck: FloatArray
 
 def oblique(
     speed: float,

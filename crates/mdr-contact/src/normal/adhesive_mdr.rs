@@ -1,0 +1,406 @@
+//! The adhesive MDR elasto-plastic law in its continuum closed form for the parabolic profile
+//! (`docs/theory.md`, "Adhesion: Heß's rule on the plastic springs"). O(1) time and state.
+//!
+//! The springs of the MDR bed follow eqs. (10)–(13) as in [`super::MdrLaw`]; on top of them
+//! Heß's adhesion rule (Popov & Heß, the paper's ref. [12]): a spring attaches when it touches,
+//! with zero elongation; an attached spring carries tension; the outermost attached spring, at
+//! the contact radius `a`, lets go when its elongation exceeds `Δl_max(a) = √(2π a Δγ / E*)`.
+//! With the plastic offsets of eq. (13) the springs sit on the crater's profile
+//! `h(x) = g(x) + u_pl(x)`, so the whole state is `d_max`, the attached radius `a` and the
+//! adhesive work booked so far.
+
+use super::{MdrElastoPlastic, MdrLaw, MdrState, NormalLaw, NormalModel, NormalResponse};
+use crate::error::{non_negative, Result};
+use crate::material::ContactPair;
+use std::f64::consts::PI;
+
+/// Parameters of the adhesive MDR law (a [`NormalModel`]): the MDR parameters `q_c`, `Θ` and the
+/// work of adhesion `Δγ` (J/m²).
+///
+/// ```
+/// use mdr_contact::prelude::*;
+/// let pair = ContactPair::paper_fig2();
+/// let law = AdhesiveMdr::new(MdrElastoPlastic::elastic(), 0.1).unwrap().bind(&pair).unwrap();
+/// // JKR pull-off force (3/2) π Δγ R.
+/// let r = pair.effective_radius();
+/// assert!((law.pull_off_force() - 1.5 * std::f64::consts::PI * 0.1 * r).abs() < 1e-15);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct AdhesiveMdr {
+    params: MdrElastoPlastic,
+    work_of_adhesion: f64,
+}
+
+impl AdhesiveMdr {
+    /// The MDR parameters `params` with the work of adhesion `work_of_adhesion` (J/m², finite,
+    /// ≥ 0; zero gives [`MdrLaw`] exactly).
+    pub fn new(params: MdrElastoPlastic, work_of_adhesion: f64) -> Result<Self> {
+        non_negative("work_of_adhesion", work_of_adhesion)?;
+        Ok(Self {
+            params,
+            work_of_adhesion,
+        })
+    }
+
+    /// The MDR parameters `q_c`, `Θ`.
+    pub fn params(&self) -> &MdrElastoPlastic {
+        &self.params
+    }
+
+    /// `Δγ` (J/m²).
+    pub fn work_of_adhesion(&self) -> f64 {
+        self.work_of_adhesion
+    }
+}
+
+impl NormalModel for AdhesiveMdr {
+    type Law = AdhesiveMdrLaw;
+    fn bind(&self, pair: &ContactPair) -> Result<AdhesiveMdrLaw> {
+        Ok(AdhesiveMdrLaw::new(
+            self.params.bind(pair)?,
+            self.work_of_adhesion,
+        ))
+    }
+}
+
+/// History of one adhesive MDR contact.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct AdhesiveMdrState {
+    /// Largest overlap so far, `d_max` (m): fixes the plastic offsets (eq. 13).
+    pub max_overlap: f64,
+    /// Radius of the attached springs `a` (m); zero when the contact does not hold.
+    pub contact_radius: f64,
+    /// Energy the springs held when they let go, summed (J): the adhesive hysteresis.
+    pub adhesive_work: f64,
+}
+
+/// The adhesive MDR closed-form law bound to one pair.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AdhesiveMdrLaw {
+    mdr: MdrLaw,
+    work_of_adhesion: f64,
+    /// `√(2π Δγ / E*)`: `Δl_max(a) = detach_coefficient · √a`.
+    detach_coefficient: f64,
+    /// `(3/2) π Δγ R`.
+    pull_off: f64,
+}
+
+/// The crater's profile `h(x) = g(x) + u_pl(x)` of one history (docs/theory.md, eq. A1):
+/// `θ x²/R + (1 − θ) s` inside the plastic radius `b = √(R s)`, `x²/R` outside.
+#[derive(Debug, Clone, Copy)]
+struct Crater {
+    radius: f64,
+    theta: f64,
+    /// `(1 − θ) s₊`: the residual depth `h(0)`.
+    depth: f64,
+    /// `b² = R s₊`.
+    plastic_radius_sq: f64,
+}
+
+impl Crater {
+    #[inline]
+    fn height(&self, a: f64) -> f64 {
+        if a * a < self.plastic_radius_sq {
+            self.theta * a * a / self.radius + self.depth
+        } else {
+            a * a / self.radius
+        }
+    }
+
+    /// `dh/da`.
+    #[inline]
+    fn slope(&self, a: f64) -> f64 {
+        if a * a < self.plastic_radius_sq {
+            2.0 * self.theta * a / self.radius
+        } else {
+            2.0 * a / self.radius
+        }
+    }
+
+    /// `∫₀^a h dx` (eq. A3).
+    #[inline]
+    fn integral(&self, a: f64) -> f64 {
+        let r = self.radius;
+        if a * a <= self.plastic_radius_sq {
+            self.theta * a * a * a / (3.0 * r) + self.depth * a
+        } else {
+            let b = self.plastic_radius_sq.sqrt();
+            a * a * a / (3.0 * r) + 2.0 / 3.0 * (1.0 - self.theta) * b * b * b / r
+        }
+    }
+
+    /// Touching radius at overlap `d`: the largest `a` with `h(a) ≤ d` (zero if `d ≤ h(0)`).
+    #[inline]
+    fn touching_radius(&self, d: f64) -> f64 {
+        if d <= self.depth {
+            return 0.0;
+        }
+        let outer = self.radius * d;
+        if outer >= self.plastic_radius_sq {
+            outer.sqrt()
+        } else {
+            (self.radius * (d - self.depth) / self.theta).sqrt()
+        }
+    }
+
+    /// `E* ∫_{−a}^{a} (d − h)² dx / 2`: the energy of the attached springs (eq. A6).
+    fn spring_energy(&self, modulus: f64, d: f64, a: f64) -> f64 {
+        let r = self.radius;
+        let inner = a.min(self.plastic_radius_sq.sqrt());
+        let e = d - self.depth;
+        let k = self.theta / r;
+        let mut integral =
+            e * e * inner - 2.0 / 3.0 * e * k * inner.powi(3) + k * k * inner.powi(5) / 5.0;
+        if a > inner {
+            let p = |x: f64| d * d * x - 2.0 / 3.0 * d * x.powi(3) / r + x.powi(5) / (5.0 * r * r);
+            integral += p(a) - p(inner);
+        }
+        modulus * integral
+    }
+}
+
+impl AdhesiveMdrLaw {
+    /// The MDR law `mdr` with the work of adhesion `work_of_adhesion` (J/m², not checked: use
+    /// [`AdhesiveMdr`] for user input).
+    pub fn new(mdr: MdrLaw, work_of_adhesion: f64) -> Self {
+        Self {
+            mdr,
+            work_of_adhesion,
+            detach_coefficient: (2.0 * PI * work_of_adhesion / mdr.effective_modulus()).sqrt(),
+            pull_off: 1.5 * PI * work_of_adhesion * mdr.effective_radius(),
+        }
+    }
+
+    /// The non-adhesive law underneath.
+    pub fn mdr(&self) -> &MdrLaw {
+        &self.mdr
+    }
+
+    /// `Δγ` (J/m²).
+    pub fn work_of_adhesion(&self) -> f64 {
+        self.work_of_adhesion
+    }
+
+    /// `Δl_max(a) = √(2π a Δγ / E*)` (m): the elongation at which the spring at the contact
+    /// radius `a` lets go.
+    pub fn critical_elongation(&self, contact_radius: f64) -> f64 {
+        self.detach_coefficient * contact_radius.sqrt()
+    }
+
+    fn crater(&self, max_overlap: f64) -> Crater {
+        let s = (max_overlap - self.mdr.yield_overlap()).max(0.0);
+        let theta = self.mdr.hardening_ratio();
+        Crater {
+            radius: self.mdr.effective_radius(),
+            theta,
+            depth: (1.0 - theta) * s,
+            plastic_radius_sq: self.mdr.effective_radius() * s,
+        }
+    }
+
+    /// The attached radius after moving to overlap `d` from the attached radius `previous`
+    /// (eqs. A4–A5): grows to the touching radius, holds while the edge spring's elongation is
+    /// within `Δl_max(a)`, else retreats to the largest `a` with `h(a) − d = Δl_max(a)`, or to
+    /// zero when no such `a` exists (the contact lets go).
+    fn attached_radius(&self, crater: &Crater, previous: f64, d: f64) -> f64 {
+        let touching = crater.touching_radius(d);
+        if touching >= previous {
+            return touching;
+        }
+        let c = self.detach_coefficient;
+        // φ(t) = h(t²) − c t − d, t = √a, convex in t.
+        let phi = |t: f64| crater.height(t * t) - c * t - d;
+        let mut t = previous.sqrt();
+        let value = phi(t);
+        if value <= 0.0 {
+            return previous;
+        }
+        if 2.0 * t * crater.slope(t * t) - c <= 0.0 {
+            // φ > 0 and falling at the edge: positive on the whole disc, every spring lets go.
+            return 0.0;
+        }
+        // Newton from the right on a convex function: monotone towards the largest root.
+        let floor = touching.sqrt();
+        let mut value = value;
+        for _ in 0..100 {
+            let slope = 2.0 * t * crater.slope(t * t) - c;
+            if slope <= 0.0 {
+                // Past the minimum of φ while still positive: no root, every spring lets go.
+                return 0.0;
+            }
+            let next = (t - value / slope).max(floor);
+            if t - next <= 1e-15 * t {
+                t = next;
+                break;
+            }
+            t = next;
+            value = phi(t);
+            if value <= 0.0 {
+                break;
+            }
+        }
+        (t * t).max(touching)
+    }
+
+    /// The overlap `δ(a) = h(a) − Δl_max(a)` at which the edge of an attached disc of radius
+    /// `a` sits at its limit (eq. A4).
+    fn edge_overlap(&self, crater: &Crater, a: f64) -> f64 {
+        crater.height(a) - self.critical_elongation(a)
+    }
+
+    /// Energy the springs held when they let go while the attached radius fell from `previous`
+    /// to `a` on a continuous unloading path (eq. A6): on the retreating front each spring lets
+    /// go at `Δl_max(x)`, `π Δγ (previous² − a²)` in all; when the whole contact lets go, the
+    /// front first retreats to the weakest edge `a*` (eq. A7) and the springs inside it let go
+    /// at once with the energy they hold at `δ(a*)`.
+    fn released_work(&self, crater: &Crater, previous: f64, a: f64) -> f64 {
+        let annulus =
+            |outer: f64, inner: f64| PI * self.work_of_adhesion * (outer * outer - inner * inner);
+        if a > 0.0 {
+            return annulus(previous, a);
+        }
+        let (edge, overlap) = self.weakest_edge(crater, previous);
+        annulus(previous, edge) + crater.spring_energy(self.mdr.effective_modulus(), overlap, edge)
+    }
+
+    /// `(a*, δ(a*))` with `δ(a*)` the smallest `δ(a')` over `0 < a' ≤ a` (eq. A7): `δ` is
+    /// convex in `√a'`, so the minimum is at its stationary point on either branch of the
+    /// crater, at the plastic radius, or at the edge `a`.
+    fn weakest_edge(&self, crater: &Crater, a: f64) -> (f64, f64) {
+        let c = self.detach_coefficient;
+        let r = crater.radius;
+        let b_sq = crater.plastic_radius_sq;
+        let mut best = (a, self.edge_overlap(crater, a));
+        let mut consider = |x: f64| {
+            let overlap = self.edge_overlap(crater, x);
+            if overlap < best.1 {
+                best = (x, overlap);
+            }
+        };
+        // Outer branch h = a²/R: dδ/dt = 4t³/R − c = 0 (t = √a).
+        let outer = (c * r / 4.0).powf(2.0 / 3.0);
+        if outer * outer >= b_sq && outer <= a {
+            consider(outer);
+        }
+        if b_sq > 0.0 && b_sq < a * a {
+            consider(b_sq.sqrt());
+        }
+        if crater.theta > 0.0 {
+            // Inner branch h = θa²/R + (1 − θ)s: 4θt³/R = c.
+            let inner = (c * r / (4.0 * crater.theta)).powf(2.0 / 3.0);
+            if inner * inner < b_sq && inner <= a {
+                consider(inner);
+            }
+        }
+        best
+    }
+
+    /// The elastic JKR pull-off force `(3/2) π Δγ R` (N).
+    pub fn jkr_pull_off_force(&self) -> f64 {
+        self.pull_off
+    }
+}
+
+impl NormalLaw for AdhesiveMdrLaw {
+    type State = AdhesiveMdrState;
+
+    /// With `Δγ = 0` this is [`MdrLaw::update`]. Otherwise `F = 2E* (a d − ∫₀^a h dx)` over the
+    /// attached disc (eq. A3), negative when the attached springs are stretched.
+    #[inline]
+    fn update(&self, state: &mut AdhesiveMdrState, d: f64) -> NormalResponse {
+        if self.work_of_adhesion == 0.0 {
+            let mut inner = MdrState {
+                max_overlap: state.max_overlap,
+            };
+            let response = self.mdr.update(&mut inner, d);
+            state.max_overlap = inner.max_overlap;
+            state.contact_radius = response.contact_radius;
+            return response;
+        }
+        let loading = d > state.max_overlap;
+        if state.contact_radius == 0.0 && d <= self.mdr.residual_depth(state.max_overlap) {
+            // Apart and not touching: nothing holds.
+            return NormalResponse::default();
+        }
+        if loading {
+            state.max_overlap = d;
+        }
+        let crater = self.crater(state.max_overlap);
+        let previous = state.contact_radius;
+        let a = self.attached_radius(&crater, previous, d);
+        if a < previous {
+            state.adhesive_work += self.released_work(&crater, previous, a);
+        }
+        state.contact_radius = a;
+        if a == 0.0 {
+            return NormalResponse::default();
+        }
+        let modulus = self.mdr.effective_modulus();
+        let force = 2.0 * modulus * (a * d - crater.integral(a));
+        // Plastic loading softens the bed as in MdrLaw; otherwise the attached springs are
+        // elastic: 2 E* a.
+        let softening = if loading && crater.plastic_radius_sq > 0.0 {
+            (1.0 - crater.theta) * crater.plastic_radius_sq.sqrt()
+        } else {
+            0.0
+        };
+        NormalResponse {
+            force,
+            contact_radius: a,
+            stiffness: 2.0 * modulus * (a - softening),
+        }
+    }
+
+    fn max_overlap(&self, state: &AdhesiveMdrState) -> f64 {
+        state.max_overlap
+    }
+
+    fn residual_overlap(&self, state: &AdhesiveMdrState) -> f64 {
+        self.mdr.residual_depth(state.max_overlap)
+    }
+
+    /// Plastic work (a function of `d_max`, as for [`MdrLaw`]) plus the adhesive work.
+    fn dissipated_work(&self, state: &AdhesiveMdrState) -> f64 {
+        self.mdr.dissipated_work(&MdrState {
+            max_overlap: state.max_overlap,
+        }) + state.adhesive_work
+    }
+
+    fn elastic_energy(&self, state: &AdhesiveMdrState, overlap: f64) -> f64 {
+        if self.work_of_adhesion == 0.0 {
+            return self.mdr.elastic_energy(
+                &MdrState {
+                    max_overlap: state.max_overlap,
+                },
+                overlap,
+            );
+        }
+        let mut trial = *state;
+        self.update(&mut trial, overlap);
+        let crater = self.crater(trial.max_overlap);
+        crater.spring_energy(self.mdr.effective_modulus(), overlap, trial.contact_radius)
+    }
+
+    fn yield_overlap(&self) -> f64 {
+        self.mdr.yield_overlap()
+    }
+
+    fn holds(&self, state: &AdhesiveMdrState) -> bool {
+        self.work_of_adhesion > 0.0 && state.contact_radius > 0.0
+    }
+
+    /// `min δ(a')` over the attached disc `0 < a' ≤ a` (eq. A7).
+    fn detachment_overlap(&self, state: &AdhesiveMdrState) -> f64 {
+        if !self.holds(state) {
+            return self.residual_overlap(state);
+        }
+        let crater = self.crater(state.max_overlap);
+        self.weakest_edge(&crater, state.contact_radius).1
+    }
+
+    fn pull_off_force(&self) -> f64 {
+        self.pull_off
+    }
+}

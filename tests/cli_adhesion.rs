@@ -1,0 +1,125 @@
+//! `--work-of-adhesion` on the `mdr-dem impact …` command line: the `stuck` column, the
+//! `impact trace --json` keys, the fit of Δγ, and bad values refused naming the flag in every
+//! command that takes it.
+
+use std::process::{Command, Output};
+
+const GLASS: [&str; 8] = [
+    "--radius",
+    "5e-6",
+    "--youngs",
+    "63e9",
+    "--poisson",
+    "0.2",
+    "--density",
+    "2500",
+];
+
+fn mdr_dem(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
+        .args(args)
+        .output()
+        .expect("run mdr-dem")
+}
+
+fn with_glass<'a>(args: &[&'a str]) -> Vec<&'a str> {
+    args.iter().copied().chain(GLASS).collect()
+}
+
+fn stdout(output: &Output) -> String {
+    assert!(
+        output.status.success(),
+        "failed: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8(output.stdout.clone()).unwrap()
+}
+
+#[test]
+fn curve_marks_stuck_impacts() {
+    let text = stdout(&mdr_dem(&with_glass(&[
+        "impact",
+        "curve",
+        "--elastic",
+        "--work-of-adhesion",
+        "0.1",
+        "--velocities",
+        "0.01,1",
+        "--csv",
+        "-",
+        "--quiet",
+    ])));
+    let mut lines = text.lines();
+    assert!(lines.next().unwrap().ends_with(",f_max_n,stuck"));
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!((rows[0][1], rows[0][7]), ("0", "1"));
+    assert_eq!(rows[1][7], "0");
+    assert!(rows[1][1].parse::<f64>().unwrap() > 0.9);
+}
+
+#[test]
+fn trace_json_reports_pull_off_and_release() {
+    let dir = std::env::temp_dir().join(format!("mdr-dem-cli-adhesion-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("trace.csv");
+    let text = stdout(&mdr_dem(&with_glass(&[
+        "impact",
+        "trace",
+        "--elastic",
+        "--work-of-adhesion",
+        "0.1",
+        "--v0",
+        "0.3",
+        "--csv",
+        csv.to_str().unwrap(),
+        "--json",
+        "-",
+    ])));
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let pull_off = json["pull_off_force_n"].as_f64().unwrap();
+    let expected = 1.5 * std::f64::consts::PI * 0.1 * 5e-6;
+    assert!((pull_off - expected).abs() < 1e-3 * expected);
+    assert!(json["release_overlap_m"].as_f64().unwrap() < 0.0);
+    assert_eq!(json["stuck"], false);
+    // The trace goes through negative overlap with tensile forces.
+    let trace = std::fs::read_to_string(&csv).unwrap();
+    assert!(trace
+        .lines()
+        .skip(1)
+        .any(|l| l.split(',').nth(3).unwrap().parse::<f64>().unwrap() < 0.0));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn bad_work_of_adhesion_is_refused_by_every_command() {
+    let commands: [&[&str]; 5] = [
+        &["impact", "curve", "--velocities", "1", "--quiet"],
+        &["impact", "trace", "--v0", "1"],
+        &["impact", "oblique", "--speed", "1", "--angles", "30"],
+        &["impact", "fit", "--data", "missing.csv"],
+        &["impact", "fig2"],
+    ];
+    for command in commands {
+        for bad in ["-0.1", "nan", "inf"] {
+            let mut args = command.to_vec();
+            args.extend(["--work-of-adhesion", bad]);
+            let output = mdr_dem(&args);
+            let stderr = String::from_utf8_lossy(&output.stderr);
+            assert!(!output.status.success(), "{args:?} accepted");
+            assert!(stderr.contains("--work-of-adhesion"), "{args:?}: {stderr}");
+        }
+    }
+    // Adhesion is the MDR law's, and rapier runs the non-adhesive law.
+    let hertz = mdr_dem(&[
+        "impact",
+        "curve",
+        "--law",
+        "hertz",
+        "--work-of-adhesion",
+        "0.1",
+    ]);
+    assert!(String::from_utf8_lossy(&hertz.stderr).contains("--work-of-adhesion"));
+    let drop = mdr_dem(&["sim", "drop", "--v0", "1", "--work-of-adhesion", "0.1"]);
+    assert!(!drop.status.success());
+    assert!(String::from_utf8_lossy(&drop.stderr).contains("--work-of-adhesion"));
+}
