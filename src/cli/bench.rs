@@ -6,8 +6,8 @@
 use anyhow::{bail, Context};
 use clap::{Args, Subcommand, ValueEnum};
 use mdr_rapier::fast::bed::{
-    bench_bed, peak_rss_mb, process_cpu_seconds, settled_bed, Bed, BedSpec, BenchFigures, BenchLaw,
-    BenchSettings, BenchValue,
+    bench_bed, peak_rss_mb, process_cpu_seconds, reference_data, settled_bed, Bed, BedSpec,
+    BenchFigures, BenchLaw, BenchSettings, BenchValue,
 };
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -140,33 +140,11 @@ pub fn run(cmd: BenchCommand) -> anyhow::Result<()> {
     }
 }
 
-/// The reference bed `benches/lammps/settled.data`, looked for in the working directory and its
-/// ancestors (a copy of the repository), then in the repository this binary was built from.
-fn default_data() -> anyhow::Result<PathBuf> {
-    let rel = Path::new("benches/lammps/settled.data");
-    let mut tried = Vec::new();
-    let mut candidates: Vec<PathBuf> = Vec::new();
-    if let Ok(cwd) = std::env::current_dir() {
-        candidates.extend(cwd.ancestors().map(|a| a.join(rel)));
-    }
-    candidates.push(Path::new(env!("CARGO_MANIFEST_DIR")).join(rel));
-    for c in candidates {
-        if c.is_file() {
-            return Ok(c);
-        }
-        tried.push(c.display().to_string());
-    }
-    bail!(
-        "the reference bed `benches/lammps/settled.data` was not found (looked at {}); \
-         pass --data PATH",
-        tried.join(", ")
-    )
-}
-
 fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
     let path = match &args.data {
         Some(p) => p.clone(),
-        None => default_data()?,
+        None => reference_data(Path::new(env!("CARGO_MANIFEST_DIR")))
+            .map_err(|e| anyhow::anyhow!("{e}; pass --data PATH"))?,
     };
     let settings = BenchSettings {
         law: match args.law {

@@ -8,6 +8,7 @@ use mdr_rapier::fast::bed::{
     bench_bed as run_bench, settled_bed, Bed, BedError, BedSpec, BenchLaw, BenchSettings,
     BenchValue,
 };
+use mdr_rapier::fast::bed::reference_data;
 use mdr_rapier::fast::rayon;
 use mdr_rapier::CouplingError;
 use pyo3::exceptions::{PyOSError, PyRuntimeError};
@@ -26,30 +27,6 @@ fn bed_error(e: BedError) -> PyErr {
         BedError::Format { .. } | BedError::NotReference { .. } => invalid("data", e),
         other => PyRuntimeError::new_err(other.to_string()),
     }
-}
-
-/// The repository's reference bed `benches/lammps/settled.data`, looked for in the repository
-/// this package was built from, then in the working directory and its parents.
-fn default_data() -> PyResult<PathBuf> {
-    let rel = Path::new("benches/lammps/settled.data");
-    let mut candidates: Vec<PathBuf> = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .ancestors()
-        .map(|a| a.join(rel))
-        .collect();
-    if let Ok(cwd) = std::env::current_dir() {
-        candidates.extend(cwd.ancestors().map(|a| a.join(rel)));
-    }
-    candidates
-        .iter()
-        .find(|c| c.is_file())
-        .cloned()
-        .ok_or_else(|| {
-            invalid(
-                "data",
-                "the reference bed `benches/lammps/settled.data` was not found in the repository \
-             or above the working directory; pass data=PATH or count=N",
-            )
-        })
 }
 
 /// Throughput of the fast force-mode path on a settled bed, the run of `mdr-dem bench bed`: the
@@ -131,7 +108,8 @@ pub fn bench_bed<'py>(
         None => {
             let path = match data {
                 Some(p) => p,
-                None => default_data()?,
+                None => reference_data(Path::new(env!("CARGO_MANIFEST_DIR")))
+                    .map_err(|e| invalid("data", format!("{e}; pass data=PATH or count=N")))?,
             };
             Bed::read_lammps(&path).map_err(bed_error)?
         }

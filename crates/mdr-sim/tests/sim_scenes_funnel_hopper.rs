@@ -404,7 +404,7 @@ fn hopper_orifice_sweep_runs_once_per_diameter_and_fits_the_rates() {
         &hopper(200, 0.06, "[0.008, 0.010, 0.012]"),
     );
     let scene = mdr_sim::load_scene(&path).unwrap_or_else(|p| panic!("{p}"));
-    let sweep = mdr_sim::headline::run_orifice_sweep(
+    let sweep = mdr_sim::run::run_orifice_sweep(
         &scene,
         &RunOptions::new(dir.join("out")).quiet(true).no_frames(true),
     )
@@ -495,7 +495,7 @@ fn hopper_orifice_sweep_rates_grow_with_the_orifice() {
         &hopper(1000, 0.2, "[0.010, 0.012, 0.014]"),
     );
     let scene = mdr_sim::load_scene(&path).unwrap_or_else(|p| panic!("{p}"));
-    let sweep = mdr_sim::headline::run_orifice_sweep(
+    let sweep = mdr_sim::run::run_orifice_sweep(
         &scene,
         &RunOptions::new(dir.join("out")).quiet(true).no_frames(true),
     )

@@ -10,7 +10,7 @@
 //! springs". Spheres that leave the run (`delete_below_m`) take their energy with them into
 //! `removed_j`, which the balance counts as well.
 
-use super::atomic::write_atomic;
+use mdr_output::write_atomic;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 

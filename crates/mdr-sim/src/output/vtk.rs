@@ -2,7 +2,7 @@
 //! optional contact network (one line per touching pair), and the ParaView collection (`.pvd`)
 //! that lists the frames with their simulated times.
 
-use super::atomic::write_atomic;
+use mdr_output::write_atomic;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use vtkio::model::{

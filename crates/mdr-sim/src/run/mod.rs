@@ -18,10 +18,12 @@ pub mod build;
 mod outputs;
 mod state;
 mod steps;
+mod sweep;
 
 pub use mdr_rapier::fast::StepTimings;
 pub use state::{BodyRecord, CheckpointData};
 pub use steps::{ContactCounts, SceneSteps};
+pub use sweep::{run_orifice_sweep, SweepSummary};
 
 use crate::checkpoint::{self, CheckpointError};
 use crate::error::{output, SimError};
@@ -306,7 +308,7 @@ impl<'a> Sim<'a> {
             samples: Vec::new(),
             checkpoints: Vec::new(),
             view: ViewBuffers::default(),
-            sink: crate::walls::scene_sink(scene),
+            sink: scene_sink(scene),
             guard_floor_j: one_diameter_lift_j(scene),
         })
     }
@@ -545,7 +547,7 @@ impl<'a> Sim<'a> {
         if !headline.text.is_empty() {
             let path = out.join(format!("{}_headline.toml", scene.name));
             let text = toml::to_string(&headline).unwrap_or_default();
-            crate::output::atomic::write_atomic(&path, text.as_bytes()).map_err(output(&path))?;
+            mdr_output::write_atomic(&path, text.as_bytes()).map_err(output(&path))?;
             files.push(path);
         }
         files.push(out.join(format!("{}.pvd", scene.name)));
@@ -923,4 +925,18 @@ fn one_diameter_lift_j(scene: &Scene) -> f64 {
             mass * g * 2.0 * p.radius
         })
         .sum()
+}
+
+/// The scene's sink (`[run] delete_below_m`), if it has one.
+fn scene_sink(scene: &Scene) -> Option<crate::walls::Sink> {
+    let height = scene.source.run.delete_below_m?;
+    let g = scene.gravity.norm();
+    let up = if g > 0.0 {
+        -scene.gravity / g
+    } else {
+        Vector3::z()
+    };
+    let centres: Vec<_> = scene.particles.iter().map(|p| p.position).collect();
+    let radii: Vec<_> = scene.particles.iter().map(|p| p.radius).collect();
+    Some(crate::walls::Sink::new(height, up, g, &centres, &radii))
 }
