@@ -580,7 +580,8 @@ fn lammps_data_round_trip_and_tiling() {
         ..BedSpec::default()
     })
     .unwrap();
-    let dir = std::env::temp_dir().join(format!("mdr_fast_bed_{}", std::process::id()));
+    let dir_guard = tempfile::tempdir().unwrap();
+    let dir = dir_guard.path().to_path_buf();
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("bed.data");
     bed.write_lammps(&path).unwrap();

@@ -313,8 +313,8 @@ where
     }
 
     /// Keep no friction and damping work books in the pair histories ([`NoBooks`]): the same
-    /// trajectory bit for bit, 0–1 % less time per step on a settled bed
-    /// (docs/performance.md); the histories' reports then give NaN for those works. Histories
+    /// trajectory bit for bit, with less work per contact (docs/performance.md); the histories'
+    /// reports then give NaN for those works. Histories
     /// are carried over, so this may be called at any point of a run.
     pub fn without_work_books(mut self) -> FastForceStepper<N, T, D, R, NoBooks> {
         fn unbooked<NS, TS, B, RS>(
