@@ -1,11 +1,11 @@
-//! `mdr-dem bench …`: throughput benchmarks. `bench bed` runs the fast force-mode path on the
+//! `mdr-dem bench …`: throughput benchmarks. `bench bed` runs the neighbour-list path on the
 //! settled 10,000-sphere bed of `benches/lammps/` with the system of that directory's `in.bench`
-//! (`hertzhist`), or with the MDR law (the loop is `mdr_rapier::fast::bed::bench_bed`, which
+//! (`hertzhist`), or with the MDR law (the loop is `mdr_rapier::neighbour_list::bed::bench_bed`, which
 //! Python's `mdr_dem.bench_bed` runs too); see `docs/performance.md`.
 
 use anyhow::{bail, Context};
 use clap::{Args, Subcommand, ValueEnum};
-use mdr_rapier::fast::bed::{
+use mdr_rapier::neighbour_list::bed::{
     bench_bed, peak_rss_mb, process_cpu_seconds, reference_data, settled_bed, Bed, BedSpec,
     BenchFigures, BenchLaw, BenchSettings, BenchValue,
 };
@@ -15,7 +15,7 @@ use std::time::Instant;
 /// `bench` subcommands.
 #[derive(Debug, Subcommand)]
 pub enum BenchCommand {
-    /// Throughput of the fast force-mode path on a settled bed (LAMMPS `gran/hertz/history`
+    /// Throughput of the neighbour-list path on a settled bed (LAMMPS `gran/hertz/history`
     /// system: `kn = 2e5`, `γn = 50`, `μ = 0.5`, floor `z = 0`, x/y periodic, `g = 1`,
     /// `dt = 1e-4`): particle-steps per second, ms per step, contacts per particle, peak memory.
     Bed(BedArgs),
@@ -366,8 +366,8 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
     let pool = super::rayon_pool(args.threads)?;
     let scene = mdr_sim::scene::load_scene(&args.scene).map_err(|p| anyhow::anyhow!("{p}"))?;
     // The run's steps with the pool's other threads awake between passes, as `sim run` has them.
-    let figures =
-        pool.install(|| mdr_rapier::fast::with_workers_awake(|| time_scene(args, &scene)))?;
+    let figures = pool
+        .install(|| mdr_rapier::neighbour_list::with_workers_awake(|| time_scene(args, &scene)))?;
     if figures.contacts_per_particle < FEW_CONTACTS_PER_PARTICLE {
         eprintln!(
             "warning: the timed steps had {:.3} sphere contacts per particle: they time spheres in \

@@ -1,15 +1,15 @@
-//! `bench_bed`: throughput of the fast force-mode path of `mdr-rapier` on a settled bed. The run
-//! is `mdr_rapier::fast::bed::bench_bed`, the loop `mdr-dem bench bed` runs; this module loads or
+//! `bench_bed`: throughput of the neighbour-list path of `mdr-rapier` on a settled bed. The run
+//! is `mdr_rapier::neighbour_list::bed::bench_bed`, the loop `mdr-dem bench bed` runs; this module loads or
 //! generates the bed, converts the arguments and errors, and returns the figures under the keys
 //! of `mdr-dem bench bed --json`.
 
 use crate::errors::{contact, invalid};
-use mdr_rapier::fast::bed::{
+use mdr_rapier::neighbour_list::bed::{
     bench_bed as run_bench, settled_bed, Bed, BedError, BedSpec, BenchLaw, BenchSettings,
     BenchValue,
 };
-use mdr_rapier::fast::bed::reference_data;
-use mdr_rapier::fast::rayon;
+use mdr_rapier::neighbour_list::bed::reference_data;
+use mdr_rapier::neighbour_list::rayon;
 use mdr_rapier::CouplingError;
 use pyo3::exceptions::{PyOSError, PyRuntimeError};
 use pyo3::prelude::*;
@@ -29,7 +29,7 @@ fn bed_error(e: BedError) -> PyErr {
     }
 }
 
-/// Throughput of the fast force-mode path on a settled bed, the run of `mdr-dem bench bed`: the
+/// Throughput of the neighbour-list path on a settled bed, the run of `mdr-dem bench bed`: the
 /// LAMMPS data file `data` (default: the repository's 10,000-sphere reference bed), or, with
 /// `count`, a bed of `count` spheres poured and settled with `settle_steps` steps first
 /// (untimed). `law`: "hertz" or "mdr" (`q_c = qc` in reduced units, Θ = 0.37 E*); `steps` timed

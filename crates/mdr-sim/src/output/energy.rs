@@ -208,7 +208,7 @@ mod tests {
     #[test]
     fn old_and_new_csv_read_back() {
         let dir_guard = tempfile::tempdir().unwrap();
-    let dir = dir_guard.path().to_path_buf();
+        let dir = dir_guard.path().to_path_buf();
         std::fs::create_dir_all(&dir).unwrap();
         let old = dir.join("old.csv");
         std::fs::write(

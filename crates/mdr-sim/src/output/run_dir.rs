@@ -125,7 +125,7 @@ mod tests {
     #[test]
     fn stale_frames_and_checkpoints_of_the_run_only_are_removed() {
         let dir_guard = tempfile::tempdir().unwrap();
-    let dir = dir_guard.path().to_path_buf();
+        let dir = dir_guard.path().to_path_buf();
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(dir.join("frames")).unwrap();
         std::fs::create_dir_all(dir.join("checkpoints")).unwrap();

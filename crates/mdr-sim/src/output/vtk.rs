@@ -200,7 +200,7 @@ mod tests {
     #[test]
     fn particle_frame_reads_back() {
         let dir_guard = tempfile::tempdir().unwrap();
-    let dir = dir_guard.path().to_path_buf();
+        let dir = dir_guard.path().to_path_buf();
         let path = dir.join("f.vtp");
         let frame = ParticleFrame {
             position: vec![[0.0, 1.0, 2.0], [3.5, -4.0, 1e-3]],

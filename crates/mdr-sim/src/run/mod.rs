@@ -8,7 +8,7 @@
 //! 3. the books take the work increments of every contact, and the samples (energy row, frame,
 //!    headline) are taken here, where positions, velocities and contact states all describe `x_k`;
 //! 4. the integration to `v_{k+1}`, `x_{k+1}` (symplectic Euler) and `PhysicsWorld::step`:
-//!    `apply_forces` + `step` on rapier's path, `advance` on the neighbour-list path (which
+//!    `apply_forces` + `step` on the rapier pipeline path, `advance` on the neighbour-list path (which
 //!    integrates its particles itself and then steps rapier's wall bodies).
 //!
 //! The loop and the scene events are here; what a run writes is in `outputs`, the same steps
@@ -20,7 +20,7 @@ mod state;
 mod steps;
 mod sweep;
 
-pub use mdr_rapier::fast::StepTimings;
+pub use mdr_rapier::neighbour_list::StepTimings;
 pub use state::{BodyRecord, CheckpointData};
 pub use steps::{ContactCounts, SceneSteps};
 pub use sweep::{run_orifice_sweep, SweepSummary};
@@ -153,7 +153,7 @@ fn human_duration(seconds: f64) -> String {
 /// time on the current rayon pool, as a sentence (`sim run --check`).
 pub fn estimate_run_time(scene: &Scene, budget: Duration) -> Result<String, SimError> {
     rayon::scope(|_| {
-        mdr_rapier::fast::with_workers_awake(|| {
+        mdr_rapier::neighbour_list::with_workers_awake(|| {
             let total = scene.total_steps();
             let mut steps = SceneSteps::new(scene)?;
             steps.step()?;
@@ -273,7 +273,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunSummary, SimE
     // is already one of the pool's. The pool's other threads wait for each pass awake
     // (`with_workers_awake`: waking a sleeping one costs a pass tens of microseconds).
     rayon::scope(|_| {
-        mdr_rapier::fast::with_workers_awake(|| {
+        mdr_rapier::neighbour_list::with_workers_awake(|| {
             let mut sim = match &options.resume {
                 Some(path) => Sim::resume(scene, path)?,
                 None => Sim::new(scene)?,

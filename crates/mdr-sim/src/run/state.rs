@@ -14,9 +14,9 @@ use mdr_contact::normal::{NormalLaw, NormalModel};
 use mdr_contact::rolling::{EpsdRollingState, RollingLaw};
 use mdr_contact::tangential::{Mindlin, MindlinState, TangentialModel};
 use mdr_rapier::convert::{to_glam, to_na};
-use mdr_rapier::fast::particles::FastParticles;
-use mdr_rapier::fast::{ContactPartner, EndedContact, FastListState};
 use mdr_rapier::kernel::ContactWorks;
+use mdr_rapier::neighbour_list::particles::NeighbourListParticles;
+use mdr_rapier::neighbour_list::{ContactPartner, EndedContact, NeighbourListState};
 use nalgebra::Vector3;
 use rand_chacha::ChaCha8Rng;
 use rapier3d_f64::prelude::*;
@@ -30,7 +30,7 @@ use serde::{Deserialize, Serialize};
 /// path every contact's history books its own works as it goes (friction, damping and the
 /// springs' stiffness energy in its work books; plastic and rolling work in the laws' states),
 /// and the stepper hands over each contact whose history ends with what it booked
-/// ([`mdr_rapier::fast::EndedContact`]): the totals here then hold the contacts that ended, and
+/// ([`mdr_rapier::neighbour_list::EndedContact`]): the totals here then hold the contacts that ended, and
 /// the live contacts' books are added when the books are read ([`Books::live_fast`]), so a step
 /// costs nothing per contact.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -324,7 +324,7 @@ impl BodyRecord {
     }
 
     /// The record of particle `i` of the neighbour-list path.
-    pub fn of_particle(p: &FastParticles, i: usize) -> Self {
+    pub fn of_particle(p: &NeighbourListParticles, i: usize) -> Self {
         let q = p.rotation[i];
         Self {
             translation: p.position[i].into(),
@@ -335,7 +335,7 @@ impl BodyRecord {
     }
 
     /// Put the record into particle `i` of the neighbour-list path.
-    pub fn apply_to_particle(&self, p: &mut FastParticles, i: usize) {
+    pub fn apply_to_particle(&self, p: &mut NeighbourListParticles, i: usize) {
         let [x, y, z, w] = self.rotation;
         p.position[i] = Vector3::from(self.translation);
         p.rotation[i] = rapier3d_f64::math::Rotation::from_xyzw(x, y, z, w);
@@ -367,7 +367,7 @@ pub struct ContactRecord {
     pub rolling: EpsdRollingState,
 }
 
-/// The neighbour-list stepper's state between two steps ([`mdr_rapier::fast::FastListState`]),
+/// The neighbour-list stepper's state between two steps ([`mdr_rapier::neighbour_list::NeighbourListState`]),
 /// with the histories of touching pairs only (the others are default).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FastRecord {
@@ -391,7 +391,8 @@ pub struct FastRecord {
 
 /// The history of one pair on the neighbour-list path of a scene with normal model `N` and
 /// rolling model `R`.
-pub(crate) type FastPairHistory<N, R> = mdr_rapier::fast::FastHistory<N, Mindlin, R>;
+pub(crate) type FastPairHistory<N, R> =
+    mdr_rapier::neighbour_list::NeighbourListHistory<N, Mindlin, R>;
 
 impl FastRecord {
     pub(crate) fn of<N: SceneNormal, R: SceneRolling>(stepper: &FastSceneStepper<N, R>) -> Self {
@@ -435,7 +436,7 @@ impl FastRecord {
     /// The stepper's state; `None` if a history's index is out of range.
     pub(crate) fn to_state<N: SceneNormal, R: SceneRolling>(
         &self,
-    ) -> Option<FastListState<FastPairHistory<N, R>>> {
+    ) -> Option<NeighbourListState<FastPairHistory<N, R>>> {
         let expand = |n: usize, records: &[ContactRecord]| {
             let mut active = vec![false; n];
             let mut history = vec![FastPairHistory::<N, R>::default(); n];
@@ -456,7 +457,7 @@ impl FastRecord {
         let (pair_active, pair_history) = expand(self.pairs.len(), &self.pair_histories)?;
         let (surface_active, surface_history) =
             expand(self.surface_pairs.len(), &self.surface_histories)?;
-        Some(FastListState {
+        Some(NeighbourListState {
             built_at: self.built_at.iter().map(|&x| Vector3::from(x)).collect(),
             max_displacement: self.max_displacement,
             surface_poses: self
@@ -517,7 +518,7 @@ pub struct CheckpointData {
     pub dt_bits: u64,
     /// Step counter.
     pub step: u64,
-    /// Particles (bodies on rapier's path, the stepper's arrays on the neighbour-list path),
+    /// Particles (bodies on the rapier pipeline path, the stepper's arrays on the neighbour-list path),
     /// then wall bodies, in creation order.
     pub bodies: Vec<BodyRecord>,
     /// Force mode on rapier's pipeline: per-pair histories, sorted by key.

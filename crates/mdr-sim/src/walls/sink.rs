@@ -6,7 +6,7 @@ use nalgebra::Vector3;
 
 /// Spheres leaving the scene: a sphere whose centre falls below `height` (measured along `up`,
 /// the direction against gravity) is removed from the run, as LAMMPS removes atoms that leave a
-/// fixed boundary. The fast path keeps its particle arrays fixed in size, so a removed sphere is
+/// fixed boundary. The neighbour-list path keeps its particle arrays fixed in size, so a removed sphere is
 /// parked instead: held at rest at its own spot of a simple cubic lattice below the height,
 /// `4 r_max` under it and with spacing `2.5 r_max`, so that it touches nothing (parked spheres are
 /// farther apart than the neighbour cut-off `2 r_max + skin` for any skin below `r_max / 2`, and

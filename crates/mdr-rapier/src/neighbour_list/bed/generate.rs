@@ -3,8 +3,8 @@
 
 use super::{bounded_spheres, Bed, BedError};
 use crate::error::{positive, CouplingError, Result};
-use crate::fast::boundary::Boundary;
-use crate::fast::stepper::FastForceStepper;
+use crate::neighbour_list::boundary::Boundary;
+use crate::neighbour_list::stepper::NeighbourListStepper;
 use crate::particles::SphereBuilder;
 use mdr_contact::damping::HertzianViscous;
 use mdr_contact::model::ContactModel;
@@ -99,7 +99,10 @@ pub fn lattice_bed(spec: &BedSpec) -> Result<Bed, BedError> {
 pub fn reference_system<N>(
     normal: N,
     bed: &Bed,
-) -> Result<(FastForceStepper<N, Mindlin, HertzianViscous>, PhysicsWorld)>
+) -> Result<(
+    NeighbourListStepper<N, Mindlin, HertzianViscous>,
+    PhysicsWorld,
+)>
 where
     N: NormalModel,
     N::Law: Clone,
@@ -108,7 +111,7 @@ where
     let model = ContactModel::new(normal)
         .with_tangential(Mindlin::new(0.5)?)
         .with_damping(HertzianViscous::new(50.0)?.with_tangential_ratio(0.5)?);
-    let mut stepper = FastForceStepper::new(model, boundary).skin(0.1)?;
+    let mut stepper = NeighbourListStepper::new(model, boundary).skin(0.1)?;
     let grain = stepper.insert_material(Material::new(1.0, 0.3, 1.0)?);
     // kn = 2e5 ⇔ (4/3) E* = kn; LAMMPS NULL kt = 2/7 kn and k_t = 2 G* a ⇔ G* = kt / 2.
     stepper.set_pair_moduli(grain, grain, 1.5e5, 2.0e5 / 7.0)?;

@@ -5,8 +5,8 @@ use super::clock::{peak_rss_mb, process_cpu_seconds};
 use super::generate::reference_system;
 use super::{Bed, BedError};
 use crate::error::{positive, CouplingError};
-use crate::fast::stepper::FastForceStepper;
-use crate::fast::workers::with_workers_awake;
+use crate::neighbour_list::stepper::NeighbourListStepper;
+use crate::neighbour_list::workers::with_workers_awake;
 use mdr_contact::damping::HertzianViscous;
 use mdr_contact::model::WorkBooks;
 use mdr_contact::normal::{Hertz, MdrElastoPlastic, NormalLaw, NormalModel};
@@ -204,7 +204,7 @@ impl BenchFigures {
     }
 }
 
-/// Throughput of the fast force-mode path on `bed` (the program's `mdr-dem bench bed`): the
+/// Throughput of the neighbour-list path on `bed` (the program's `mdr-dem bench bed`): the
 /// [`reference_system`] with the settings' law and skin on the bed tiled `tile × tile` times,
 /// `warmup` untimed steps, then `steps` timed ones, in a pool of `threads` worker threads.
 /// The bed must be the reference one (every sphere of diameter 1 and density 1), as the
@@ -257,7 +257,7 @@ where
 
 /// Warm-up, then the timed steps, then the figures.
 fn bench_steps<N, B>(
-    mut stepper: FastForceStepper<N, Mindlin, HertzianViscous, NoRolling, B>,
+    mut stepper: NeighbourListStepper<N, Mindlin, HertzianViscous, NoRolling, B>,
     mut world: PhysicsWorld,
     s: &BenchSettings,
 ) -> Result<BenchFigures, BedError>

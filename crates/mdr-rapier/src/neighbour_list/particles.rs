@@ -1,4 +1,4 @@
-//! Particle data of the fast path in structure-of-arrays form: one array per quantity, indexed
+//! Particle data of the neighbour-list path in structure-of-arrays form: one array per quantity, indexed
 //! by particle, plus a small table of species (material, radius, mass, inertia) so that the
 //! laws can be bound once per species pair instead of once per contact.
 
@@ -27,7 +27,7 @@ pub struct Species {
 
 /// Structure-of-arrays particle data.
 #[derive(Debug, Clone, Default)]
-pub struct FastParticles {
+pub struct NeighbourListParticles {
     /// Centres.
     pub position: Vec<Vector3<f64>>,
     /// Velocities of the centres.
@@ -44,7 +44,7 @@ pub struct FastParticles {
     pub species_table: Vec<Species>,
 }
 
-impl FastParticles {
+impl NeighbourListParticles {
     /// Number of particles.
     pub fn len(&self) -> usize {
         self.position.len()
