@@ -8,12 +8,7 @@ use crate::scene::schema::WallKind;
 use crate::scene::Scene;
 use serde::{Deserialize, Serialize};
 
-/// Orifices narrower than this many mean particle diameters jam: arches form over them and
-/// stop the flow for good (in 3D silos the mean avalanche between jams grows without bound
-/// only as `D/d` approaches about 5; Zuriguel, Garcimartín, Maza, Pugnaloni & Pastor, Phys.
-/// Rev. E 71, 051303, 2005). The scene check warns below it, and the hopper headline reports
-/// "jammed" instead of a flow rate.
-pub const JAMMING_RATIO: f64 = 4.0;
+pub use crate::scene::validate::JAMMING_RATIO;
 
 /// Beverloo's discharge coefficient `C`.
 pub const BEVERLOO_C: f64 = 0.58;

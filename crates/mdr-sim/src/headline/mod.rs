@@ -14,8 +14,8 @@
 //! - [`funnel`]: spheres left in the funnel against time (the discharge curve), written as a CSV.
 //!
 //! The fits the headlines share (a least-squares line, Beverloo's `C` and `k`) are in [`fit`];
-//! the time series' CSV is written by [`series_csv`]. The hopper orifice sweep, which runs whole
-//! scenes, is the runner's ([`crate::run::run_orifice_sweep`]).
+//! the time series' CSV is written by `series_csv`. The hopper orifice sweep, which runs whole
+//! scenes, is the runner's (`run::run_orifice_sweep`).
 
 pub mod column;
 pub mod drop;

@@ -14,14 +14,15 @@
 //! The loop and the scene events are here; what a run writes is in `outputs`, the same steps
 //! without output for timing (`SceneSteps`) in `steps`.
 
+mod books;
 pub mod build;
 mod outputs;
-mod state;
+mod records;
 mod steps;
 mod sweep;
 
 pub use mdr_rapier::neighbour_list::StepTimings;
-pub use state::{BodyRecord, CheckpointData};
+pub use records::{BodyRecord, CheckpointData};
 pub use steps::{ContactCounts, SceneSteps};
 pub use sweep::{run_orifice_sweep, SweepSummary};
 
@@ -33,6 +34,7 @@ use crate::output::energy::{self, BalanceDrift, EnergyRow};
 use crate::output::plot;
 use crate::output::vtk::{self, CollectionEntry, ContactFrame, ParticleFrame};
 use crate::scene::Scene;
+use books::Books;
 use build::{build, with_fast, Built, Coupling, FastSceneStepper};
 use indicatif::{ProgressBar, ProgressStyle};
 use mdr_contact::normal::NormalLaw;
@@ -43,8 +45,7 @@ use mdr_rapier::kernel::ContactWorks;
 use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use state::Books;
-use state::{FastPairHistory, SceneLaw};
+use records::{FastPairHistory, SceneLaw};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -319,9 +320,9 @@ impl<'a> Sim<'a> {
             path: path.to_path_buf(),
             reason,
         };
-        let fingerprint = state::fingerprint(scene);
+        let fingerprint = records::fingerprint(scene);
         if data.fingerprint != fingerprint {
-            let changes = state::changed_keys(&data.scene_keys, &state::fixed_keys(scene));
+            let changes = records::changed_keys(&data.scene_keys, &records::fixed_keys(scene));
             let what = if changes.is_empty() {
                 "the placed particles differ (a placement file changed?)".to_owned()
             } else {
