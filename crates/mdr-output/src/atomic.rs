@@ -114,7 +114,7 @@ mod tests {
         write_atomic(&path, b"a longer first content").unwrap();
         write_atomic(&path, b"second").unwrap();
         assert_eq!(std::fs::read(&path).unwrap(), b"second");
-        assert!(leftovers(&path.parent().unwrap().to_path_buf()).is_empty());
+        assert!(leftovers(path.parent().unwrap()).is_empty());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -4,11 +4,11 @@
 //! of `mdr-dem bench bed --json`.
 
 use crate::errors::{contact, invalid};
+use mdr_rapier::neighbour_list::bed::reference_data;
 use mdr_rapier::neighbour_list::bed::{
     bench_bed as run_bench, settled_bed, Bed, BedError, BedSpec, BenchLaw, BenchSettings,
     BenchValue,
 };
-use mdr_rapier::neighbour_list::bed::reference_data;
 use mdr_rapier::neighbour_list::rayon;
 use mdr_rapier::CouplingError;
 use pyo3::exceptions::{PyOSError, PyRuntimeError};

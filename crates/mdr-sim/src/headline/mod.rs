@@ -1,7 +1,7 @@
 //! Each built-in scene's headline quantity, measured from the particle states, one module per
 //! headline behind one trait ([`HeadlineTracker`]: sample, report):
 //!
-//! - [`column`]: run-out distance and final height of a column collapse (compared with the
+//! - [`column`](mod@column): run-out distance and final height of a column collapse (compared with the
 //!   axisymmetric run-out scaling of Lube, Huppert, Sparks & Hallworth, J. Fluid Mech. 508, 175
 //!   (2004));
 //! - [`hopper`]: steady mass flow rate, fitted over the second half of the time after the plug
@@ -9,7 +9,7 @@
 //!   Leniger & van de Velde, Chem. Eng. Sci. 15, 260 (1961), with `C = 0.58`, `k = 1.5`,
 //!   `ρ_b = 0.6 ρ_p`);
 //! - [`drum`]: dynamic angle of repose of the free surface of a rotating drum;
-//! - [`drop`]: coefficient of restitution of the first bounce (compared with the law's energy
+//! - [`drop`](mod@drop): coefficient of restitution of the first bounce (compared with the law's energy
 //!   route, `MdrLaw::impact`, docs/theory.md §4);
 //! - [`funnel`]: spheres left in the funnel against time (the discharge curve), written as a CSV.
 //!
