@@ -14,8 +14,8 @@
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use mdr_contact::nalgebra::Vector3;
-use mdr_rapier::fast::neighbours::{NeighbourBuilder, PairList};
-use mdr_rapier::fast::Boundary;
+use mdr_rapier::neighbour_list::neighbours::{NeighbourBuilder, PairList};
+use mdr_rapier::neighbour_list::Boundary;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 

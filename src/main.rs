@@ -23,7 +23,7 @@ enum Command {
     /// Simulations in rapier: single drops, pairs, scenes, rings.
     #[command(subcommand)]
     Sim(cli::sim::SimCommand),
-    /// Throughput benchmarks: the fast force-mode path on a settled bed, side by side with LAMMPS.
+    /// Throughput benchmarks: the neighbour-list path on a settled bed, side by side with LAMMPS.
     #[command(subcommand)]
     Bench(cli::bench::BenchCommand),
     /// Verification suite: the Chung & Ooi (2011) benchmark tests with reference plots.

@@ -1,7 +1,6 @@
 //! The `mdr-dem impact …` command line: output contracts (CSV headers, JSON keys, files) and
 //! every bad flag value exiting non-zero with a message that names the flag.
 
-use std::path::PathBuf;
 use std::process::{Command, Output};
 
 fn mdr_dem(args: &[&str]) -> Output {
@@ -11,11 +10,12 @@ fn mdr_dem(args: &[&str]) -> Output {
         .expect("run mdr-dem")
 }
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("mdr-dem-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh temporary directory, removed when dropped.
+fn scratch(name: &str) -> tempfile::TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("mdr-dem-cli-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 fn stdout(output: &Output) -> String {
@@ -120,7 +120,7 @@ fn trace_and_oblique_csv_contracts() {
 #[test]
 fn fit_json_contract() {
     let dir = scratch("fit");
-    let data = dir.join("data.csv");
+    let data = dir.path().join("data.csv");
     // Points from the model itself (paper values), so the fit must land on them.
     let curve = stdout(&mdr_dem(&[
         "impact", "curve", "--v-min", "0.1", "--v-max", "10", "--points", "12", "--csv", "-",
@@ -157,7 +157,7 @@ fn fit_json_contract() {
 #[test]
 fn fig2_writes_table_csv_svg_png() {
     let dir = scratch("fig2");
-    let data = dir.join("measured.csv");
+    let data = dir.path().join("measured.csv");
     std::fs::write(&data, "v0_m_per_s,e_n\n0.1,0.95\n1,0.7\n").unwrap();
     let output = Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
         .args([
@@ -172,12 +172,12 @@ fn fig2_writes_table_csv_svg_png() {
         .unwrap();
     let text = stdout(&output);
     assert!(text.contains("yield speed"));
-    let csv = std::fs::read_to_string(dir.join("results/fig2.csv")).unwrap();
+    let csv = std::fs::read_to_string(dir.path().join("results/fig2.csv")).unwrap();
     assert!(csv.starts_with("v0_m_per_s,e_n,e_n_scaled,"));
     assert_eq!(csv.lines().count(), 201);
-    let svg = std::fs::read_to_string(dir.join("results/fig2.svg")).unwrap();
+    let svg = std::fs::read_to_string(dir.path().join("results/fig2.svg")).unwrap();
     assert!(svg.contains("<svg") && svg.contains("yield speed"));
-    let png = std::fs::read(dir.join("results/fig2.png")).unwrap();
+    let png = std::fs::read(dir.path().join("results/fig2.png")).unwrap();
     assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
     // No arguments runs the same job.
     let dir = scratch("default");
@@ -186,13 +186,13 @@ fn fig2_writes_table_csv_svg_png() {
         .output()
         .unwrap();
     stdout(&output);
-    assert!(dir.join("results/fig2.csv").exists());
+    assert!(dir.path().join("results/fig2.csv").exists());
 }
 
 #[test]
 fn config_file_keys_and_flag_override() {
     let dir = scratch("config");
-    let config = dir.join("impact.toml");
+    let config = dir.path().join("impact.toml");
     std::fs::write(&config, "theta-ratio = 0.8\nlaw = \"mdr\"\nscale = 0.9\n").unwrap();
     let run = |extra: &[&str]| {
         let mut args = vec![
@@ -388,8 +388,8 @@ fn paper_yield_speed() -> f64 {
 #[test]
 fn curve_with_several_laws_writes_one_file_per_law() {
     let dir = scratch("laws");
-    let csv = dir.join("laws.csv");
-    let svg = dir.join("laws.svg");
+    let csv = dir.path().join("laws.csv");
+    let svg = dir.path().join("laws.svg");
     stdout(&mdr_dem(&[
         "impact",
         "curve",
@@ -404,7 +404,7 @@ fn curve_with_several_laws_writes_one_file_per_law() {
         "--quiet",
     ]));
     let e_n = |law: &str| -> Vec<f64> {
-        let text = std::fs::read_to_string(dir.join(format!("laws_{law}.csv")))
+        let text = std::fs::read_to_string(dir.path().join(format!("laws_{law}.csv")))
             .unwrap_or_else(|e| panic!("laws_{law}.csv: {e}"));
         text.lines()
             .skip(1)
@@ -451,7 +451,7 @@ fn curve_with_several_laws_writes_one_file_per_law() {
 #[test]
 fn fig2_draws_the_measured_points() {
     let dir = scratch("fig2-points");
-    let data = dir.join("measured.csv");
+    let data = dir.path().join("measured.csv");
     std::fs::write(&data, "v0_m_per_s,e_n\n0.1,0.95\n0.5,0.8\n1,0.7\n3,0.62\n").unwrap();
     let run = |extra: &[&str]| {
         let output = Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
@@ -461,7 +461,7 @@ fn fig2_draws_the_measured_points() {
             .output()
             .unwrap();
         stdout(&output);
-        std::fs::read_to_string(dir.join("results/fig2.svg")).unwrap()
+        std::fs::read_to_string(dir.path().join("results/fig2.svg")).unwrap()
     };
     let without = run(&[]);
     let with = run(&["--data", data.to_str().unwrap()]);

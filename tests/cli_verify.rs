@@ -22,7 +22,8 @@ fn passed(output: &Output) -> String {
 
 #[test]
 fn verify_runs_one_test_writes_its_figures_and_honours_quick() {
-    let dir = std::env::temp_dir().join(format!("mdr-dem-verify-{}", std::process::id()));
+    let dir_guard = tempfile::tempdir().unwrap();
+    let dir = dir_guard.path().to_path_buf();
     let _ = std::fs::remove_dir_all(&dir);
     let quick = passed(&mdr_dem(&[
         "verify",

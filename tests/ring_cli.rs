@@ -9,7 +9,8 @@ fn mdr_dem() -> Command {
 
 #[test]
 fn sim_ring_json_has_the_documented_keys_and_writes_outputs() {
-    let out = std::env::temp_dir().join(format!("mdr_ring_cli_{}", std::process::id()));
+    let out_guard = tempfile::tempdir().unwrap();
+    let out = out_guard.path().to_path_buf();
     let output = mdr_dem()
         .args([
             "sim", "ring", "--box", "40", "--orbits", "0.4", "--seed", "3", "--quiet",

@@ -67,7 +67,8 @@ fn write(path: &Path, text: &str) -> PathBuf {
 
 #[test]
 fn ctrl_c_writes_a_final_checkpoint_and_the_run_resumes_from_it() {
-    let dir = std::env::temp_dir().join(format!("mdr_sim_cli_interrupt_{}", std::process::id()));
+    let dir_guard = tempfile::tempdir().unwrap();
+    let dir = dir_guard.path().to_path_buf();
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("out");
@@ -191,7 +192,8 @@ fn ctrl_c_writes_a_final_checkpoint_and_the_run_resumes_from_it() {
 
 #[test]
 fn threads_flag_sets_the_pool_and_changes_no_result() {
-    let dir = std::env::temp_dir().join(format!("mdr_sim_cli_threads_{}", std::process::id()));
+    let dir_guard = tempfile::tempdir().unwrap();
+    let dir = dir_guard.path().to_path_buf();
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let path = write(&dir.join("column.toml"), &scene(400.5 * DT));
@@ -234,7 +236,8 @@ fn threads_flag_sets_the_pool_and_changes_no_result() {
 
 #[test]
 fn guards_and_refused_input_have_their_exit_statuses() {
-    let dir = std::env::temp_dir().join(format!("mdr_sim_cli_status_{}", std::process::id()));
+    let dir_guard = tempfile::tempdir().unwrap();
+    let dir = dir_guard.path().to_path_buf();
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let run = |scene: &Path, extra: &[&str]| {

@@ -1,13 +1,13 @@
-//! `mdr-dem bench …`: throughput benchmarks. `bench bed` runs the fast force-mode path on the
+//! `mdr-dem bench …`: throughput benchmarks. `bench bed` runs the neighbour-list path on the
 //! settled 10,000-sphere bed of `benches/lammps/` with the system of that directory's `in.bench`
-//! (`hertzhist`), or with the MDR law (the loop is `mdr_rapier::fast::bed::bench_bed`, which
+//! (`hertzhist`), or with the MDR law (the loop is `mdr_rapier::neighbour_list::bed::bench_bed`, which
 //! Python's `mdr_dem.bench_bed` runs too); see `docs/performance.md`.
 
 use anyhow::{bail, Context};
 use clap::{Args, Subcommand, ValueEnum};
-use mdr_rapier::fast::bed::{
-    bench_bed, peak_rss_mb, process_cpu_seconds, settled_bed, Bed, BedSpec, BenchFigures, BenchLaw,
-    BenchSettings, BenchValue,
+use mdr_rapier::neighbour_list::bed::{
+    bench_bed, peak_rss_mb, process_cpu_seconds, reference_data, settled_bed, Bed, BedSpec,
+    BenchFigures, BenchLaw, BenchSettings, BenchValue,
 };
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -15,7 +15,7 @@ use std::time::Instant;
 /// `bench` subcommands.
 #[derive(Debug, Subcommand)]
 pub enum BenchCommand {
-    /// Throughput of the fast force-mode path on a settled bed (LAMMPS `gran/hertz/history`
+    /// Throughput of the neighbour-list path on a settled bed (LAMMPS `gran/hertz/history`
     /// system: `kn = 2e5`, `γn = 50`, `μ = 0.5`, floor `z = 0`, x/y periodic, `g = 1`,
     /// `dt = 1e-4`): particle-steps per second, ms per step, contacts per particle, peak memory.
     Bed(BedArgs),
@@ -140,33 +140,11 @@ pub fn run(cmd: BenchCommand) -> anyhow::Result<()> {
     }
 }
 
-/// The reference bed `benches/lammps/settled.data`, looked for in the working directory and its
-/// ancestors (a copy of the repository), then in the repository this binary was built from.
-fn default_data() -> anyhow::Result<PathBuf> {
-    let rel = Path::new("benches/lammps/settled.data");
-    let mut tried = Vec::new();
-    let mut candidates: Vec<PathBuf> = Vec::new();
-    if let Ok(cwd) = std::env::current_dir() {
-        candidates.extend(cwd.ancestors().map(|a| a.join(rel)));
-    }
-    candidates.push(Path::new(env!("CARGO_MANIFEST_DIR")).join(rel));
-    for c in candidates {
-        if c.is_file() {
-            return Ok(c);
-        }
-        tried.push(c.display().to_string());
-    }
-    bail!(
-        "the reference bed `benches/lammps/settled.data` was not found (looked at {}); \
-         pass --data PATH",
-        tried.join(", ")
-    )
-}
-
 fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
     let path = match &args.data {
         Some(p) => p.clone(),
-        None => default_data()?,
+        None => reference_data(Path::new(env!("CARGO_MANIFEST_DIR")))
+            .map_err(|e| anyhow::anyhow!("{e}; pass --data PATH"))?,
     };
     let settings = BenchSettings {
         law: match args.law {
@@ -388,8 +366,8 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
     let pool = super::rayon_pool(args.threads)?;
     let scene = mdr_sim::scene::load_scene(&args.scene).map_err(|p| anyhow::anyhow!("{p}"))?;
     // The run's steps with the pool's other threads awake between passes, as `sim run` has them.
-    let figures =
-        pool.install(|| mdr_rapier::fast::with_workers_awake(|| time_scene(args, &scene)))?;
+    let figures = pool
+        .install(|| mdr_rapier::neighbour_list::with_workers_awake(|| time_scene(args, &scene)))?;
     if figures.contacts_per_particle < FEW_CONTACTS_PER_PARTICLE {
         eprintln!(
             "warning: the timed steps had {:.3} sphere contacts per particle: they time spheres in \

@@ -84,7 +84,7 @@ pub fn error_text(err: &anyhow::Error) -> String {
 }
 
 /// A pool of `threads` worker threads (the `--threads` flag of `bench` and `sim run`, at least 1).
-fn rayon_pool(threads: usize) -> anyhow::Result<mdr_rapier::fast::rayon::ThreadPool> {
+fn rayon_pool(threads: usize) -> anyhow::Result<mdr_rapier::neighbour_list::rayon::ThreadPool> {
     if threads == 0 {
         return Err(
             Refused("--threads = 0 is outside the allowed range [1, inf)".to_owned()).into(),
@@ -100,7 +100,7 @@ fn rayon_pool(threads: usize) -> anyhow::Result<mdr_rapier::fast::rayon::ThreadP
             );
         }
     }
-    Ok(mdr_rapier::fast::rayon::ThreadPoolBuilder::new()
+    Ok(mdr_rapier::neighbour_list::rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()?)
 }

@@ -259,7 +259,7 @@ fn run_impacts(args: &ImpactRunArgs, sphere_target: bool, angle: f64) -> anyhow:
     write_csv(&args.csv, &rows)
 }
 
-/// Write `v0_m_per_s,e_n,steps` rows to `path` (atomically: temp file + rename) or stdout.
+/// Write `v0_m_per_s,e_n,steps` rows to `path` (atomically) or stdout.
 fn write_csv(path: &str, rows: &[SceneOutcome]) -> anyhow::Result<()> {
     let mut text = String::from("v0_m_per_s,e_n,steps\n");
     for r in rows {
@@ -273,8 +273,6 @@ fn write_csv(path: &str, rows: &[SceneOutcome]) -> anyhow::Result<()> {
         return Ok(());
     }
     let path = Path::new(path);
-    let tmp = path.with_extension("csv.tmp");
-    std::fs::write(&tmp, text).with_context(|| format!("writing {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("renaming to {}", path.display()))?;
-    Ok(())
+    mdr_output::write_atomic(path, text.as_bytes())
+        .with_context(|| format!("writing {}", path.display()))
 }

@@ -194,7 +194,7 @@ fn run_checked(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Re
             )
             .into());
         }
-        let sweep = mdr_sim::headline::run_orifice_sweep(scene, &options)?;
+        let sweep = mdr_sim::run::run_orifice_sweep(scene, &options)?;
         for run in &sweep.runs {
             println!("{}", run.headline.text);
         }

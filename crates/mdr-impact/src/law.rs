@@ -2,6 +2,7 @@
 //! `mdr-contact`; this module only names them.
 
 use mdr_contact::normal::{MdrElastoPlastic, Thornton};
+use mdr_contact::ContactPair;
 
 /// The normal contact law of an impact.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -28,6 +29,15 @@ impl NormalSpec {
             Self::Hertz => "hertz",
         }
     }
+}
+
+/// Thornton's yield pressure `p_y` matched to an MDR law on `pair`, the default of Thornton's law
+/// wherever it is compared with the MDR law: both yield at the same overlap. Thornton's yield
+/// overlap `δ_y = R (π p_y / (2E*))²` equals the MDR law's `u_c = π q_c / (2E*)` (docs/validation.md)
+/// for `p_y = (2E*/π) √(u_c / R)`; `yield_overlap` is that `u_c` (`MdrLaw::yield_overlap`).
+pub fn thornton_matched_yield_stress(pair: &ContactPair, yield_overlap: f64) -> f64 {
+    2.0 * pair.effective_modulus() / std::f64::consts::PI
+        * (yield_overlap / pair.effective_radius()).sqrt()
 }
 
 /// How the normal law is represented.

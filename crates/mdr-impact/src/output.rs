@@ -1,10 +1,10 @@
 //! CSV tables with fixed headers (a contract: scripts depend on them), measured data input, and
-//! atomic file writes (temporary file + rename, so a reader never sees half a file).
+//! atomic file writes with this crate's error type.
 
 use crate::error::{ImpactError, Result};
 use crate::impact::ImpactOutcome;
 use crate::integrate::TracePoint;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Header of `impact curve`.
 /// `stuck` is 1 where the sphere stuck (adhesion; `e_n = 0`), else 0.
@@ -124,32 +124,13 @@ pub fn oblique_csv(outcomes: &[ImpactOutcome]) -> String {
     )
 }
 
-/// Write `bytes` to `path` atomically: a temporary file in the same directory, then a rename.
-/// Missing parent directories are created.
+/// Write `bytes` to `path` atomically ([`mdr_output::write_atomic`]: temporary file, `fsync`,
+/// rename). Missing parent directories are created.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let io = |source| ImpactError::Io {
+    mdr_output::write_atomic(path, bytes).map_err(|source| ImpactError::Io {
         path: path.to_path_buf(),
         source,
-    };
-    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent).map_err(io)?;
-    }
-    let temporary = temporary_sibling(path, "tmp");
-    std::fs::write(&temporary, bytes).map_err(io)?;
-    std::fs::rename(&temporary, path).map_err(io)
-}
-
-/// `dir/.name.<tag>.<ext>` next to `path`, keeping the extension (image encoders look at it).
-pub(crate) fn temporary_sibling(path: &Path, tag: &str) -> PathBuf {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let extension = path
-        .extension()
-        .map(|e| format!(".{}", e.to_string_lossy()))
-        .unwrap_or_default();
-    path.with_file_name(format!(".{name}.{tag}.{}{extension}", std::process::id()))
+    })
 }
 
 /// Read measured `(v0, e)` pairs from a CSV file with header `v0_m_per_s,e_n`.

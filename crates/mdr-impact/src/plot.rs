@@ -1,25 +1,12 @@
 //! Line plots in SVG or PNG (chosen by the file extension) with plotters. Text is laid out with
-//! DejaVu Sans (Bitstream Vera licence, `assets/DejaVuSans-LICENSE.txt`), embedded in the binary
-//! so PNG output does not depend on the fonts installed on the machine.
+//! the embedded font of `mdr-output` ([`mdr_output::font`]), so PNG output does not depend on
+//! the fonts installed on the machine.
 
 use crate::error::{ImpactError, Result};
-use crate::output::temporary_sibling;
+use mdr_output::font::register_plot_font;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::{register_font, FontStyle};
 use std::path::Path;
-use std::sync::Once;
-
-static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
-
-fn register_embedded_font() {
-    static REGISTER: Once = Once::new();
-    REGISTER.call_once(|| {
-        // The bytes are a valid TrueType font shipped with the crate; a failure here would be a
-        // packaging error, and plotters then reports missing glyphs when drawing.
-        let _ = register_font("sans-serif", FontStyle::Normal, FONT);
-    });
-}
 
 /// A curve drawn as a line.
 #[derive(Debug, Clone, PartialEq)]
@@ -167,9 +154,10 @@ impl Figure {
         Some(((x0, x1), (y0, y1)))
     }
 
-    /// Draw to `path`: SVG for `.svg`, PNG for `.png`. Written atomically.
+    /// Draw to `path`: SVG for `.svg`, PNG for `.png`. Written atomically
+    /// ([`mdr_output::write_atomic_with`]).
     pub fn save(&self, path: &Path) -> Result<()> {
-        register_embedded_font();
+        register_plot_font();
         let fail = |reason: String| ImpactError::Plot {
             path: path.to_path_buf(),
             reason,
@@ -178,34 +166,40 @@ impl Figure {
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase())
             .unwrap_or_default();
-        if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
-            std::fs::create_dir_all(parent).map_err(|source| ImpactError::Io {
-                path: parent.to_path_buf(),
+        if !matches!(extension.as_str(), "svg" | "png") {
+            return Err(fail(format!(
+                "unknown image type `.{extension}`: use .svg or .png"
+            )));
+        }
+        // A drawing failure is reported as a plot error, an I/O failure as an I/O error.
+        let mut drawing_failure = None;
+        let written = mdr_output::write_atomic_with(path, |temporary| {
+            self.render(temporary, &extension).map_err(|reason| {
+                drawing_failure = Some(reason.clone());
+                std::io::Error::other(reason)
+            })
+        });
+        match (written, drawing_failure) {
+            (Ok(()), _) => Ok(()),
+            (Err(_), Some(reason)) => Err(fail(reason)),
+            (Err(source), None) => Err(ImpactError::Io {
+                path: path.to_path_buf(),
                 source,
-            })?;
+            }),
         }
-        let temporary = temporary_sibling(path, "plot");
-        match extension.as_str() {
-            "svg" => {
-                let root = SVGBackend::new(&temporary, self.size).into_drawing_area();
-                self.draw(&root).map_err(fail)?;
-                root.present().map_err(|e| fail(e.to_string()))?;
-            }
-            "png" => {
-                let root = BitMapBackend::new(&temporary, self.size).into_drawing_area();
-                self.draw(&root).map_err(fail)?;
-                root.present().map_err(|e| fail(e.to_string()))?;
-            }
-            other => {
-                return Err(fail(format!(
-                    "unknown image type `.{other}`: use .svg or .png"
-                )))
-            }
+    }
+
+    /// Draw into the file `path` as `extension` (`svg` or `png`).
+    fn render(&self, path: &Path, extension: &str) -> std::result::Result<(), String> {
+        if extension == "svg" {
+            let root = SVGBackend::new(path, self.size).into_drawing_area();
+            self.draw(&root)?;
+            root.present().map_err(|e| e.to_string())
+        } else {
+            let root = BitMapBackend::new(path, self.size).into_drawing_area();
+            self.draw(&root)?;
+            root.present().map_err(|e| e.to_string())
         }
-        std::fs::rename(&temporary, path).map_err(|source| ImpactError::Io {
-            path: path.to_path_buf(),
-            source,
-        })
     }
 
     fn draw<DB: DrawingBackend>(

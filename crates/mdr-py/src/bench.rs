@@ -1,14 +1,15 @@
-//! `bench_bed`: throughput of the fast force-mode path of `mdr-rapier` on a settled bed. The run
-//! is `mdr_rapier::fast::bed::bench_bed`, the loop `mdr-dem bench bed` runs; this module loads or
+//! `bench_bed`: throughput of the neighbour-list path of `mdr-rapier` on a settled bed. The run
+//! is `mdr_rapier::neighbour_list::bed::bench_bed`, the loop `mdr-dem bench bed` runs; this module loads or
 //! generates the bed, converts the arguments and errors, and returns the figures under the keys
 //! of `mdr-dem bench bed --json`.
 
 use crate::errors::{contact, invalid};
-use mdr_rapier::fast::bed::{
+use mdr_rapier::neighbour_list::bed::reference_data;
+use mdr_rapier::neighbour_list::bed::{
     bench_bed as run_bench, settled_bed, Bed, BedError, BedSpec, BenchLaw, BenchSettings,
     BenchValue,
 };
-use mdr_rapier::fast::rayon;
+use mdr_rapier::neighbour_list::rayon;
 use mdr_rapier::CouplingError;
 use pyo3::exceptions::{PyOSError, PyRuntimeError};
 use pyo3::prelude::*;
@@ -28,31 +29,7 @@ fn bed_error(e: BedError) -> PyErr {
     }
 }
 
-/// The repository's reference bed `benches/lammps/settled.data`, looked for in the repository
-/// this package was built from, then in the working directory and its parents.
-fn default_data() -> PyResult<PathBuf> {
-    let rel = Path::new("benches/lammps/settled.data");
-    let mut candidates: Vec<PathBuf> = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .ancestors()
-        .map(|a| a.join(rel))
-        .collect();
-    if let Ok(cwd) = std::env::current_dir() {
-        candidates.extend(cwd.ancestors().map(|a| a.join(rel)));
-    }
-    candidates
-        .iter()
-        .find(|c| c.is_file())
-        .cloned()
-        .ok_or_else(|| {
-            invalid(
-                "data",
-                "the reference bed `benches/lammps/settled.data` was not found in the repository \
-             or above the working directory; pass data=PATH or count=N",
-            )
-        })
-}
-
-/// Throughput of the fast force-mode path on a settled bed, the run of `mdr-dem bench bed`: the
+/// Throughput of the neighbour-list path on a settled bed, the run of `mdr-dem bench bed`: the
 /// LAMMPS data file `data` (default: the repository's 10,000-sphere reference bed), or, with
 /// `count`, a bed of `count` spheres poured and settled with `settle_steps` steps first
 /// (untimed). `law`: "hertz" or "mdr" (`q_c = qc` in reduced units, Θ = 0.37 E*); `steps` timed
@@ -131,7 +108,8 @@ pub fn bench_bed<'py>(
         None => {
             let path = match data {
                 Some(p) => p,
-                None => default_data()?,
+                None => reference_data(Path::new(env!("CARGO_MANIFEST_DIR")))
+                    .map_err(|e| invalid("data", format!("{e}; pass data=PATH or count=N")))?,
             };
             Bed::read_lammps(&path).map_err(bed_error)?
         }

@@ -31,10 +31,11 @@ fn normal_spec(
         ("mdr" | "thornton" | "hertz", true) | ("hertz", false) => NormalSpec::Hertz,
         ("mdr", false) => NormalSpec::Mdr(setup.model),
         ("thornton", false) => {
-            // The CLI's default p_y: Thornton's yield overlap R (π p_y / (2E*))² equals the MDR
-            // law's u_c = π q_c / (2E*) (docs/validation.md).
-            let default = 2.0 * setup.pair.effective_modulus() / std::f64::consts::PI
-                * (setup.law.yield_overlap() / setup.pair.effective_radius()).sqrt();
+            // The CLI's default p_y: the same yield overlap as the MDR law.
+            let default = mdr_impact::law::thornton_matched_yield_stress(
+                &setup.pair,
+                setup.law.yield_overlap(),
+            );
             NormalSpec::Thornton(
                 Thornton::new(yield_stress.unwrap_or(default)).map_err(errors::contact(false))?,
             )

@@ -102,7 +102,7 @@ pub enum CouplingError {
          approach speed {speed} m/s the particles reach (Hertz contact time {contact_time:e} s); \
          reduce dt, e.g. to `stable_time_step(pair, v_max, 50.0)`"
     )]
-    FastTimeStepTooLarge {
+    NeighbourListTimeStepTooLarge {
         /// The step (s).
         dt: f64,
         /// Stability limit `2 √(m / k_max)` of that contact (s).

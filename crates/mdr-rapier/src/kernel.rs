@@ -1,5 +1,5 @@
 //! The per-pair kernel: contact kinematics → law update on the pair's history → force and
-//! torques on both bodies. Every force-mode path (the plain path over rapier's narrow phase here,
+//! torques on both bodies. Every force-mode path (the rapier pipeline path over rapier's narrow phase here,
 //! and any faster neighbour-list path) calls this one function, so they agree to round-off.
 //!
 //! The kernel's structures hold the law crate's vectors (`nalgebra::Vector3<f64>`, the type of

@@ -48,7 +48,14 @@
 mod added_forces;
 pub mod convert;
 pub mod error;
-pub mod fast;
+pub mod neighbour_list;
+
+/// The neighbour-list path under its former name.
+#[deprecated(note = "renamed `neighbour_list`: the module is named after its method")]
+pub mod fast {
+    #[allow(deprecated)]
+    pub use crate::neighbour_list::*;
+}
 pub mod force_mode;
 pub mod geometry;
 pub mod kernel;

@@ -5,12 +5,11 @@
 //!
 //! - [`MdrRestitution`]: the MDR elasto-plastic law of `mdr-contact` through its energy route
 //!   ([`MdrLaw::impact`], docs/theory.md §4, eqs. 7–14); the history is the pair's largest indentation.
-//! - [`BridgesLaw`]: the empirical law of Bridges, Hatzes & Lin (1984, Nature 309, 333) for
-//!   frost-covered ice at 165 K, `ε(v) = min(1, 0.32 (v / 1 cm s⁻¹)^−0.234)` — REBOUND's default.
-//! - [`ConstantRestitution`]: one ε for every impact.
+//! - [`ConstantRestitution`]: one ε for every impact, not contact mechanics of the MDR model but
+//!   the simplest law to compare it with.
 //!
-//! Bridges and constant are not contact mechanics of the MDR model; they are here so that the
-//! three can be compared on the same ring.
+//! The empirical law of Bridges, Hatzes & Lin (1984) for ring particles is next to the ring, in
+//! `mdr-ring` (`mdr_ring::law::BridgesLaw`).
 
 use mdr_contact::normal::{MdrElastoPlastic, MdrLaw, MdrState, NormalModel};
 use mdr_contact::{ContactPair, Material};
@@ -148,49 +147,6 @@ impl RestitutionLaw for MdrRestitution {
 
     fn name(&self) -> &'static str {
         "mdr"
-    }
-}
-
-/// The Bridges et al. (1984) law `ε(v) = min(1, a (v / v₀)^−b)` with `a = 0.32`, `b = 0.234`,
-/// `v₀ = 1 cm/s` (as in REBOUND's shearing-sheet example).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BridgesLaw {
-    prefactor: f64,
-    exponent: f64,
-    reference_speed: f64,
-}
-
-impl Default for BridgesLaw {
-    fn default() -> Self {
-        Self {
-            prefactor: 0.32,
-            exponent: 0.234,
-            reference_speed: 0.01,
-        }
-    }
-}
-
-impl BridgesLaw {
-    /// `ε(v)` for speed `v` (m/s).
-    pub fn at(&self, speed: f64) -> f64 {
-        (self.prefactor * (speed.abs() / self.reference_speed).powf(-self.exponent)).clamp(0.0, 1.0)
-    }
-
-    /// Speed below which `ε = 1`: `v₀ a^{1/b}` (m/s).
-    pub fn elastic_speed(&self) -> f64 {
-        self.reference_speed * self.prefactor.powf(1.0 / self.exponent)
-    }
-}
-
-impl RestitutionLaw for BridgesLaw {
-    type History = ();
-
-    fn restitution(&self, _: &ImpactPair, _: &mut (), approach_speed: f64) -> f64 {
-        self.at(approach_speed)
-    }
-
-    fn name(&self) -> &'static str {
-        "bridges"
     }
 }
 

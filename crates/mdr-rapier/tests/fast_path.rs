@@ -1,13 +1,13 @@
-//! The fast force-mode path against the plain path (rapier narrow phase + rapier integration):
+//! The neighbour-list path against the rapier pipeline path (rapier narrow phase + rapier integration):
 //! same trajectories to round-off on a small bed in a box of rapier colliders with a dynamic lid;
 //! determinism for 1 and 2 threads; periodic images; LAMMPS data files.
 
-use mdr_rapier::fast::bed::{lattice_bed, Bed, BedSpec};
-use mdr_rapier::fast::particles::FastParticles;
-use mdr_rapier::fast::rayon::ThreadPoolBuilder;
-use mdr_rapier::fast::{Boundary, ContactPartner, FastForceStepper};
 use mdr_rapier::geometry::SurfaceOfRevolution;
 use mdr_rapier::kernel::ContactWorks;
+use mdr_rapier::neighbour_list::bed::{lattice_bed, Bed, BedSpec};
+use mdr_rapier::neighbour_list::particles::NeighbourListParticles;
+use mdr_rapier::neighbour_list::rayon::ThreadPoolBuilder;
+use mdr_rapier::neighbour_list::{Boundary, ContactPartner, NeighbourListStepper};
 use mdr_rapier::prelude::*;
 use mdr_rapier::rapier::prelude::*;
 
@@ -77,7 +77,7 @@ fn lid_body() -> RigidBodyBuilder {
         .can_sleep(false)
 }
 
-/// How far the fast path strayed from the plain path over a run of the box scene.
+/// How far the neighbour-list path strayed from the rapier pipeline path over a run of the box scene.
 struct Comparison {
     max_dx: f64,
     max_dv: f64,
@@ -87,7 +87,7 @@ struct Comparison {
     rebuilds: u64,
     lid_vz: f64,
     /// Largest `d_max / u_c` (normal law's largest overlap over its yield overlap) of the
-    /// plain path's sphere contacts at any step: > 1 when plasticity was reached.
+    /// rapier pipeline path's sphere contacts at any step: > 1 when plasticity was reached.
     max_plastic_ratio: f64,
 }
 
@@ -134,7 +134,7 @@ where
         gravity: Vector::new(0.0, 0.0, -1.0),
         ..PhysicsWorld::default()
     };
-    let mut fast = FastForceStepper::new(model, Boundary::Open)
+    let mut fast = NeighbourListStepper::new(model, Boundary::Open)
         .with_rolling(rolling)
         .skin(0.1)
         .unwrap();
@@ -272,13 +272,13 @@ fn fast_path_reproduces_plain_path_with_hertz_and_rolling() {
 }
 
 /// Two runs' spheres are in the same place with the same velocities and spins, to the bit.
-fn assert_same_motion(a: &FastParticles, b: &FastParticles) {
+fn assert_same_motion(a: &NeighbourListParticles, b: &NeighbourListParticles) {
     assert_eq!(a.position, b.position);
     assert_eq!(a.linvel, b.linvel);
     assert_eq!(a.angvel, b.angvel);
 }
 
-fn periodic_run(bed: &Bed, steps: usize) -> FastForceStepper<Hertz, Mindlin, HertzianViscous> {
+fn periodic_run(bed: &Bed, steps: usize) -> NeighbourListStepper<Hertz, Mindlin, HertzianViscous> {
     let (mut fast, mut world) = periodic_setup(bed);
     for _ in 0..steps {
         fast.step(&mut world).unwrap();
@@ -289,7 +289,7 @@ fn periodic_run(bed: &Bed, steps: usize) -> FastForceStepper<Hertz, Mindlin, Her
 fn periodic_setup(
     bed: &Bed,
 ) -> (
-    FastForceStepper<Hertz, Mindlin, HertzianViscous>,
+    NeighbourListStepper<Hertz, Mindlin, HertzianViscous>,
     PhysicsWorld,
 ) {
     periodic_setup_with(bed, kick)
@@ -312,7 +312,7 @@ fn periodic_setup_with(
     bed: &Bed,
     kick: impl Fn(usize) -> (Vector, Vector),
 ) -> (
-    FastForceStepper<Hertz, Mindlin, HertzianViscous>,
+    NeighbourListStepper<Hertz, Mindlin, HertzianViscous>,
     PhysicsWorld,
 ) {
     let boundary = Boundary::periodic_xy((bed.lo[0], bed.hi[0]), (bed.lo[1], bed.hi[1])).unwrap();
@@ -327,10 +327,12 @@ fn bed_setup(
     skin: f64,
     kick: impl Fn(usize) -> (Vector, Vector),
 ) -> (
-    FastForceStepper<Hertz, Mindlin, HertzianViscous>,
+    NeighbourListStepper<Hertz, Mindlin, HertzianViscous>,
     PhysicsWorld,
 ) {
-    let mut fast = FastForceStepper::new(model(), boundary).skin(skin).unwrap();
+    let mut fast = NeighbourListStepper::new(model(), boundary)
+        .skin(skin)
+        .unwrap();
     let m = fast.insert_material(grain());
     let mut world = PhysicsWorld {
         gravity: Vector::new(0.0, 0.0, -1.0),
@@ -466,7 +468,7 @@ fn workers_kept_awake_change_no_trajectory() {
             .install(|| {
                 let steps = || periodic_run(&bed, 200);
                 if awake {
-                    mdr_rapier::fast::with_workers_awake(steps)
+                    mdr_rapier::neighbour_list::with_workers_awake(steps)
                 } else {
                     steps()
                 }
@@ -542,7 +544,9 @@ fn periodic_images_push_like_open_neighbours() {
     // Two spheres overlapping by 0.05 across the x boundary of a 6 × 6 box, and the same two
     // spheres side by side in open space: the same forces (round-off of the image shift).
     let run = |boundary: Boundary, x2: f64| {
-        let mut fast = FastForceStepper::new(model(), boundary).skin(0.1).unwrap();
+        let mut fast = NeighbourListStepper::new(model(), boundary)
+            .skin(0.1)
+            .unwrap();
         let m = fast.insert_material(grain());
         let mut world = PhysicsWorld {
             gravity: Vector::ZERO,
@@ -580,7 +584,8 @@ fn lammps_data_round_trip_and_tiling() {
         ..BedSpec::default()
     })
     .unwrap();
-    let dir = std::env::temp_dir().join(format!("mdr_fast_bed_{}", std::process::id()));
+    let dir_guard = tempfile::tempdir().unwrap();
+    let dir = dir_guard.path().to_path_buf();
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("bed.data");
     bed.write_lammps(&path).unwrap();
@@ -630,7 +635,7 @@ fn orientation_tracking_does_not_change_sphere_trajectories() {
         assert!(on.last_report().sphere_contacts > 50);
         assert_same_motion(on.particles(), off.particles());
         // The tracked orientations turned; the untracked ones did not.
-        let turned = |f: &FastForceStepper<Hertz, Mindlin, HertzianViscous>| {
+        let turned = |f: &NeighbourListStepper<Hertz, Mindlin, HertzianViscous>| {
             f.particles()
                 .rotation
                 .iter()
@@ -780,7 +785,7 @@ fn ended_contacts_carry_their_whole_books_once() {
     // booked at its last update (friction and damping dissipated, and the spring's stiffness
     // energy, released when the contact opened: all non-zero here).
     let run = |record: bool| {
-        let mut fast = FastForceStepper::new(model(), Boundary::Open)
+        let mut fast = NeighbourListStepper::new(model(), Boundary::Open)
             .skin(0.1)
             .unwrap()
             .record_ended_contacts(record);
@@ -830,7 +835,7 @@ fn ended_contacts_carry_their_whole_books_once() {
     assert!(run(false).1.is_empty());
 }
 
-/// A surface of revolution registered on the fast path: spheres inside an exact cylinder (a
+/// A surface of revolution registered on the neighbour-list path: spheres inside an exact cylinder (a
 /// bounding cuboid as the rapier collider) touch it at its radius whatever their azimuth, also at
 /// the corners of a polygon that flat pieces would leave there; the stepper's candidate search
 /// and contacts both go through the closed form.
@@ -840,7 +845,7 @@ fn spheres_touch_an_exact_cylinder_at_its_radius_in_every_direction() {
         gravity: Vector::ZERO,
         ..PhysicsWorld::default()
     };
-    let mut fast = FastForceStepper::new(model(), Boundary::Open)
+    let mut fast = NeighbourListStepper::new(model(), Boundary::Open)
         .skin(0.1)
         .unwrap();
     let m = fast.insert_material(grain());

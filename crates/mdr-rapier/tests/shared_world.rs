@@ -4,7 +4,7 @@
 //! not a particle, and a step given to the coupling that differs from rapier's, like every
 //! registration or restore mistake, is a named error.
 
-use mdr_rapier::fast::{Boundary, FastForceStepper};
+use mdr_rapier::neighbour_list::{Boundary, NeighbourListStepper};
 use mdr_rapier::prelude::*;
 use mdr_rapier::rapier::prelude::*;
 use mdr_rapier::{CouplingMode, ImpactScene, SceneLaw};
@@ -153,7 +153,7 @@ fn a_users_constant_force_on_a_registered_body_acts_as_without_the_plugin() {
 fn a_users_constant_force_acts_as_without_the_plugin_on_the_neighbour_list_path() {
     let mut world = PhysicsWorld::default();
     let mut stepper =
-        FastForceStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
+        NeighbourListStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
     let m = stepper.insert_material(grain());
     stepper
         .insert_surface(
@@ -197,7 +197,7 @@ impl PhysicsHooks for PassThrough {
 fn unregistered_bodies_rest_on_the_neighbour_list_paths_surfaces() {
     let mut world = PhysicsWorld::default();
     let mut stepper =
-        FastForceStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
+        NeighbourListStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
     let m = stepper.insert_material(grain());
     stepper
         .insert_surface(
@@ -393,7 +393,7 @@ fn registration_and_restore_mistakes_are_named_errors() {
     let fast = |n: usize| {
         let mut world = PhysicsWorld::default();
         let mut s =
-            FastForceStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
+            NeighbourListStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
         let m = s.insert_material(grain());
         for k in 0..n {
             s.insert_sphere(SphereBuilder::new(R, m).translation(Vector::new(
@@ -470,7 +470,7 @@ fn vectors_pass_and_read_in_rapiers_type() {
     assert!(!boundary.near_box(Vector::new(1.2, 1.0, 0.0), 0.1));
 
     let mut stepper =
-        FastForceStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
+        NeighbourListStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
     let m = stepper.insert_material(grain());
     let i = stepper
         .insert_sphere(
@@ -500,7 +500,7 @@ fn an_unstable_step_on_the_neighbour_list_path_is_an_error() {
     let run = |dt: f64, spheres: &[(Vector, Vector)]| {
         let mut world = PhysicsWorld::default();
         let mut stepper =
-            FastForceStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
+            NeighbourListStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
         let m = stepper.insert_material(grain());
         stepper
             .insert_surface(
@@ -528,7 +528,7 @@ fn an_unstable_step_on_the_neighbour_list_path_is_an_error() {
     let limit = stable_time_step(&pair, 4.0, 1.0).unwrap().stability_limit;
     let err = run(1.01 * limit, &head_on).unwrap_err();
     assert!(
-        matches!(err, CouplingError::FastTimeStepTooLarge { limit: l, speed, kind, .. }
+        matches!(err, CouplingError::NeighbourListTimeStepTooLarge { limit: l, speed, kind, .. }
             if (l / limit - 1.0).abs() < 1e-12 && speed == 4.0 && kind == "sphere–sphere"),
         "{err:?}"
     );
@@ -540,7 +540,7 @@ fn an_unstable_step_on_the_neighbour_list_path_is_an_error() {
     let limit = stable_time_step(&pair, 3.0, 1.0).unwrap().stability_limit;
     let err = run(1.01 * limit, &falling).unwrap_err();
     assert!(
-        matches!(err, CouplingError::FastTimeStepTooLarge { limit: l, speed, kind, .. }
+        matches!(err, CouplingError::NeighbourListTimeStepTooLarge { limit: l, speed, kind, .. }
             if (l / limit - 1.0).abs() < 1e-12 && speed == 3.0 && kind == "sphere–surface"),
         "{err:?}"
     );

@@ -2,9 +2,9 @@
 //! closure runs and stop when it returns or unwinds. Alone in its test binary, so that the
 //! process's CPU time is this test's.
 
-use mdr_rapier::fast::bed::process_cpu_seconds;
-use mdr_rapier::fast::rayon::ThreadPoolBuilder;
-use mdr_rapier::fast::with_workers_awake;
+use mdr_rapier::neighbour_list::bed::process_cpu_seconds;
+use mdr_rapier::neighbour_list::rayon::ThreadPoolBuilder;
+use mdr_rapier::neighbour_list::with_workers_awake;
 use std::time::Duration;
 
 /// CPU seconds the process uses while the current thread sleeps for `ms` milliseconds.
@@ -27,7 +27,7 @@ fn workers_wait_busily_while_the_closure_runs_and_stop_after() {
     assert!(unwound.is_err());
     let after_panic = pool.install(|| cpu_while_sleeping(200));
     let sum: u64 = pool.install(|| {
-        use mdr_rapier::fast::rayon::prelude::*;
+        use mdr_rapier::neighbour_list::rayon::prelude::*;
         (0..1000u64).into_par_iter().sum()
     });
     assert_eq!(sum, 499_500);

@@ -1,8 +1,8 @@
 //! Several runs sharing one pool, each keeping the pool's other threads awake
 //! ([`with_workers_awake`]): all finish.
 
-use mdr_rapier::fast::rayon::ThreadPoolBuilder;
-use mdr_rapier::fast::with_workers_awake;
+use mdr_rapier::neighbour_list::rayon::ThreadPoolBuilder;
+use mdr_rapier::neighbour_list::with_workers_awake;
 use std::sync::mpsc;
 use std::time::Duration;
 
@@ -12,7 +12,7 @@ use std::time::Duration;
 /// each runs serial gaps and parallel loops inside `with_workers_awake`, and all must finish.
 #[test]
 fn concurrent_runs_in_one_pool_all_finish() {
-    use mdr_rapier::fast::rayon::prelude::*;
+    use mdr_rapier::neighbour_list::rayon::prelude::*;
     use std::sync::{Arc, Barrier};
     let pool = Arc::new(ThreadPoolBuilder::new().num_threads(2).build().unwrap());
     let both_started = Arc::new(Barrier::new(2));

@@ -6,7 +6,7 @@
 //!   (Rein & Liu 2012, A&A 537, A128, §3.3–3.4) — by groups of nearby targets that share one
 //!   interaction list (Barnes 1990, J. Comput. Phys. 87, 161);
 //! - [`GravitySolver::Direct`]: the direct sum, O(N²) per ghost box — the exact reference for the
-//!   tree, and with `ghost_boxes = 0` the nearest-image sum of the first version of this crate.
+//!   tree, and with `ghost_boxes = 0` the nearest-image sum.
 //!
 //! **Images.** Ghost box `(i, j)` (`|i|, |j| ≤ g`) is the box shifted by
 //! `(i L_x, j L_y + w(−i S(t)))`, where `S(t)` is the shear offset and `w(u) = u − L_y round(u/L_y)`
@@ -98,7 +98,7 @@ pub struct SelfGravity {
 }
 
 impl Default for SelfGravity {
-    /// The nearest-image direct sum (the first version's self-gravity); [`SelfGravity::tree`] is
+    /// The nearest-image direct sum, the cheapest self-gravity; [`SelfGravity::tree`] is
     /// what `mdr-dem sim ring --gravity` uses.
     fn default() -> Self {
         Self {

@@ -2,8 +2,8 @@
 //! [`RestitutionLaw`] at the pair's approach speed, with the per-contact history in a
 //! thread-safe store.
 
+use crate::law::{ImpactPair, RestitutionLaw};
 use mdr_rapier::restitution::defer_speculative_contacts;
-use mdr_rapier::restitution_law::{ImpactPair, RestitutionLaw};
 use rapier3d_f64::prelude::*;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering};

@@ -8,8 +8,9 @@
 //! - [`hill`]: Hill's equations and the symplectic epicycle integrator (SEI) for free motion;
 //! - [`boundary`]: shear-periodic (Lees–Edwards) boundaries and periodic images;
 //! - [`particles`]: state, size distribution, REBOUND's initial conditions;
-//! - restitution laws (MDR energy route, Bridges, constant) behind one trait live in the plugin,
-//!   [`mdr_rapier::restitution_law`], re-exported here as [`law`];
+//! - [`law`]: restitution laws behind one trait: the MDR energy route and a constant from the
+//!   plugin ([`mdr_rapier::restitution_law`], re-exported), and the Bridges et al. law of ring
+//!   particles;
 //! - [`hooks`], [`world`]: rapier collision step with ghost images and the restitution hook;
 //! - [`gravity`]: optional self-gravity, Barnes–Hut tree or direct sum over shear-periodic ghost
 //!   boxes;
@@ -33,6 +34,7 @@ pub mod error;
 pub mod gravity;
 pub mod hill;
 pub mod hooks;
+pub mod law;
 pub mod output;
 pub mod particles;
 pub mod run;
@@ -40,7 +42,6 @@ pub mod wakes;
 pub mod world;
 
 pub use error::{Result, RingError};
-pub use mdr_rapier::restitution_law as law;
 
 /// The names most programs need.
 pub mod prelude {
@@ -49,10 +50,10 @@ pub mod prelude {
     pub use crate::error::{Result, RingError};
     pub use crate::gravity::{GravitySolver, SelfGravity};
     pub use crate::hill::{HillFrame, Sei};
+    pub use crate::law::{
+        BridgesLaw, ConstantRestitution, ImpactPair, MdrRestitution, RestitutionLaw,
+    };
     pub use crate::particles::{Particles, Population, SizeDistribution};
     pub use crate::run::{RingConfig, RingSimulation, RunResult, REBOUND_OMEGA};
     pub use crate::world::CollisionSettings;
-    pub use mdr_rapier::restitution_law::{
-        BridgesLaw, ConstantRestitution, ImpactPair, MdrRestitution, RestitutionLaw,
-    };
 }

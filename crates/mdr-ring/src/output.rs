@@ -1,41 +1,20 @@
-//! Outputs of a ring run, each written atomically (temporary file, then rename): the time series
+//! Outputs of a ring run, each written atomically ([`mdr_output`]): the time series
 //! (CSV), the summary (JSON), particle frames (legacy VTK poly data, readable by ParaView) and
 //! plots (SVG).
 
 use crate::diagnostics::Sample;
 use crate::error::{Result, RingError};
 use crate::particles::Particles;
+use mdr_output::font::register_plot_font;
 use plotters::prelude::*;
-use plotters::style::{register_font, FontStyle};
 use std::path::Path;
-use std::sync::Once;
 
-/// DejaVu Sans (Bitstream Vera licence), shared with `mdr-impact`'s plots: text is laid out with
-/// an embedded font so plots do not depend on the fonts of the machine.
-static FONT: &[u8] = include_bytes!("../../mdr-impact/assets/DejaVuSans.ttf");
-
-fn register_embedded_font() {
-    static REGISTER: Once = Once::new();
-    REGISTER.call_once(|| {
-        // A valid TrueType font shipped in the workspace; on failure plotters reports the
-        // missing font when drawing, which is returned as an error.
-        let _ = register_font("sans-serif", FontStyle::Normal, FONT);
-    });
-}
-
-/// Write `bytes` to `path` through a temporary file in the same directory and a rename.
+/// Write `bytes` to `path` atomically ([`mdr_output::write_atomic`]), with this crate's error.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let io = |source| RingError::Io {
+    mdr_output::write_atomic(path, bytes).map_err(|source| RingError::Io {
         path: path.display().to_string(),
         source,
-    };
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(io)?;
-    }
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(format!(".tmp{}", std::process::id()));
-    std::fs::write(&tmp, bytes).map_err(io)?;
-    std::fs::rename(&tmp, path).map_err(io)
+    })
 }
 
 fn output_error(path: &Path, reason: impl ToString) -> RingError {
@@ -146,7 +125,7 @@ fn range_of(points: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
 
 /// Panels stacked vertically in one SVG file.
 pub fn write_panels_svg(path: &Path, panels: &[Panel]) -> Result<()> {
-    register_embedded_font();
+    register_plot_font();
     let mut svg = String::new();
     {
         let height = 300 * panels.len().max(1) as u32;
@@ -272,20 +251,27 @@ pub fn write_top_view_png(
     write_png_atomic(path, |tmp| draw_top_view(tmp, domain, particles, title))
 }
 
-/// Draw with `draw` into a temporary `.png` beside `path`, then rename it to `path`.
+/// Draw with `draw` into a temporary `.png` beside `path`, then rename it to `path`
+/// ([`mdr_output::write_atomic_with`]).
 fn write_png_atomic(path: &Path, draw: impl FnOnce(&Path) -> DrawResult) -> Result<()> {
-    register_embedded_font();
-    let io = |source| RingError::Io {
-        path: path.display().to_string(),
-        source,
-    };
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(io)?;
+    register_plot_font();
+    // A drawing failure is reported as an output error, an I/O failure as an I/O error.
+    let mut drawing_failure = None;
+    let written = mdr_output::write_atomic_with(path, |temporary| {
+        draw(temporary).map_err(|e| {
+            let reason = e.to_string();
+            drawing_failure = Some(reason.clone());
+            std::io::Error::other(reason)
+        })
+    });
+    match (written, drawing_failure) {
+        (Ok(()), _) => Ok(()),
+        (Err(_), Some(reason)) => Err(output_error(path, reason)),
+        (Err(source), None) => Err(RingError::Io {
+            path: path.display().to_string(),
+            source,
+        }),
     }
-    // The encoder picks the format from the extension: keep `.png` on the temporary name.
-    let tmp = path.with_extension(format!("tmp{}.png", std::process::id()));
-    draw(&tmp).map_err(|e| output_error(path, e))?;
-    std::fs::rename(&tmp, path).map_err(io)
 }
 
 type PatchChart<'a> = ChartContext<

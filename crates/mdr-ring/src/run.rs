@@ -12,9 +12,9 @@ use crate::diagnostics::{sample, summarize, Sample, Summary};
 use crate::error::{in_range, positive, Result, RingError};
 use crate::gravity::SelfGravity;
 use crate::hill::{HillFrame, Sei};
+use crate::law::RestitutionLaw;
 use crate::particles::{initial_conditions, Particles, Population, SizeDistribution};
 use crate::world::{CollisionSettings, CollisionWorld};
-use mdr_rapier::restitution_law::RestitutionLaw;
 use serde::Serialize;
 use std::time::Instant;
 

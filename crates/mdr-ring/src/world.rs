@@ -16,8 +16,8 @@
 
 use crate::boundary::{Image, ImageLabel, ShearingBox};
 use crate::hooks::{decode, identity, RingHooks};
+use crate::law::RestitutionLaw;
 use crate::particles::Particles;
-use mdr_rapier::restitution_law::RestitutionLaw;
 use rapier3d_f64::prelude::*;
 use std::collections::BTreeMap;
 

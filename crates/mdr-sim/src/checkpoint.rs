@@ -12,7 +12,7 @@
 //!     24     n  payload (postcard)
 //! ```
 
-use crate::output::atomic::write_atomic;
+use mdr_output::write_atomic;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 use std::path::{Path, PathBuf};

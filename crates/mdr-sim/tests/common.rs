@@ -5,34 +5,31 @@
 use std::ops::Deref;
 use std::path::{Path, PathBuf};
 
-/// A temporary directory for one test, removed with everything in it when dropped.
-pub struct TempDir(PathBuf);
+/// A temporary directory for one test (a [`tempfile::TempDir`]), removed with everything in it
+/// when dropped; it dereferences to its path.
+pub struct TempDir(tempfile::TempDir);
 
 impl Deref for TempDir {
     type Target = Path;
     fn deref(&self) -> &Path {
-        &self.0
+        self.0.path()
     }
 }
 
 impl AsRef<Path> for TempDir {
     fn as_ref(&self) -> &Path {
-        &self.0
+        self.0.path()
     }
 }
 
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-/// A fresh temporary directory for one test.
+/// A fresh temporary directory for one test; `name` starts its file name.
 pub fn temp_dir(name: &str) -> TempDir {
-    let dir = std::env::temp_dir().join(format!("mdr-sim-test-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    TempDir(dir)
+    TempDir(
+        tempfile::Builder::new()
+            .prefix(&format!("mdr-sim-test-{name}-"))
+            .tempdir()
+            .unwrap(),
+    )
 }
 
 /// Write `text` as `dir/name` and return the path.

@@ -5,7 +5,7 @@
 
 mod common;
 
-use mdr_rapier::fast::rayon::ThreadPoolBuilder;
+use mdr_rapier::neighbour_list::rayon::ThreadPoolBuilder;
 use mdr_sim::output::energy::EnergyRow;
 use mdr_sim::run::RunSummary;
 use mdr_sim::{run_scene, scene::validate::parse_scene, RunOptions};

@@ -33,7 +33,8 @@ fn every_builtin_scene_is_valid() {
 #[test]
 fn drop_scene_matches_the_closed_form_in_both_modes() {
     let text = std::fs::read_to_string(scenes_dir().join("drop.toml")).unwrap();
-    let dir = std::env::temp_dir().join(format!("mdr-sim-test-drop-{}", std::process::id()));
+    let dir_guard = tempfile::tempdir().unwrap();
+    let dir = dir_guard.path().to_path_buf();
     std::fs::create_dir_all(&dir).unwrap();
     let force = text
         .replace("duration_s = 0.2 ", "duration_s = 0.11 ")
@@ -78,7 +79,8 @@ fn the_drums_start_passes_the_energy_guard() {
     let text = std::fs::read_to_string(scenes_dir().join("drum.toml")).unwrap();
     let short = text.replace("duration_s = 2.0", "duration_s = 0.04");
     assert_ne!(short, text, "drum.toml's duration key moved");
-    let dir = std::env::temp_dir().join(format!("mdr-sim-test-drum-{}", std::process::id()));
+    let dir_guard = tempfile::tempdir().unwrap();
+    let dir = dir_guard.path().to_path_buf();
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("drum.toml");
     std::fs::write(&path, &short).unwrap();

@@ -65,7 +65,7 @@ fn frames_collection_csv_and_plots_are_written_and_read_back() {
 /// rises above the height at which it would hold the whole initial energy `E₀`, none moves
 /// further horizontally than `R₀ + v_max T` with `v_max = √(2 E₀/m)`; the energy books stay
 /// within 1 % of `E₀`. Run with `cargo test --release -p mdr-sim --test sim_scene_outputs --
-/// --ignored` (measured: 4–5 min on 2 shared cores; see docs/user-guide.md, "Reliability").
+/// --ignored` (minutes: see docs/user-guide.md, "Reliability").
 #[test]
 #[ignore]
 fn long_column_run_stays_finite_and_bounded() {

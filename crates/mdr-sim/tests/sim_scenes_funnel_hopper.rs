@@ -404,7 +404,7 @@ fn hopper_orifice_sweep_runs_once_per_diameter_and_fits_the_rates() {
         &hopper(200, 0.06, "[0.008, 0.010, 0.012]"),
     );
     let scene = mdr_sim::load_scene(&path).unwrap_or_else(|p| panic!("{p}"));
-    let sweep = mdr_sim::headline::run_orifice_sweep(
+    let sweep = mdr_sim::run::run_orifice_sweep(
         &scene,
         &RunOptions::new(dir.join("out")).quiet(true).no_frames(true),
     )
@@ -569,7 +569,7 @@ fn builtin_hopper_fits_literature_beverloo_c_and_k() {
     let path =
         std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/hopper.toml");
     let scene = mdr_sim::load_scene(&path).unwrap_or_else(|p| panic!("{p}"));
-    let sweep = mdr_sim::headline::run_orifice_sweep(
+    let sweep = mdr_sim::run::run_orifice_sweep(
         &scene,
         &RunOptions::new(dir.join("out")).quiet(true).no_frames(true),
     )

@@ -2,22 +2,9 @@
 
 use crate::error::{Result, VerifyError};
 use crate::report::{Figure, Style};
+use mdr_output::font::register_plot_font;
 use plotters::prelude::*;
-use plotters::style::{register_font, FontStyle};
 use std::path::{Path, PathBuf};
-use std::sync::Once;
-
-// The workspace's embedded font (shipped with mdr-impact): plotters' `ab_glyph` backend has no
-// system fonts.
-static FONT: &[u8] = include_bytes!("../../mdr-impact/assets/DejaVuSans.ttf");
-
-fn register_embedded_font() {
-    static REGISTER: Once = Once::new();
-    REGISTER.call_once(|| {
-        // A failure would be a packaging error; plotters then reports the missing font.
-        let _ = register_font("sans-serif", FontStyle::Normal, FONT);
-    });
-}
 
 const COLOURS: [RGBColor; 6] = [
     RGBColor(0, 0, 0),
@@ -58,14 +45,15 @@ fn bounds(figure: &Figure) -> ((f64, f64), (f64, f64)) {
     (pad(x), pad(y))
 }
 
-/// Write `figure` as `dir/<name>.svg` (temporary file, then rename) and return the path.
+/// Write `figure` as `dir/<name>.svg` (atomically, [`mdr_output::write_atomic`]) and return the
+/// path.
 pub fn write_svg(figure: &Figure, dir: &Path) -> Result<PathBuf> {
-    register_embedded_font();
+    register_plot_font();
     std::fs::create_dir_all(dir).map_err(|e| plot_error(dir, e))?;
     let path = dir.join(format!("{}.svg", figure.name));
-    let temporary = dir.join(format!(".{}.svg.tmp", figure.name));
+    let mut svg = String::new();
     {
-        let root = SVGBackend::new(&temporary, (800, 560)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (800, 560)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| plot_error(&path, e))?;
         let ((x0, x1), (y0, y1)) = bounds(figure);
         let mut chart = ChartBuilder::on(&root)
@@ -142,6 +130,6 @@ pub fn write_svg(figure: &Figure, dir: &Path) -> Result<PathBuf> {
             .map_err(|e| plot_error(&path, e))?;
         root.present().map_err(|e| plot_error(&path, e))?;
     }
-    std::fs::rename(&temporary, &path).map_err(|e| plot_error(&path, e))?;
+    mdr_output::write_atomic(&path, svg.as_bytes()).map_err(|e| plot_error(&path, e))?;
     Ok(path)
 }

@@ -284,16 +284,12 @@ pub(crate) fn normal_laws(
 ) -> anyhow::Result<(MdrElastoPlastic, Vec<NormalSpec>)> {
     let mdr = MdrElastoPlastic::new(a.qc.unwrap_or(3.8e5), a.theta_ratio.unwrap_or(0.37))
         .map_err(contact_error(false))?;
-    // Thornton's default p_y: the same yield overlap as the MDR law,
-    // δ_y = R (π p_y / (2E*))² = u_c = π q_c / (2E*).
-    let e_star = pair.effective_modulus();
-    let default_yield_stress = {
-        let u_c = mdr
-            .bind(pair)
+    let default_yield_stress = mdr_impact::law::thornton_matched_yield_stress(
+        pair,
+        mdr.bind(pair)
             .map_err(contact_error(false))?
-            .yield_overlap();
-        2.0 * e_star / std::f64::consts::PI * (u_c / pair.effective_radius()).sqrt()
-    };
+            .yield_overlap(),
+    );
     let adhesive = work_of_adhesion(a)? > 0.0;
     let mut laws = Vec::new();
     for name in a.law.clone().unwrap_or_else(|| vec![LawName::Mdr]) {

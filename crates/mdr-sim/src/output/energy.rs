@@ -10,7 +10,7 @@
 //! springs". Spheres that leave the run (`delete_below_m`) take their energy with them into
 //! `removed_j`, which the balance counts as well.
 
-use super::atomic::write_atomic;
+use mdr_output::write_atomic;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -207,7 +207,8 @@ mod tests {
     /// round-trips exactly, with the rolling columns after `contacts`.
     #[test]
     fn old_and_new_csv_read_back() {
-        let dir = std::env::temp_dir().join(format!("mdr-sim-energy-csv-{}", std::process::id()));
+        let dir_guard = tempfile::tempdir().unwrap();
+        let dir = dir_guard.path().to_path_buf();
         std::fs::create_dir_all(&dir).unwrap();
         let old = dir.join("old.csv");
         std::fs::write(

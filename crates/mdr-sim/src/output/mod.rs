@@ -1,7 +1,6 @@
 //! Everything a run writes: VTK frames and their ParaView collection ([`vtk`]), the energy-book
-//! CSV ([`energy`]), SVG plots ([`plot`]); every file through [`atomic::write_atomic`].
+//! CSV ([`energy`]), SVG plots ([`plot`]); every file through [`mdr_output::write_atomic`].
 
-pub mod atomic;
 pub mod energy;
 pub mod plot;
 pub mod run_dir;

@@ -1,24 +1,10 @@
 //! SVG plots (plotters): the energy books against time, and a scene's headline quantity.
 
-use super::atomic::write_atomic;
 use super::energy::EnergyRow;
+use mdr_output::font::register_plot_font;
+use mdr_output::write_atomic;
 use plotters::prelude::*;
-use plotters::style::{register_font, FontStyle};
 use std::path::Path;
-use std::sync::Once;
-
-/// DejaVu Sans (shipped with `mdr-impact`, license next to it), so the plots do not depend on
-/// the fonts installed on the machine.
-static FONT: &[u8] = include_bytes!("../../../mdr-impact/assets/DejaVuSans.ttf");
-
-fn register_embedded_font() {
-    static REGISTER: Once = Once::new();
-    REGISTER.call_once(|| {
-        // A valid TrueType font: a failure would be a packaging error, reported by plotters as
-        // missing glyphs when drawing.
-        let _ = register_font("sans-serif", FontStyle::Normal, FONT);
-    });
-}
 
 fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values
@@ -59,7 +45,7 @@ pub fn write_chart(
     series: &[(&str, Vec<(f64, f64)>)],
     references: &[(String, Vec<(f64, f64)>)],
 ) -> std::io::Result<()> {
-    register_embedded_font();
+    register_plot_font();
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (900 + LEGEND_WIDTH, 560)).into_drawing_area();

@@ -124,7 +124,8 @@ mod tests {
     /// A resumed run's stale files go, its own earlier files and other runs' files stay.
     #[test]
     fn stale_frames_and_checkpoints_of_the_run_only_are_removed() {
-        let dir = std::env::temp_dir().join(format!("mdr_sim_run_dir_{}", std::process::id()));
+        let dir_guard = tempfile::tempdir().unwrap();
+        let dir = dir_guard.path().to_path_buf();
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(dir.join("frames")).unwrap();
         std::fs::create_dir_all(dir.join("checkpoints")).unwrap();

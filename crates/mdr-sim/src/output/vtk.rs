@@ -2,7 +2,7 @@
 //! optional contact network (one line per touching pair), and the ParaView collection (`.pvd`)
 //! that lists the frames with their simulated times.
 
-use super::atomic::write_atomic;
+use mdr_output::write_atomic;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use vtkio::model::{
@@ -199,7 +199,8 @@ mod tests {
 
     #[test]
     fn particle_frame_reads_back() {
-        let dir = std::env::temp_dir().join(format!("mdr-sim-vtk-{}", std::process::id()));
+        let dir_guard = tempfile::tempdir().unwrap();
+        let dir = dir_guard.path().to_path_buf();
         let path = dir.join("f.vtp");
         let frame = ParticleFrame {
             position: vec![[0.0, 1.0, 2.0], [3.5, -4.0, 1e-3]],

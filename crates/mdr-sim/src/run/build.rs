@@ -2,7 +2,7 @@
 //! solid pieces, then the spheres, in the scene's order, so the same scene always gets the same
 //! handles (which the checkpoints rely on).
 //!
-//! Force mode runs on the neighbour-list path ([`FastForceStepper`]) unless the scene selects
+//! Force mode runs on the neighbour-list path ([`NeighbourListStepper`]) unless the scene selects
 //! `force_path = "rapier"`: the walls are rapier colliders registered as its surfaces, the
 //! spheres live in the stepper's own arrays (particle `i` of the scene is its particle `i`),
 //! and rapier keeps and moves the wall bodies.
@@ -16,9 +16,11 @@ use mdr_contact::normal::{Hertz, MdrElastoPlastic, Thornton};
 use mdr_contact::rolling::{EpsdRolling, NoRolling};
 use mdr_contact::tangential::Mindlin;
 use mdr_rapier::convert::to_glam;
-use mdr_rapier::fast::particles::FastParticles;
-use mdr_rapier::fast::{Boundary, FastForceStepper, FastStepReport, StepTimings};
 use mdr_rapier::geometry::SurfaceOfRevolution;
+use mdr_rapier::neighbour_list::particles::NeighbourListParticles;
+use mdr_rapier::neighbour_list::{
+    Boundary, NeighbourListStepReport, NeighbourListStepper, StepTimings,
+};
 use mdr_rapier::particles::{MaterialHandle, SphereBuilder};
 use mdr_rapier::{ForceModeStepper, RestitutionHooks};
 use rapier3d_f64::prelude::*;
@@ -28,7 +30,7 @@ pub type SceneStepper = ForceModeStepper<AnyNormal, Mindlin, AnyDamping, AnyRoll
 
 /// The neighbour-list force-mode stepper of a scene, with normal model `N` and rolling model
 /// `R`.
-pub type FastSceneStepper<N, R> = FastForceStepper<N, Mindlin, AnyDamping, R>;
+pub type FastSceneStepper<N, R> = NeighbourListStepper<N, Mindlin, AnyDamping, R>;
 
 /// The neighbour-list stepper of a scene (the default force path), compiled for each normal law
 /// and for rolling resistance on or off: a contact carries only the history its laws keep (a
@@ -67,12 +69,12 @@ pub(crate) use with_fast;
 
 impl FastScene {
     /// The spheres.
-    pub fn particles(&self) -> &FastParticles {
+    pub fn particles(&self) -> &NeighbourListParticles {
         with_fast!(self, s => s.particles())
     }
 
     /// The spheres, to change.
-    pub fn particles_mut(&mut self) -> &mut FastParticles {
+    pub fn particles_mut(&mut self) -> &mut NeighbourListParticles {
         with_fast!(self, s => s.particles_mut())
     }
 
@@ -87,7 +89,7 @@ impl FastScene {
     }
 
     /// What the last step did.
-    pub fn last_report(&self) -> FastStepReport {
+    pub fn last_report(&self) -> NeighbourListStepReport {
         with_fast!(self, s => s.last_report())
     }
 
@@ -96,7 +98,7 @@ impl FastScene {
         with_fast!(self, s => s.request_rebuild())
     }
 
-    /// Time each part of the steps from now on, or stop ([`FastForceStepper::time_steps`]).
+    /// Time each part of the steps from now on, or stop ([`NeighbourListStepper::time_steps`]).
     pub fn time_steps(&mut self, on: bool) {
         with_fast!(self, s => s.time_steps(on))
     }
@@ -133,7 +135,7 @@ impl FastScene {
         sliding: fn(Box<FastSceneStepper<N, NoRolling>>) -> FastScene,
         with_rolling: fn(Box<FastSceneStepper<N, EpsdRolling>>) -> FastScene,
     ) -> FastScene {
-        let stepper = FastForceStepper::new(model, boundary);
+        let stepper = NeighbourListStepper::new(model, boundary);
         match rolling {
             AnyRolling(Some(rolling)) => with_rolling(Box::new(stepper.with_rolling(rolling))),
             AnyRolling(None) => sliding(Box::new(stepper)),
@@ -425,7 +427,7 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
         Inserter::Fast(s) => {
             with_fast!(&s, s => s.configure(&mut world.integration_parameters, scene.dt))?;
             // The walls' broad phase (rapier still detects wall–wall pairs) uses the same
-            // prediction distance as the plain path.
+            // prediction distance as the rapier pipeline path.
             world.integration_parameters.normalized_prediction_distance =
                 prediction_distance(scene) / world.integration_parameters.length_unit;
             Coupling::Fast(s.with_scene_settings(scene)?)

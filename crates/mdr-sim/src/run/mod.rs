@@ -10,20 +10,24 @@
 //! 3. the books take the work increments of every contact, and the samples (energy row, frame,
 //!    headline) are taken here, where positions, velocities and contact states all describe `x_k`;
 //! 4. the integration to `v_{k+1}`, `x_{k+1}` (symplectic Euler) and `PhysicsWorld::step`:
-//!    `apply_forces` + `step` + `give_back_user_forces` on rapier's path, `advance` on the neighbour-list path (which
-//!    integrates its particles itself and then steps rapier's wall bodies).
+//!    `apply_forces` + `step` + `give_back_user_forces` on the rapier pipeline path, `advance` on
+//!    the neighbour-list path (which integrates its particles itself and then steps rapier's wall
+//!    bodies).
 //!
 //! The loop and the scene events are here; what a run writes is in `outputs`, the same steps
 //! without output for timing (`SceneSteps`) in `steps`.
 
+mod books;
 pub mod build;
 mod outputs;
-mod state;
+mod records;
 mod steps;
+mod sweep;
 
-pub use mdr_rapier::fast::StepTimings;
-pub use state::{BodyRecord, CheckpointData};
+pub use mdr_rapier::neighbour_list::StepTimings;
+pub use records::{BodyRecord, CheckpointData};
 pub use steps::{ContactCounts, SceneSteps};
+pub use sweep::{run_orifice_sweep, SweepSummary};
 
 use crate::checkpoint::{self, CheckpointError};
 use crate::error::{output, SimError};
@@ -33,6 +37,7 @@ use crate::output::energy::{self, BalanceDrift, EnergyRow};
 use crate::output::plot;
 use crate::output::vtk::{self, CollectionEntry, ContactFrame, ParticleFrame};
 use crate::scene::Scene;
+use books::Books;
 use build::{build, with_fast, Built, Coupling, FastSceneStepper};
 use indicatif::{ProgressBar, ProgressStyle};
 use mdr_contact::normal::NormalLaw;
@@ -43,8 +48,7 @@ use mdr_rapier::kernel::ContactWorks;
 use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use state::Books;
-use state::{FastPairHistory, SceneLaw};
+use records::{FastPairHistory, SceneLaw};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -153,7 +157,7 @@ fn human_duration(seconds: f64) -> String {
 /// time on the current rayon pool, as a sentence (`sim run --check`).
 pub fn estimate_run_time(scene: &Scene, budget: Duration) -> Result<String, SimError> {
     rayon::scope(|_| {
-        mdr_rapier::fast::with_workers_awake(|| {
+        mdr_rapier::neighbour_list::with_workers_awake(|| {
             let total = scene.total_steps();
             let mut steps = SceneSteps::new(scene)?;
             steps.step()?;
@@ -273,7 +277,7 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunSummary, SimE
     // is already one of the pool's. The pool's other threads wait for each pass awake
     // (`with_workers_awake`: waking a sleeping one costs a pass tens of microseconds).
     rayon::scope(|_| {
-        mdr_rapier::fast::with_workers_awake(|| {
+        mdr_rapier::neighbour_list::with_workers_awake(|| {
             let mut sim = match &options.resume {
                 Some(path) => Sim::resume(scene, path)?,
                 None => Sim::new(scene)?,
@@ -308,7 +312,7 @@ impl<'a> Sim<'a> {
             samples: Vec::new(),
             checkpoints: Vec::new(),
             view: ViewBuffers::default(),
-            sink: crate::walls::scene_sink(scene),
+            sink: scene_sink(scene),
             guard_floor_j: one_diameter_lift_j(scene),
         })
     }
@@ -319,9 +323,9 @@ impl<'a> Sim<'a> {
             path: path.to_path_buf(),
             reason,
         };
-        let fingerprint = state::fingerprint(scene);
+        let fingerprint = records::fingerprint(scene);
         if data.fingerprint != fingerprint {
-            let changes = state::changed_keys(&data.scene_keys, &state::fixed_keys(scene));
+            let changes = records::changed_keys(&data.scene_keys, &records::fixed_keys(scene));
             let what = if changes.is_empty() {
                 "the placed particles differ (a placement file changed?)".to_owned()
             } else {
@@ -549,7 +553,7 @@ impl<'a> Sim<'a> {
         if !headline.text.is_empty() {
             let path = out.join(format!("{}_headline.toml", scene.name));
             let text = toml::to_string(&headline).unwrap_or_default();
-            crate::output::atomic::write_atomic(&path, text.as_bytes()).map_err(output(&path))?;
+            mdr_output::write_atomic(&path, text.as_bytes()).map_err(output(&path))?;
             files.push(path);
         }
         files.push(out.join(format!("{}.pvd", scene.name)));
@@ -929,4 +933,18 @@ fn one_diameter_lift_j(scene: &Scene) -> f64 {
             mass * g * 2.0 * p.radius
         })
         .sum()
+}
+
+/// The scene's sink (`[run] delete_below_m`), if it has one.
+fn scene_sink(scene: &Scene) -> Option<crate::walls::Sink> {
+    let height = scene.source.run.delete_below_m?;
+    let g = scene.gravity.norm();
+    let up = if g > 0.0 {
+        -scene.gravity / g
+    } else {
+        Vector3::z()
+    };
+    let centres: Vec<_> = scene.particles.iter().map(|p| p.position).collect();
+    let radii: Vec<_> = scene.particles.iter().map(|p| p.radius).collect();
+    Some(crate::walls::Sink::new(height, up, g, &centres, &radii))
 }

@@ -51,7 +51,7 @@ impl<'a> SceneSteps<'a> {
         self.sim.step
     }
 
-    /// The largest sphere speed (m/s) now (neighbour-list path; `None` on rapier's paths).
+    /// The largest sphere speed (m/s) now (neighbour-list path; `None` on the rapier pipeline paths).
     pub fn max_speed(&self) -> Option<f64> {
         match &self.sim.built.coupling {
             Coupling::Fast(stepper) => Some(
@@ -77,7 +77,7 @@ impl<'a> SceneSteps<'a> {
     }
 
     /// Time each part of the neighbour-list path's steps from now on (from zero), or stop
-    /// (`false`); nothing on rapier's paths. The trajectory does not depend on it.
+    /// (`false`); nothing on the rapier pipeline paths. The trajectory does not depend on it.
     pub fn time_steps(&mut self, on: bool) {
         if let Coupling::Fast(stepper) = &mut self.sim.built.coupling {
             stepper.time_steps(on);

@@ -59,7 +59,7 @@ pub enum CouplingMode {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ForcePath {
-    /// `mdr_rapier::fast::FastForceStepper`: binned neighbour lists with a skin, the walls as
+    /// `mdr_rapier::neighbour_list::NeighbourListStepper`: binned neighbour lists with a skin, the walls as
     /// rapier colliders registered as surfaces (the default).
     #[default]
     NeighbourList,
@@ -303,7 +303,7 @@ pub struct ParticleGroup {
     #[serde(default)]
     pub radius_std_m: Option<f64>,
     /// `uniform`/`normal`: round every drawn radius down to one of this many + 1 equally spaced
-    /// values from `radius_min_m` to `radius_max_m` (2 to 255; the fast path binds its laws per
+    /// values from `radius_min_m` to `radius_max_m` (2 to 255; the neighbour-list path binds its laws per
     /// distinct radius and holds at most 256 species); continuous when absent.
     #[serde(default)]
     pub radius_classes: Option<u32>,

@@ -765,15 +765,22 @@ impl Checker<'_, '_> {
     }
 }
 
+/// Orifices narrower than this many mean particle diameters jam: arches form over them and
+/// stop the flow for good (in 3D silos the mean avalanche between jams grows without bound
+/// only as `D/d` approaches about 5; Zuriguel, Garcimartín, Maza, Pugnaloni & Pastor, Phys.
+/// Rev. E 71, 051303, 2005). The scene check warns below it, and the hopper headline reports
+/// "jammed" instead of a flow rate.
+pub const JAMMING_RATIO: f64 = 4.0;
+
 impl Checker<'_, '_> {
     /// Orifices (an orifice plate's `orifice_diameter_m`, each of `orifice_sweep_m`) narrower
-    /// than [`crate::headline::JAMMING_RATIO`] mean particle diameters jam.
+    /// than [`JAMMING_RATIO`] mean particle diameters jam.
     fn jamming_hint(&mut self, file: &SceneFile, particles: &[ParticleInit]) {
         if particles.is_empty() {
             return;
         }
         let d = 2.0 * particles.iter().map(|p| p.radius).sum::<f64>() / particles.len() as f64;
-        let limit = crate::headline::JAMMING_RATIO;
+        let limit = JAMMING_RATIO;
         let root = KeyPath::root();
         let mut orifices: Vec<(KeyPath, f64)> = file
             .walls

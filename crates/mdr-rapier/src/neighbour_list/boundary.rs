@@ -1,4 +1,4 @@
-//! Boundaries of the fast path: open space, or a box periodic in x and y.
+//! Boundaries of the neighbour-list path: open space, or a box periodic in x and y.
 //!
 //! Everything that depends on the kind of boundary goes through two notions, so that a
 //! shear-periodic (Lees–Edwards) box only has to supply new ones:
@@ -72,7 +72,7 @@ impl ImageOffset {
     }
 }
 
-/// The box of the fast path.
+/// The box of the neighbour-list path.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Boundary {
     /// No periodicity: rapier colliders (walls, floors …) confine the particles.

@@ -3,7 +3,7 @@
 
 use super::*;
 
-impl<N, T, D, R, B> FastForceStepper<N, T, D, R, B>
+impl<N, T, D, R, B> NeighbourListStepper<N, T, D, R, B>
 where
     N: NormalModel,
     T: TangentialModel,
@@ -26,7 +26,7 @@ where
             for a in table {
                 for b in table {
                     let (e, g) = self.moduli[a.material.0 as usize * nm + b.material.0 as usize];
-                    // The plain path's pair quantities: R = r1 r2/(r1 + r2), m = m1 m2/(m1 + m2).
+                    // The rapier pipeline path's pair quantities: R = r1 r2/(r1 + r2), m = m1 m2/(m1 + m2).
                     let pair = ContactPair::new(
                         e,
                         g,
@@ -199,7 +199,7 @@ where
 }
 
 /// Surfaces listed per cell of a uniform grid over the particles' bounding box (see
-/// [`FastForceStepper::rebuild`]).
+/// [`NeighbourListStepper::rebuild`]).
 struct SurfaceGrid {
     lo: Vector3<f64>,
     inv_cell: f64,

@@ -1,7 +1,7 @@
-//! The fast force-mode stepper: the particles live in the plugin's own arrays, contacts come
+//! The neighbour-list stepper: the particles live in the plugin's own arrays, contacts come
 //! from binned neighbour lists with a skin, and rapier keeps every other collider and body.
 //!
-//! Per step ([`FastForceStepper::step`]):
+//! Per step ([`NeighbourListStepper::step`]):
 //! 1. rebuild the neighbour lists if a particle moved more than half the skin, or a surface
 //!    collider moved more than half the skin, since the last build (the first step always
 //!    builds); a build wraps the particles into the periodic box;
@@ -18,7 +18,7 @@
 //!    share for a particle further on added after them (parallel);
 //! 4. per particle, integrate as rapier does with one solver iteration: `v += (F + m g)/m · dt`,
 //!    `ω += τ/I · dt`, `x += v dt`, the orientation by rapier's linearised update unless switched
-//!    off with [`FastForceStepper::track_orientation`] (parallel);
+//!    off with [`NeighbourListStepper::track_orientation`] (parallel);
 //! 5. reaction forces on dynamic rapier bodies, in key order, added to the forces the user put
 //!    on them (`add_force`/`add_torque`); then `PhysicsWorld::step` moves the rapier bodies, and
 //!    each body gets the user's own forces back.
@@ -32,7 +32,7 @@
 
 use super::boundary::Boundary;
 use super::neighbours::{NeighbourBuilder, PairList};
-use super::particles::{FastParticles, Species};
+use super::particles::{NeighbourListParticles, Species};
 use super::surfaces::{surface_displacement, FastSurface, SurfacePairs};
 use super::workers::map_tasks;
 use crate::added_forces::AddedForces;
@@ -74,14 +74,14 @@ const BLOCK: usize = 128;
 type Law<N, T, D> =
     ContactLaw<<N as NormalModel>::Law, <T as TangentialModel>::Law, <D as DampingModel>::Law>;
 /// The pair history of a stepper's laws, with work books `B`.
-pub type FastHistory<N, T, R, B = Books> = PairHistory<
+pub type NeighbourListHistory<N, T, R, B = Books> = PairHistory<
     StateOf<<N as NormalModel>::Law, <T as TangentialModel>::Law, B>,
     <<R as RollingModel>::Law as RollingLaw>::State,
 >;
 
 /// What one fast step did.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct FastStepReport {
+pub struct NeighbourListStepReport {
     /// Touching sphere–sphere pairs.
     pub sphere_contacts: usize,
     /// Touching particle–surface pairs.
@@ -94,14 +94,14 @@ pub struct FastStepReport {
     pub max_displacement: f64,
 }
 
-/// Wall-clock time a [`FastForceStepper`] spent in each part of its steps while timing was on
-/// ([`FastForceStepper::time_steps`]): LAMMPS's timing breakdown (`Pair`, `Neigh`, `Modify`) for
+/// Wall-clock time a [`NeighbourListStepper`] spent in each part of its steps while timing was on
+/// ([`NeighbourListStepper::time_steps`]): LAMMPS's timing breakdown (`Pair`, `Neigh`, `Modify`) for
 /// this path. Reading the clock costs a few tens of nanoseconds per part and step.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct StepTimings {
     /// Steps timed.
     pub steps: u64,
-    /// Neighbour-list builds (step 1 of [`FastForceStepper::step`]; LAMMPS `Neigh`).
+    /// Neighbour-list builds (step 1 of [`NeighbourListStepper::step`]; LAMMPS `Neigh`).
     pub builds: std::time::Duration,
     /// Particle–surface pairs (step 2).
     pub surfaces: std::time::Duration,
@@ -125,12 +125,12 @@ impl StepTimings {
 pub enum ContactPartner {
     /// Particle `j` (> the first particle, or its periodic image).
     Sphere(u32),
-    /// Surface `s`: the index in [`FastForceStepper::surfaces`].
+    /// Surface `s`: the index in [`NeighbourListStepper::surfaces`].
     Surface(u32),
 }
 
 /// A contact whose history ended (the pair separated, or the lists dropped it), with what its
-/// history had booked (see [`FastForceStepper::record_ended_contacts`]).
+/// history had booked (see [`NeighbourListStepper::record_ended_contacts`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EndedContact {
     /// The particle.
@@ -165,10 +165,10 @@ impl EndedContact {
     }
 }
 
-/// The fast force-mode coupling. Owns the particles (structure of arrays), the neighbour lists
+/// The neighbour-list coupling. Owns the particles (structure of arrays), the neighbour lists
 /// with their histories, and the registered rapier surfaces; call
-/// [`FastForceStepper::step`] instead of `PhysicsWorld::step`.
-pub struct FastForceStepper<
+/// [`NeighbourListStepper::step`] instead of `PhysicsWorld::step`.
+pub struct NeighbourListStepper<
     N: NormalModel,
     T: TangentialModel = Frictionless,
     D: DampingModel = NoDamping,
@@ -182,7 +182,7 @@ pub struct FastForceStepper<
     materials: Vec<Material>,
     /// `(E*, G*)` of material pair `(a, b)` at `a * n + b`.
     moduli: Vec<(f64, f64)>,
-    particles: FastParticles,
+    particles: NeighbourListParticles,
     /// Positions at the last build.
     built_at: Vec<Vector3<f64>>,
     /// Sphere–sphere laws by species pair `(a, b)` at `a * n + b`.
@@ -193,37 +193,37 @@ pub struct FastForceStepper<
     surface_masses: Vec<f64>,
     laws_species: usize,
     surfaces: Vec<FastSurface>,
-    pairs: PairList<FastHistory<N, T, R, B>>,
-    old_pairs: PairList<FastHistory<N, T, R, B>>,
+    pairs: PairList<NeighbourListHistory<N, T, R, B>>,
+    old_pairs: PairList<NeighbourListHistory<N, T, R, B>>,
     builder: NeighbourBuilder,
-    surface_pairs: SurfacePairs<FastHistory<N, T, R, B>>,
-    old_surface_pairs: SurfacePairs<FastHistory<N, T, R, B>>,
+    surface_pairs: SurfacePairs<NeighbourListHistory<N, T, R, B>>,
+    old_surface_pairs: SurfacePairs<NeighbourListHistory<N, T, R, B>>,
     surface_candidates: Vec<(u32, u32)>,
     /// Reaction wrench per surface body, reduced in key order.
     reactions: Vec<(RigidBodyHandle, Vector3<f64>, Vector3<f64>)>,
     /// The reactions written on top of the user's forces, until given back.
     added: AddedForces,
-    /// Per-particle force and torque sums of the step (see [`FastForceStepper::step`]).
+    /// Per-particle force and torque sums of the step (see [`NeighbourListStepper::step`]).
     sums: Vec<(Vector3<f64>, Vector3<f64>)>,
     /// Per particle block of the pair loop: the shares deferred for particles beyond the next
     /// block.
     deferred: Vec<Vec<forces::DeferredShare>>,
-    /// Whether orientations are integrated (see [`FastForceStepper::track_orientation`]).
+    /// Whether orientations are integrated (see [`NeighbourListStepper::track_orientation`]).
     orientation: bool,
     needs_build: bool,
     max_displacement: f64,
-    report: FastStepReport,
+    report: NeighbourListStepReport,
     rebuilds: u64,
-    /// Set by [`FastForceStepper::compute_forces`], taken by [`FastForceStepper::advance`].
+    /// Set by [`NeighbourListStepper::compute_forces`], taken by [`NeighbourListStepper::advance`].
     pending: Option<Pending>,
-    /// Contacts that ended since the last [`FastForceStepper::take_ended_contacts`], when
+    /// Contacts that ended since the last [`NeighbourListStepper::take_ended_contacts`], when
     /// recorded.
     ended: Option<Vec<EndedContact>>,
-    /// Time per part of the steps, while timed ([`FastForceStepper::time_steps`]).
+    /// Time per part of the steps, while timed ([`NeighbourListStepper::time_steps`]).
     timings: Option<StepTimings>,
 }
 
-/// What [`FastForceStepper::compute_forces`] leaves for [`FastForceStepper::advance`].
+/// What [`NeighbourListStepper::compute_forces`] leaves for [`NeighbourListStepper::advance`].
 #[derive(Debug, Clone, Copy)]
 struct Pending {
     rebuilt: bool,
@@ -231,12 +231,12 @@ struct Pending {
     surface_contacts: usize,
 }
 
-/// The neighbour-list state of a [`FastForceStepper`] between two steps: what, with the
+/// The neighbour-list state of a [`NeighbourListStepper`] between two steps: what, with the
 /// particles' positions and velocities, makes a restored stepper continue bit for bit (the
 /// lists are not rebuilt at the restore, so the next build happens at the same step as in the
 /// uninterrupted run, and the histories sit in the same pair order).
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct FastListState<H> {
+pub struct NeighbourListState<H> {
     /// Particle positions at the last build.
     pub built_at: Vec<Vector3<f64>>,
     /// Largest displacement since the last build.
@@ -259,9 +259,9 @@ pub struct FastListState<H> {
     pub surface_history: Vec<H>,
 }
 
-impl<N: NormalModel, T: TangentialModel, D: DampingModel> FastForceStepper<N, T, D, NoRolling> {
+impl<N: NormalModel, T: TangentialModel, D: DampingModel> NeighbourListStepper<N, T, D, NoRolling> {
     /// A stepper for `model` in `boundary`, no rolling resistance, skin 0.1 × (set it with
-    /// [`FastForceStepper::skin`]).
+    /// [`NeighbourListStepper::skin`]).
     pub fn new(model: ContactModel<N, T, D>, boundary: Boundary) -> Self {
         Self {
             model,
@@ -270,7 +270,7 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> FastForceStepper<N, T,
             skin: 0.0,
             materials: Vec::new(),
             moduli: Vec::new(),
-            particles: FastParticles::default(),
+            particles: NeighbourListParticles::default(),
             built_at: Vec::new(),
             sphere_laws: Vec::new(),
             surface_laws: Vec::new(),
@@ -290,7 +290,7 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> FastForceStepper<N, T,
             orientation: true,
             needs_build: true,
             max_displacement: 0.0,
-            report: FastStepReport::default(),
+            report: NeighbourListStepReport::default(),
             rebuilds: 0,
             pending: None,
             ended: None,
@@ -299,7 +299,7 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> FastForceStepper<N, T,
     }
 }
 
-impl<N, T, D, R, B> FastForceStepper<N, T, D, R, B>
+impl<N, T, D, R, B> NeighbourListStepper<N, T, D, R, B>
 where
     N: NormalModel,
     T: TangentialModel,
@@ -312,7 +312,10 @@ where
     R::Law: Clone,
 {
     /// Add a rolling-resistance sub-model (call before inserting particles).
-    pub fn with_rolling<R2: RollingModel>(self, rolling: R2) -> FastForceStepper<N, T, D, R2, B> {
+    pub fn with_rolling<R2: RollingModel>(
+        self,
+        rolling: R2,
+    ) -> NeighbourListStepper<N, T, D, R2, B> {
         // The bound laws and the histories depend on the rolling law: both start afresh.
         self.retyped(rolling, Vec::new(), Vec::new(), |_| {
             (PairList::default(), SurfacePairs::default())
@@ -320,10 +323,10 @@ where
     }
 
     /// Keep no friction and damping work books in the pair histories ([`NoBooks`]): the same
-    /// trajectory bit for bit, 0–1 % less time per step on a settled bed
-    /// (docs/performance.md); the histories' reports then give NaN for those works. Histories
+    /// trajectory bit for bit, with less work per contact (docs/performance.md); the histories'
+    /// reports then give NaN for those works. Histories
     /// are carried over, so this may be called at any point of a run.
-    pub fn without_work_books(mut self) -> FastForceStepper<N, T, D, R, NoBooks> {
+    pub fn without_work_books(mut self) -> NeighbourListStepper<N, T, D, R, NoBooks> {
         fn unbooked<NS, TS, B, RS>(
             h: PairHistory<ContactState<NS, TS, B>, RS>,
         ) -> PairHistory<ContactState<NS, TS, NoBooks>, RS> {
@@ -359,14 +362,14 @@ where
         lists: impl FnOnce(
             &mut Self,
         ) -> (
-            PairList<FastHistory<N, T, R2, B2>>,
-            SurfacePairs<FastHistory<N, T, R2, B2>>,
+            PairList<NeighbourListHistory<N, T, R2, B2>>,
+            SurfacePairs<NeighbourListHistory<N, T, R2, B2>>,
         ),
-    ) -> FastForceStepper<N, T, D, R2, B2> {
+    ) -> NeighbourListStepper<N, T, D, R2, B2> {
         let (pairs, surface_pairs) = lists(&mut self);
         // No bound laws: the next step must build (which binds them and finds the pairs).
         let fresh = sphere_laws.is_empty();
-        FastForceStepper {
+        NeighbourListStepper {
             model: self.model,
             rolling,
             boundary: self.boundary,
@@ -410,14 +413,14 @@ where
     /// the number of threads: per step the rebuild's drops, the surface contacts, then the
     /// sphere pairs, each in list order. Energy books then need the live contacts' books only when
     /// they are read, plus these, instead of every contact's increments at every step. Drain
-    /// them with [`FastForceStepper::take_ended_contacts`]. Off by default.
+    /// them with [`NeighbourListStepper::take_ended_contacts`]. Off by default.
     pub fn record_ended_contacts(mut self, yes: bool) -> Self {
         self.ended = yes.then(Vec::new);
         self
     }
 
     /// Move the contacts that ended since the last call (see
-    /// [`FastForceStepper::record_ended_contacts`]) to the end of `into`.
+    /// [`NeighbourListStepper::record_ended_contacts`]) to the end of `into`.
     pub fn take_ended_contacts(&mut self, into: &mut Vec<EndedContact>) {
         if let Some(ended) = &mut self.ended {
             into.append(ended);
@@ -436,7 +439,7 @@ where
     /// Whether to integrate the particles' orientations (default: yes, as rapier does). Contact
     /// forces and torques of spheres do not depend on orientation, so switching it off changes
     /// no trajectory; it saves a quaternion product and normalisation (a square root and a
-    /// division) per particle and step, and leaves [`FastParticles::rotation`] at its last value.
+    /// division) per particle and step, and leaves [`NeighbourListParticles::rotation`] at its last value.
     /// LAMMPS `atom_style sphere` keeps no orientation either.
     pub fn track_orientation(mut self, yes: bool) -> Self {
         self.orientation = yes;
@@ -444,7 +447,7 @@ where
     }
 
     /// Add a material; pair moduli follow from eq. (3) and docs/theory.md §5 unless overridden by
-    /// [`FastForceStepper::set_pair_moduli`].
+    /// [`NeighbourListStepper::set_pair_moduli`].
     pub fn insert_material(&mut self, material: Material) -> MaterialHandle {
         let old_n = self.materials.len();
         self.materials.push(material);
@@ -551,7 +554,7 @@ where
         self.register_surface_as(colliders, collider, material, None)
     }
 
-    /// Insert a collider (on `parent`, solver groups as [`FastForceStepper::insert_surface`]'s)
+    /// Insert a collider (on `parent`, solver groups as [`NeighbourListStepper::insert_surface`]'s)
     /// whose contacts with the particles follow the exact surface of revolution `surface` (given
     /// in the collider's local frame) instead of its shape: a cylinder, cone or orifice-plate
     /// wall that rapier sees as flat pieces (for its bounding box and its other uses) touches
@@ -597,7 +600,7 @@ where
                 .as_halfspace()
                 .map(|half_space| to_na(half_space.normal).normalize()),
         };
-        // Keep surfaces in collider-index order (the plain path's summation order).
+        // Keep surfaces in collider-index order (the rapier pipeline path's summation order).
         let at = self
             .surfaces
             .partition_point(|s| s.collider.into_raw_parts().0 < collider.into_raw_parts().0);
@@ -608,7 +611,7 @@ where
         Ok(())
     }
 
-    /// Set what the fast path needs on rapier's integration parameters (for the rapier bodies):
+    /// Set what the neighbour-list path needs on rapier's integration parameters (for the rapier bodies):
     /// time step `dt`, one solver iteration, no CCD, no speed cap.
     pub fn configure(&self, params: &mut IntegrationParameters, dt: f64) -> Result<()> {
         positive("dt", dt)?;
@@ -620,13 +623,13 @@ where
     }
 
     /// The particles (structure of arrays).
-    pub fn particles(&self) -> &FastParticles {
+    pub fn particles(&self) -> &NeighbourListParticles {
         &self.particles
     }
 
     /// The particles, mutably (positions, velocities). Moving particles by hand triggers no
-    /// rebuild by itself: call [`FastForceStepper::request_rebuild`] afterwards.
-    pub fn particles_mut(&mut self) -> &mut FastParticles {
+    /// rebuild by itself: call [`NeighbourListStepper::request_rebuild`] afterwards.
+    pub fn particles_mut(&mut self) -> &mut NeighbourListParticles {
         &mut self.particles
     }
 
@@ -641,12 +644,12 @@ where
     }
 
     /// The sphere–sphere neighbour list (pairs, images, histories).
-    pub fn pairs(&self) -> &PairList<FastHistory<N, T, R, B>> {
+    pub fn pairs(&self) -> &PairList<NeighbourListHistory<N, T, R, B>> {
         &self.pairs
     }
 
     /// The particle–surface candidates (histories included).
-    pub fn surface_pairs(&self) -> &SurfacePairs<FastHistory<N, T, R, B>> {
+    pub fn surface_pairs(&self) -> &SurfacePairs<NeighbourListHistory<N, T, R, B>> {
         &self.surface_pairs
     }
 
@@ -661,7 +664,7 @@ where
     }
 
     /// The report of the last step.
-    pub fn last_report(&self) -> FastStepReport {
+    pub fn last_report(&self) -> NeighbourListStepReport {
         self.report
     }
 
@@ -676,7 +679,7 @@ where
         self.timings = on.then(StepTimings::default);
     }
 
-    /// Time spent per part of the steps since [`FastForceStepper::time_steps`] switched timing
+    /// Time spent per part of the steps since [`NeighbourListStepper::time_steps`] switched timing
     /// on; `None` while off.
     pub fn step_timings(&self) -> Option<&StepTimings> {
         self.timings.as_ref()
@@ -703,7 +706,7 @@ where
     }
 
     /// The composed and rolling laws bound to the species of particles `i` and `j` (bound at
-    /// the first build, i.e. after the first [`FastForceStepper::compute_forces`]).
+    /// the first build, i.e. after the first [`NeighbourListStepper::compute_forces`]).
     pub fn sphere_pair_laws(&self, i: usize, j: usize) -> &(Law<N, T, D>, R::Law) {
         let ns = self.laws_species;
         let (si, sj) = (
@@ -714,7 +717,7 @@ where
     }
 
     /// The composed and rolling laws of particle `i` against surface `s` (an index into
-    /// [`FastForceStepper::surfaces`]), bound at each build.
+    /// [`NeighbourListStepper::surfaces`]), bound at each build.
     pub fn surface_pair_laws(&self, i: usize, s: usize) -> &(Law<N, T, D>, R::Law) {
         &self.surface_laws[self.particles.species[i] as usize * self.surfaces.len() + s]
     }
@@ -735,13 +738,13 @@ where
     }
 
     /// One coupled step: particle forces and integration, reactions on rapier bodies, then
-    /// `world.step()`. The same as [`FastForceStepper::compute_forces`] followed by
-    /// [`FastForceStepper::advance`].
-    pub fn step(&mut self, world: &mut PhysicsWorld) -> Result<FastStepReport> {
+    /// `world.step()`. The same as [`NeighbourListStepper::compute_forces`] followed by
+    /// [`NeighbourListStepper::advance`].
+    pub fn step(&mut self, world: &mut PhysicsWorld) -> Result<NeighbourListStepReport> {
         self.step_with(world, &(), &())
     }
 
-    /// [`FastForceStepper::step`] with the user's hooks and event handler for rapier's own
+    /// [`NeighbourListStepper::step`] with the user's hooks and event handler for rapier's own
     /// pairs (`world.step_with_events(hooks, events)`); the particles are not rapier colliders,
     /// so the hooks and events see the rapier bodies' pairs only.
     pub fn step_with(
@@ -749,14 +752,14 @@ where
         world: &mut PhysicsWorld,
         hooks: &dyn PhysicsHooks,
         events: &dyn EventHandler,
-    ) -> Result<FastStepReport> {
+    ) -> Result<NeighbourListStepReport> {
         self.compute_forces(world, false)?;
         self.advance_with(world, hooks, events)
     }
 
     /// First half of a step at the current state `x_k, v_k`: rebuild the lists if due, then every
     /// touching pair's law (which updates its history and work books) and its wrench. Between
-    /// this call and [`FastForceStepper::advance`], positions, velocities, histories and the
+    /// this call and [`NeighbourListStepper::advance`], positions, velocities, histories and the
     /// surface contacts all describe step `k`: the place to read energies and contacts.
     /// `keep_wrenches` also stores every sphere pair's wrench in [`PairList::wrench`] (a
     /// contact-network frame needs them); the particles' force sums, hence the trajectory, are
@@ -792,20 +795,20 @@ where
     }
 
     /// Second half of a step: integrate the particles with the forces of
-    /// [`FastForceStepper::compute_forces`] (called first if it was not), put the reactions on
+    /// [`NeighbourListStepper::compute_forces`] (called first if it was not), put the reactions on
     /// dynamic rapier bodies, then `world.step()`.
-    pub fn advance(&mut self, world: &mut PhysicsWorld) -> Result<FastStepReport> {
+    pub fn advance(&mut self, world: &mut PhysicsWorld) -> Result<NeighbourListStepReport> {
         self.advance_with(world, &(), &())
     }
 
-    /// [`FastForceStepper::advance`] with the user's hooks and event handler for rapier's step
+    /// [`NeighbourListStepper::advance`] with the user's hooks and event handler for rapier's step
     /// (`world.step_with_events(hooks, events)`).
     pub fn advance_with(
         &mut self,
         world: &mut PhysicsWorld,
         hooks: &dyn PhysicsHooks,
         events: &dyn EventHandler,
-    ) -> Result<FastStepReport> {
+    ) -> Result<NeighbourListStepReport> {
         if self.pending.is_none() {
             self.compute_forces(world, false)?;
         }
@@ -826,7 +829,7 @@ where
         if let Some(timings) = &mut self.timings {
             timings.steps += 1;
         }
-        self.report = FastStepReport {
+        self.report = NeighbourListStepReport {
             sphere_contacts: pending.sphere_contacts,
             surface_contacts: pending.surface_contacts,
             neighbour_pairs: self.pairs.len(),
@@ -837,7 +840,7 @@ where
     }
 }
 
-impl<N, T, D, R, B> FastForceStepper<N, T, D, R, B>
+impl<N, T, D, R, B> NeighbourListStepper<N, T, D, R, B>
 where
     N: NormalModel,
     T: TangentialModel,
@@ -848,7 +851,7 @@ where
     /// At each neighbour-list build: `dt` must stay below the stability limit `2 √(m/k_max)`
     /// ([`stable_time_step`]) of the Hertz contact that any two species could make at twice the
     /// largest particle speed, and that any species could make with any surface at the largest
-    /// particle speed plus the surface body's speed, else [`CouplingError::FastTimeStepTooLarge`].
+    /// particle speed plus the surface body's speed, else [`CouplingError::NeighbourListTimeStepTooLarge`].
     fn check_stability(&self, bodies: &RigidBodySet, dt: f64) -> Result<()> {
         let p = &self.particles;
         let v_max = p
@@ -865,7 +868,7 @@ where
             }
             let advice = stable_time_step(&pair, speed, 1.0)?;
             if dt > advice.stability_limit {
-                return Err(CouplingError::FastTimeStepTooLarge {
+                return Err(CouplingError::NeighbourListTimeStepTooLarge {
                     dt,
                     limit: advice.stability_limit,
                     contact_time: advice.contact_time,

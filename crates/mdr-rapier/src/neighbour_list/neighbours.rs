@@ -36,7 +36,7 @@ pub struct PairList<H> {
     /// neither a build nor a separation spends a write on the pairs that are apart.
     pub history: Vec<H>,
     /// Wrench of each pair at the last force evaluation that was asked to keep them
-    /// (`FastForceStepper::compute_forces` with `keep_wrenches`, as for a contact-network
+    /// (`NeighbourListStepper::compute_forces` with `keep_wrenches`, as for a contact-network
     /// frame), zero where not `active`; empty after any other: the pair loop adds each wrench
     /// to the particles' sums as it goes and stores none.
     pub wrench: Vec<PairWrench>,

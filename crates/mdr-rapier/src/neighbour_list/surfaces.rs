@@ -17,7 +17,7 @@ use rapier3d_f64::math::{Pose, Vector};
 use rapier3d_f64::prelude::{Collider, ColliderHandle, RigidBodyHandle};
 use std::sync::Arc;
 
-/// A rapier collider registered as a surface of the fast path.
+/// A rapier collider registered as a surface of the neighbour-list path.
 #[derive(Debug, Clone)]
 pub struct FastSurface {
     /// The collider.

@@ -2,9 +2,9 @@
 //! per chunk, summed per particle block in an order fixed by the particle count alone.
 
 use super::*;
-use crate::fast::neighbours::split_at_bounds;
+use crate::neighbour_list::neighbours::split_at_bounds;
 
-impl<N, T, D, R, B> FastForceStepper<N, T, D, R, B>
+impl<N, T, D, R, B> NeighbourListStepper<N, T, D, R, B>
 where
     N: NormalModel,
     T: TangentialModel,
@@ -59,7 +59,7 @@ where
         self.deferred.resize_with(nblocks, Vec::new);
         // One chunk of a block's pairs (`base` is its first pair's index in the list).
         let chunk = |base: usize,
-                     history: &mut [FastHistory<N, T, R, B>],
+                     history: &mut [NeighbourListHistory<N, T, R, B>],
                      active: &mut [bool],
                      mut wrench: Option<&mut [PairWrench]>,
                      window: &mut [(Vector3<f64>, Vector3<f64>)],
@@ -88,7 +88,7 @@ where
                 touching_pairs[touching] = k as u16;
                 touching += usize::from(touch);
                 if active[k] & !touch {
-                    // Separated: the plain path drops the entry; this one marks the pair
+                    // Separated: the rapier pipeline path drops the entry; this one marks the pair
                     // inactive and leaves its history as it is (a pair that touches again
                     // starts from the default, below).
                     if record {
@@ -168,7 +168,7 @@ where
         // the first colour (even index) first starts both blocks' sums with their surface
         // wrenches.
         let block = |b: usize,
-                     history: &mut [FastHistory<N, T, R, B>],
+                     history: &mut [NeighbourListHistory<N, T, R, B>],
                      active: &mut [bool],
                      mut wrench: Option<&mut [PairWrench]>,
                      window: &mut [(Vector3<f64>, Vector3<f64>)],
@@ -221,16 +221,17 @@ where
         } else {
             (0..nblocks).map(|_| None).collect()
         };
-        let tasks: Vec<Task<'_, FastHistory<N, T, R, B>>> = split_at_bounds(history, &bounds)
-            .into_iter()
-            .zip(split_at_bounds(active, &bounds))
-            .zip(wrench_parts)
-            .zip(self.deferred.iter_mut())
-            .enumerate()
-            .map(|(b, (((history, active), wrench), deferred))| {
-                (b, history, active, wrench, deferred)
-            })
-            .collect();
+        let tasks: Vec<Task<'_, NeighbourListHistory<N, T, R, B>>> =
+            split_at_bounds(history, &bounds)
+                .into_iter()
+                .zip(split_at_bounds(active, &bounds))
+                .zip(wrench_parts)
+                .zip(self.deferred.iter_mut())
+                .enumerate()
+                .map(|(b, (((history, active), wrench), deferred))| {
+                    (b, history, active, wrench, deferred)
+                })
+                .collect();
         let (even, odd): (Vec<_>, Vec<_>) = tasks.into_iter().partition(|t| t.0 % 2 == 0);
         // An even block's window starts at its own first particle, and so does an odd one's.
         let mut results = Vec::with_capacity(nblocks);

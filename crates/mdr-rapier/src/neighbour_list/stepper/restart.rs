@@ -2,7 +2,7 @@
 
 use super::*;
 
-impl<N, T, D, R, B> FastForceStepper<N, T, D, R, B>
+impl<N, T, D, R, B> NeighbourListStepper<N, T, D, R, B>
 where
     N: NormalModel,
     T: TangentialModel,
@@ -14,11 +14,11 @@ where
     D::Law: Clone,
     R::Law: Clone,
 {
-    /// Copy of the neighbour-list state (see [`FastListState`]); take it between two steps.
-    pub fn export_lists(&self) -> FastListState<FastHistory<N, T, R, B>> {
+    /// Copy of the neighbour-list state (see [`NeighbourListState`]); take it between two steps.
+    pub fn export_lists(&self) -> NeighbourListState<NeighbourListHistory<N, T, R, B>> {
         let p = &self.pairs;
         let sp = &self.surface_pairs;
-        FastListState {
+        NeighbourListState {
             built_at: self.built_at.clone(),
             max_displacement: self.max_displacement,
             surface_poses: self.surfaces.iter().map(|s| s.pose_at_build).collect(),
@@ -34,13 +34,13 @@ where
         }
     }
 
-    /// Restore a state from [`FastForceStepper::export_lists`] of a stepper built the same way
+    /// Restore a state from [`NeighbourListStepper::export_lists`] of a stepper built the same way
     /// (same particles, surfaces and laws), with the particles' positions and velocities of the
     /// same step already set. Binds the laws; the lists are used as they are, without a build.
     pub fn import_lists(
         &mut self,
         world: &PhysicsWorld,
-        state: FastListState<FastHistory<N, T, R, B>>,
+        state: NeighbourListState<NeighbourListHistory<N, T, R, B>>,
     ) -> Result<()> {
         let n = self.particles.len();
         let nsurf = self.surfaces.len();

@@ -1,4 +1,4 @@
-//! The fast force-mode path: the same physics as [`crate::force_mode`] (the per-pair kernel
+//! The neighbour-list path: the same physics as [`crate::force_mode`] (the per-pair kernel
 //! [`crate::kernel::evaluate_pair`], symplectic Euler as rapier integrates with one solver
 //! iteration), with the particles in the plugin's own structure-of-arrays storage and contacts
 //! found by binned neighbour lists with a skin, as LAMMPS does, instead of rapier's broad and
@@ -29,10 +29,42 @@ pub mod workers;
 
 pub use boundary::{Boundary, Image, ImageOffset};
 pub use stepper::{
-    ContactPartner, EndedContact, FastForceStepper, FastHistory, FastListState, FastStepReport,
-    StepTimings,
+    ContactPartner, EndedContact, NeighbourListHistory, NeighbourListState,
+    NeighbourListStepReport, NeighbourListStepper, StepTimings,
 };
 pub use workers::with_workers_awake;
+
+/// Former names of the neighbour-list path's types, which named a speed rather than the method.
+#[allow(deprecated)]
+pub use deprecated_names::*;
+
+mod deprecated_names {
+    use mdr_contact::damping::NoDamping;
+    use mdr_contact::model::Books;
+    use mdr_contact::rolling::NoRolling;
+    use mdr_contact::tangential::Frictionless;
+
+    /// Former name of [`super::NeighbourListStepper`].
+    #[deprecated(note = "renamed `NeighbourListStepper`")]
+    pub type FastForceStepper<N, T = Frictionless, D = NoDamping, R = NoRolling, B = Books> =
+        super::NeighbourListStepper<N, T, D, R, B>;
+
+    /// Former name of [`super::NeighbourListHistory`].
+    #[deprecated(note = "renamed `NeighbourListHistory`")]
+    pub type FastHistory<N, T, R, B = Books> = super::NeighbourListHistory<N, T, R, B>;
+
+    /// Former name of [`super::NeighbourListStepReport`].
+    #[deprecated(note = "renamed `NeighbourListStepReport`")]
+    pub type FastStepReport = super::NeighbourListStepReport;
+
+    /// Former name of [`super::NeighbourListState`].
+    #[deprecated(note = "renamed `NeighbourListState`")]
+    pub type FastListState<H> = super::NeighbourListState<H>;
+
+    /// Former name of [`super::particles::NeighbourListParticles`].
+    #[deprecated(note = "renamed `particles::NeighbourListParticles`")]
+    pub type FastParticles = super::particles::NeighbourListParticles;
+}
 
 /// The thread-pool crate of the parallel loops, re-exported so that programs size the pool with
 /// the same version (`rayon::ThreadPoolBuilder::new().num_threads(t).build()?.install(…)`).

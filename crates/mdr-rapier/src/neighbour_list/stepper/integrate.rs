@@ -4,7 +4,7 @@
 use super::*;
 use rapier3d_f64::math::Rotation;
 
-impl<N, T, D, R, B> FastForceStepper<N, T, D, R, B>
+impl<N, T, D, R, B> NeighbourListStepper<N, T, D, R, B>
 where
     N: NormalModel,
     T: TangentialModel,
@@ -22,7 +22,7 @@ where
         let sums = &self.sums;
         let orientation = self.orientation;
         let built_at = &self.built_at;
-        let FastParticles {
+        let NeighbourListParticles {
             position,
             linvel,
             angvel,

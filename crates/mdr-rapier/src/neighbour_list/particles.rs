@@ -1,4 +1,4 @@
-//! Particle data of the fast path in structure-of-arrays form: one array per quantity, indexed
+//! Particle data of the neighbour-list path in structure-of-arrays form: one array per quantity, indexed
 //! by particle, plus a small table of species (material, radius, mass, inertia) so that the
 //! laws can be bound once per species pair instead of once per contact.
 
@@ -27,10 +27,10 @@ pub struct Species {
 }
 
 /// Structure-of-arrays particle data. The vector arrays are in the law crate's type (the pair
-/// loop hands them to the law as they are); [`FastParticles::position_of`] and the other
+/// loop hands them to the law as they are); [`NeighbourListParticles::position_of`] and the other
 /// accessors read and write one particle's in rapier's vector type.
 #[derive(Debug, Clone, Default)]
-pub struct FastParticles {
+pub struct NeighbourListParticles {
     /// Centres.
     pub position: Vec<Vector3<f64>>,
     /// Velocities of the centres.
@@ -47,7 +47,7 @@ pub struct FastParticles {
     pub species_table: Vec<Species>,
 }
 
-impl FastParticles {
+impl NeighbourListParticles {
     /// Number of particles.
     pub fn len(&self) -> usize {
         self.position.len()
@@ -74,7 +74,7 @@ impl FastParticles {
     }
 
     /// Move particle `i` to `position` (m). The neighbour lists are not rebuilt by this:
-    /// call `FastForceStepper::request_rebuild` after moving particles by hand.
+    /// call `NeighbourListStepper::request_rebuild` after moving particles by hand.
     pub fn set_position(&mut self, i: usize, position: impl AnyVector) {
         self.position[i] = position.na();
     }

@@ -1,7 +1,9 @@
-//! What a run carries from step to step besides rapier's bodies: the energy books, and the
-//! checkpoint payload that holds everything needed to continue bit-identically.
+//! The checkpoint payload: everything needed to continue a run bit-identically (bodies,
+//! contacts, neighbour-list histories, random-number state, the energy books, the headline
+//! tracker), and the scene keys a checkpoint must agree with.
 
-use super::build::{with_fast, Coupling, FastSceneStepper, SceneStepper};
+use super::books::Books;
+use super::build::{with_fast, Coupling, FastSceneStepper};
 use super::Sim;
 use crate::headline::{HeadlineSample, Tracker};
 use crate::laws::{AnyDamping, AnyNormalState, SceneNormal, SceneRolling};
@@ -9,286 +11,17 @@ use crate::output::energy::EnergyRow;
 use crate::output::vtk::CollectionEntry;
 use crate::scene::Scene;
 use mdr_contact::damping::DampingModel;
-use mdr_contact::model::{ContactLaw, ContactState, WorkBooks};
-use mdr_contact::normal::{NormalLaw, NormalModel};
-use mdr_contact::rolling::{EpsdRollingState, RollingLaw};
+use mdr_contact::model::{ContactLaw, ContactState};
+use mdr_contact::normal::NormalModel;
+use mdr_contact::rolling::EpsdRollingState;
 use mdr_contact::tangential::{Mindlin, MindlinState, TangentialModel};
 use mdr_rapier::convert::{to_glam, to_na};
-use mdr_rapier::fast::particles::FastParticles;
-use mdr_rapier::fast::{ContactPartner, EndedContact, FastListState};
-use mdr_rapier::kernel::ContactWorks;
+use mdr_rapier::neighbour_list::particles::NeighbourListParticles;
+use mdr_rapier::neighbour_list::NeighbourListState;
 use nalgebra::Vector3;
 use rand_chacha::ChaCha8Rng;
 use rapier3d_f64::prelude::*;
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-
-/// Running totals of the dissipated work and of the work of moving walls.
-///
-/// On the rapier path a pair's history (and its work books) is dropped when the pair
-/// separates, so the totals take each contact's increments step by step. On the neighbour-list
-/// path every contact's history books its own works as it goes (friction, damping and the
-/// springs' stiffness energy in its work books; plastic and rolling work in the laws' states),
-/// and the stepper hands over each contact whose history ends with what it booked
-/// ([`mdr_rapier::fast::EndedContact`]): the totals here then hold the contacts that ended, and
-/// the live contacts' books are added when the books are read ([`Books::live_fast`]), so a step
-/// costs nothing per contact.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-pub struct Books {
-    /// Plastic work since the start (J).
-    pub plastic: f64,
-    /// Friction work since the start (J).
-    pub friction: f64,
-    /// Damping work since the start (J).
-    pub damping: f64,
-    /// Rolling-resistance work since the start (J).
-    pub rolling: f64,
-    /// Work of kinematic walls on the particles since the start (J).
-    pub wall_work: f64,
-    /// Energy the tangential springs lost without work since the start (J; negative when
-    /// gained): stiffness changes at fixed displacement, the rescale of a shrinking contact,
-    /// and what a spring held when its contact opened.
-    pub stiffness_tangential: f64,
-    /// Energy the rolling springs lost without work since the start (J; negative when gained):
-    /// stiffness changes at fixed torque.
-    pub stiffness_rolling: f64,
-    /// Kinetic and gravitational energy removed spheres took out of the run (J).
-    pub removed: f64,
-    /// Rapier path: every touching pair at the last update, sorted by key, with its books then.
-    pub last: Vec<PairBooks>,
-    /// Plastic work per particle (J; on the neighbour-list path, of the contacts that ended).
-    pub particle_plastic: Vec<f64>,
-    /// Buffer of the contacts that ended in a step (empty between steps).
-    #[serde(skip)]
-    ended: Vec<EndedContact>,
-}
-
-/// What the rapier path's books keep of one touching pair between updates: the pair's books
-/// at the last update.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
-pub struct PairBooks {
-    /// Pair key.
-    pub key: u64,
-    /// Plastic work of the pair so far (J).
-    pub plastic: f64,
-    /// Largest overlap of the pair so far (m), which the plastic work is a function of.
-    pub max_overlap: f64,
-    /// Friction work (J).
-    pub friction: f64,
-    /// Damping work (J).
-    pub damping: f64,
-    /// Rolling work (J).
-    pub rolling: f64,
-    /// Energy the tangential springs gained without work (J).
-    pub tangential_stiffness: f64,
-    /// Energy the rolling spring gained without work (J).
-    pub rolling_stiffness: f64,
-}
-
-impl Books {
-    pub(crate) fn new(particles: usize) -> Self {
-        Self {
-            particle_plastic: vec![0.0; particles],
-            ..Self::default()
-        }
-    }
-
-    /// Take the increments of the step whose forces were just computed (rapier path).
-    pub(crate) fn take(
-        &mut self,
-        stepper: &SceneStepper,
-        bodies: &RigidBodySet,
-        particle_of_collider: &[usize],
-        wall_of_collider: &[usize],
-        dt: f64,
-    ) {
-        let entries = stepper.contacts().entries();
-        let mut next = Vec::with_capacity(entries.len());
-        let mut j = 0;
-        let particle = |c: ColliderHandle| {
-            particle_of_collider
-                .get(c.into_raw_parts().0 as usize)
-                .copied()
-                .filter(|&i| i != usize::MAX)
-        };
-        for e in entries {
-            let key = e.key.0;
-            while j < self.last.len() && self.last[j].key < key {
-                j += 1;
-            }
-            let prev = match self.last.get(j) {
-                Some(l) if l.key == key => *l,
-                _ => PairBooks::default(),
-            };
-            let h = &e.history;
-            // The plastic work is a function of the largest overlap
-            // (`NormalLaw::dissipated_work`): the same as at the last update unless that grew.
-            let max_overlap = e.law.normal.max_overlap(&h.contact.normal);
-            let plastic = if max_overlap == prev.max_overlap && prev.key == key {
-                prev.plastic
-            } else {
-                e.law.normal.dissipated_work(&h.contact.normal)
-            };
-            let books = &h.contact.books;
-            let now = PairBooks {
-                key,
-                plastic,
-                max_overlap,
-                friction: books.friction_work(),
-                damping: books.damping_work(),
-                rolling: e.rolling.dissipated_work(&h.rolling),
-                tangential_stiffness: books.tangential_stiffness_energy(),
-                rolling_stiffness: books.rolling_stiffness_energy(),
-            };
-            let dp = now.plastic - prev.plastic;
-            self.plastic += dp;
-            self.friction += now.friction - prev.friction;
-            self.damping += now.damping - prev.damping;
-            self.rolling += now.rolling - prev.rolling;
-            self.stiffness_tangential -= now.tangential_stiffness - prev.tangential_stiffness;
-            self.stiffness_rolling -= now.rolling_stiffness - prev.rolling_stiffness;
-            if dp != 0.0 {
-                match (particle(e.collider1), particle(e.collider2)) {
-                    (Some(a), Some(b)) => {
-                        self.particle_plastic[a] += 0.5 * dp;
-                        self.particle_plastic[b] += 0.5 * dp;
-                    }
-                    (Some(a), None) | (None, Some(a)) => self.particle_plastic[a] += dp,
-                    (None, None) => {}
-                }
-            }
-            next.push(now);
-            // Work of a moving wall on the sphere: F · v_wall(contact point) dt.
-            let on_wall = wall_of_collider
-                .get(e.collider2.into_raw_parts().0 as usize)
-                .is_some_and(|&w| w != usize::MAX);
-            if on_wall {
-                if let Some(b2) = e.body2.and_then(|h| bodies.get(h)) {
-                    if b2.is_kinematic() {
-                        self.wall_work += wall_power(b2, &e.contact.point, &e.wrench.force) * dt;
-                    }
-                }
-            }
-        }
-        self.last = next;
-    }
-
-    /// The step whose forces were just computed, on the neighbour-list path: the contacts that
-    /// ended (their whole books, once), and the work of kinematic walls (`F · v_wall dt` per
-    /// touching sphere, in the stepper's surface-pair order).
-    pub(crate) fn take_fast<N: SceneNormal, R: SceneRolling>(
-        &mut self,
-        stepper: &mut FastSceneStepper<N, R>,
-        bodies: &RigidBodySet,
-        dt: f64,
-    ) {
-        stepper.take_ended_contacts(&mut self.ended);
-        for e in self.ended.drain(..) {
-            let w = &e.works;
-            self.plastic += w.plastic;
-            self.friction += w.friction;
-            self.damping += w.damping;
-            self.rolling += w.rolling;
-            self.stiffness_tangential -= w.tangential_stiffness;
-            self.stiffness_rolling -= w.rolling_stiffness;
-            let i = e.particle as usize;
-            match e.partner {
-                ContactPartner::Sphere(j) => {
-                    self.particle_plastic[i] += 0.5 * w.plastic;
-                    self.particle_plastic[j as usize] += 0.5 * w.plastic;
-                }
-                ContactPartner::Surface(_) => self.particle_plastic[i] += w.plastic,
-            }
-        }
-        let surfaces = stepper.surfaces();
-        let kinematic: Vec<Option<&RigidBody>> = surfaces
-            .iter()
-            .map(|s| {
-                s.body
-                    .and_then(|h| bodies.get(h))
-                    .filter(|b| b.is_kinematic())
-            })
-            .collect();
-        if kinematic.iter().all(Option::is_none) {
-            return;
-        }
-        let sp = stepper.surface_pairs();
-        for q in (0..sp.len()).filter(|&q| sp.active[q]) {
-            if let Some(b2) = kinematic[sp.surface[q] as usize] {
-                self.wall_work += wall_power(b2, &sp.contact[q].point, &sp.wrench[q].force) * dt;
-            }
-        }
-    }
-
-    /// The books of the contacts alive on the neighbour-list path, to add to the totals
-    /// ([`Books`]); with `particle_plastic`, their plastic work is added to it per particle
-    /// (half to each sphere of a pair). Taken in parallel over fixed blocks of particles and
-    /// joined in block order, so the sums do not depend on the number of threads.
-    pub(crate) fn live_fast<N: SceneNormal, R: SceneRolling>(
-        stepper: &FastSceneStepper<N, R>,
-        particle_plastic: Option<&mut [f64]>,
-    ) -> ContactWorks {
-        /// Particles per block.
-        const BLOCK: usize = 2048;
-        let per_particle = particle_plastic.is_some();
-        let p = stepper.particles();
-        let pairs = stepper.pairs();
-        let sp = stepper.surface_pairs();
-        let n = p.len();
-        let blocks: Vec<(ContactWorks, Vec<(u32, f64)>)> = (0..n.div_ceil(BLOCK))
-            .into_par_iter()
-            .map(|b| {
-                let mut total = ContactWorks::default();
-                let mut plastic = Vec::new();
-                for i in b * BLOCK..((b + 1) * BLOCK).min(n) {
-                    for q in sp.start[i] as usize..sp.start[i + 1] as usize {
-                        if sp.active[q] {
-                            let (law, rolling) =
-                                stepper.surface_pair_laws(i, sp.surface[q] as usize);
-                            let w = ContactWorks::of(law, rolling, &sp.history[q]);
-                            total.add(&w);
-                            if per_particle {
-                                plastic.push((i as u32, w.plastic));
-                            }
-                        }
-                    }
-                    for q in pairs.first[i] as usize..pairs.first[i + 1] as usize {
-                        if pairs.active[q] {
-                            let j = pairs.j[q] as usize;
-                            let (law, rolling) = stepper.sphere_pair_laws(i, j);
-                            let w = ContactWorks::of(law, rolling, &pairs.history[q]);
-                            total.add(&w);
-                            if per_particle {
-                                plastic.push((i as u32, 0.5 * w.plastic));
-                                plastic.push((j as u32, 0.5 * w.plastic));
-                            }
-                        }
-                    }
-                }
-                (total, plastic)
-            })
-            .collect();
-        let mut total = ContactWorks::default();
-        let mut particle_plastic = particle_plastic;
-        for (block, plastic) in &blocks {
-            total.add(block);
-            if let Some(pp) = particle_plastic.as_deref_mut() {
-                for &(i, w) in plastic {
-                    pp[i as usize] += w;
-                }
-            }
-        }
-        total
-    }
-}
-
-/// Power of a kinematic wall on a sphere: the force on the sphere times the wall's velocity at
-/// the contact point.
-fn wall_power(wall: &RigidBody, point: &Vector3<f64>, force: &Vector3<f64>) -> f64 {
-    let arm = point - to_na(wall.center_of_mass());
-    let v = to_na(wall.linvel()) + to_na(wall.angvel()).cross(&arm);
-    force.dot(&v)
-}
 
 /// The composed law of a scene's pairs, with normal model `N`.
 pub(crate) type SceneLaw<N> = ContactLaw<
@@ -324,7 +57,7 @@ impl BodyRecord {
     }
 
     /// The record of particle `i` of the neighbour-list path.
-    pub fn of_particle(p: &FastParticles, i: usize) -> Self {
+    pub fn of_particle(p: &NeighbourListParticles, i: usize) -> Self {
         let q = p.rotation[i];
         Self {
             translation: p.position[i].into(),
@@ -335,7 +68,7 @@ impl BodyRecord {
     }
 
     /// Put the record into particle `i` of the neighbour-list path.
-    pub fn apply_to_particle(&self, p: &mut FastParticles, i: usize) {
+    pub fn apply_to_particle(&self, p: &mut NeighbourListParticles, i: usize) {
         let [x, y, z, w] = self.rotation;
         p.position[i] = Vector3::from(self.translation);
         p.rotation[i] = rapier3d_f64::math::Rotation::from_xyzw(x, y, z, w);
@@ -367,7 +100,7 @@ pub struct ContactRecord {
     pub rolling: EpsdRollingState,
 }
 
-/// The neighbour-list stepper's state between two steps ([`mdr_rapier::fast::FastListState`]),
+/// The neighbour-list stepper's state between two steps ([`mdr_rapier::neighbour_list::NeighbourListState`]),
 /// with the histories of touching pairs only (the others are default).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FastRecord {
@@ -391,7 +124,8 @@ pub struct FastRecord {
 
 /// The history of one pair on the neighbour-list path of a scene with normal model `N` and
 /// rolling model `R`.
-pub(crate) type FastPairHistory<N, R> = mdr_rapier::fast::FastHistory<N, Mindlin, R>;
+pub(crate) type FastPairHistory<N, R> =
+    mdr_rapier::neighbour_list::NeighbourListHistory<N, Mindlin, R>;
 
 impl FastRecord {
     pub(crate) fn of<N: SceneNormal, R: SceneRolling>(stepper: &FastSceneStepper<N, R>) -> Self {
@@ -435,7 +169,7 @@ impl FastRecord {
     /// The stepper's state; `None` if a history's index is out of range.
     pub(crate) fn to_state<N: SceneNormal, R: SceneRolling>(
         &self,
-    ) -> Option<FastListState<FastPairHistory<N, R>>> {
+    ) -> Option<NeighbourListState<FastPairHistory<N, R>>> {
         let expand = |n: usize, records: &[ContactRecord]| {
             let mut active = vec![false; n];
             let mut history = vec![FastPairHistory::<N, R>::default(); n];
@@ -456,7 +190,7 @@ impl FastRecord {
         let (pair_active, pair_history) = expand(self.pairs.len(), &self.pair_histories)?;
         let (surface_active, surface_history) =
             expand(self.surface_pairs.len(), &self.surface_histories)?;
-        Some(FastListState {
+        Some(NeighbourListState {
             built_at: self.built_at.iter().map(|&x| Vector3::from(x)).collect(),
             max_displacement: self.max_displacement,
             surface_poses: self
@@ -517,7 +251,7 @@ pub struct CheckpointData {
     pub dt_bits: u64,
     /// Step counter.
     pub step: u64,
-    /// Particles (bodies on rapier's path, the stepper's arrays on the neighbour-list path),
+    /// Particles (bodies on the rapier pipeline path, the stepper's arrays on the neighbour-list path),
     /// then wall bodies, in creation order.
     pub bodies: Vec<BodyRecord>,
     /// Force mode on rapier's pipeline: per-pair histories, sorted by key.

@@ -1,0 +1,99 @@
+//! Drop: the coefficient of restitution of a sphere's first bounce, compared with the law's
+//! energy route (`MdrLaw::impact`, docs/theory.md §4).
+
+use super::{up, HeadlineReport, HeadlineSample, HeadlineTracker, ParticleView};
+use crate::scene::{NormalSpec, Scene};
+use mdr_contact::normal::{MdrElastoPlastic, MdrState, NormalModel};
+use mdr_contact::ContactPair;
+use serde::{Deserialize, Serialize};
+
+/// The first bounce as it happens: the speed before the first contact, whether the sphere has
+/// touched, and its rebound speed once it has left again. Updated every step: a contact lasts
+/// a few hundred steps, shorter than the sampling interval.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct DropTracker {
+    before: f64,
+    touched: bool,
+    rebound: Option<f64>,
+}
+
+impl HeadlineTracker for DropTracker {
+    fn series_names(&self) -> &'static [&'static str] {
+        &["height_m", "vertical_velocity_m_per_s"]
+    }
+
+    fn needs_every_step(&self) -> bool {
+        true
+    }
+
+    fn on_step(&mut self, scene: &Scene, view: &ParticleView<'_>) {
+        let up = up(scene);
+        let touching = view.contacts.first().is_some_and(|&c| c > 0);
+        let vn = view.velocity.first().map_or(0.0, |v| v.dot(&up));
+        if !self.touched {
+            if touching {
+                self.touched = true;
+            } else if vn > 0.0 && self.before > 0.0 {
+                // Restitution mode: the impulse reverses the velocity within one step.
+                self.touched = true;
+                self.rebound = Some(vn);
+            } else {
+                self.before = -vn;
+            }
+        } else if self.rebound.is_none() && !touching {
+            self.rebound = Some(vn);
+        }
+    }
+
+    fn sample(&self, scene: &Scene, view: &ParticleView<'_>) -> Vec<f64> {
+        let up = up(scene);
+        vec![
+            view.position.first().map_or(f64::NAN, |p| p.dot(&up)),
+            view.velocity.first().map_or(f64::NAN, |v| v.dot(&up)),
+        ]
+    }
+
+    fn report(&self, scene: &Scene, _samples: &[HeadlineSample]) -> HeadlineReport {
+        let mut r = HeadlineReport::default();
+        let Self {
+            before, rebound, ..
+        } = *self;
+        let e = rebound.map_or(f64::NAN, |v| v / before);
+        r.push("impact_speed_m_per_s", before);
+        r.push("restitution", e);
+        let mut text = format!(
+            "drop: impact speed {before:.4} m/s, rebound {} m/s, e_n = {e:.5}",
+            rebound.map_or("(none yet)".to_owned(), |v| format!("{v:.4}"))
+        );
+        if let (
+            NormalSpec::Mdr {
+                critical_line_load,
+                hardening_ratio,
+            },
+            Some(wall),
+        ) = (scene.contact.normal, scene.walls.first())
+        {
+            let p = &scene.particles[0];
+            let m = scene.materials[p.material].1;
+            let reference =
+                ContactPair::sphere_on_half_space(p.radius, &m, &scene.materials[wall.material].1)
+                    .ok()
+                    .zip(MdrElastoPlastic::new(critical_line_load, hardening_ratio).ok())
+                    .and_then(|(pair, model)| model.bind(&pair).ok().map(|law| (pair, law)))
+                    .map(|(pair, law)| {
+                        law.impact(&MdrState::default(), pair.reduced_mass(), before)
+                            .restitution
+                    });
+            if let Some(reference) = reference {
+                r.push("law_energy_route_restitution", reference);
+                text.push_str(&format!(
+                    "\n  law's energy route (closed form, docs/theory.md §4) at that speed: e_n = {reference:.5} \
+                     (difference {:.3} %)",
+                    100.0 * (e / reference - 1.0)
+                ));
+            }
+        }
+        r.text = text;
+        r
+    }
+}
