@@ -157,30 +157,6 @@ pub(crate) fn integrate_normal<L: NormalLaw>(
         tension = tension.max(-force);
         let previous_rate = rate;
         rate = half_rate - 0.5 * dt * force * inverse_mass;
-        held = holds;
-        if holds {
-            reach = law.detachment_overlap(&state);
-            if previous_rate < 0.0 && rate >= 0.0 {
-                // Turned back while held: stuck.
-                if let Some(t) = trace.as_deref_mut() {
-                    t.push(TracePoint {
-                        time: step as f64 * dt,
-                        overlap,
-                        velocity: -rate,
-                        force,
-                        contact_radius: response.contact_radius,
-                        plastic_work: law.dissipated_work(&state),
-                    });
-                }
-                return Ok(NormalRun::stuck(
-                    law.max_overlap(&state),
-                    law.residual_overlap(&state),
-                    f64::NAN,
-                    peak_force,
-                    tension,
-                ));
-            }
-        }
         if let Some(t) = trace.as_deref_mut() {
             t.push(TracePoint {
                 time: step as f64 * dt,
@@ -190,6 +166,20 @@ pub(crate) fn integrate_normal<L: NormalLaw>(
                 contact_radius: response.contact_radius,
                 plastic_work: law.dissipated_work(&state),
             });
+        }
+        held = holds;
+        if holds {
+            reach = law.detachment_overlap(&state);
+            if previous_rate < 0.0 && rate >= 0.0 {
+                // Turned back while held: stuck.
+                return Ok(NormalRun::stuck(
+                    law.max_overlap(&state),
+                    law.residual_overlap(&state),
+                    f64::NAN,
+                    peak_force,
+                    tension,
+                ));
+            }
         }
     }
     Err(ImpactError::NoSeparation {
