@@ -4,9 +4,8 @@
 //! One step `k` (force mode, on either path):
 //! 1. a checkpoint, if one is due (the state holds `x_k, v_k` and the histories up to `x_{k−1}`);
 //! 2. the coupling's `compute_forces` at `x_k, v_k` (the law updates every touching pair's
-//!    history; the neighbour-list path first rebuilds its lists if due); rapier's path first
-//!    runs the coupling's checks (`check_step`: configured world, registration groups, the
-//!    scene's step equal to rapier's);
+//!    history; the neighbour-list path first rebuilds its lists if due); the rapier pipeline
+//!    path's checks (`check_step`) run once, when the run is built;
 //! 3. the books take the work increments of every contact, and the samples (energy row, frame,
 //!    headline) are taken here, where positions, velocities and contact states all describe `x_k`;
 //! 4. the integration to `v_{k+1}`, `x_{k+1}` (symplectic Euler) and `PhysicsWorld::step`:
@@ -294,7 +293,11 @@ impl<'a> Sim<'a> {
         // the same touching pairs). Restitution mode leaves detection to rapier's step: a
         // detection pass before the first step would consume the bodies' change flags before
         // the island manager activates them.
-        if matches!(built.coupling, Coupling::Force(_)) {
+        if let Coupling::Force(stepper) = &built.coupling {
+            // The coupling's checks (configured world, registration groups, the scene's step
+            // equal to rapier's) once: a scene changes none of them while it runs.
+            let world = &built.world;
+            stepper.check_step(&world.integration_parameters, &world.colliders, scene.dt)?;
             built.world.detect_collisions(&(), &());
         }
         // The placement used its own generator; the run's generator continues the seed's
@@ -426,7 +429,6 @@ impl<'a> Sim<'a> {
         let world = &mut self.built.world;
         match &mut self.built.coupling {
             Coupling::Force(stepper) => {
-                stepper.check_step(&world.integration_parameters, &world.colliders, dt)?;
                 stepper.compute_forces(&world.bodies, &world.colliders, &world.narrow_phase, dt)?;
                 // Clears the plugin's force accumulators; the bodies keep no force of it.
                 stepper.apply_forces(&mut world.bodies);
@@ -640,7 +642,6 @@ impl<'a> Sim<'a> {
         let world = &self.built.world;
         match &mut self.built.coupling {
             Coupling::Force(stepper) => {
-                stepper.check_step(&world.integration_parameters, &world.colliders, dt)?;
                 stepper.compute_forces(&world.bodies, &world.colliders, &world.narrow_phase, dt)?;
                 self.books.take(
                     stepper,
