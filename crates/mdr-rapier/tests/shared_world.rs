@@ -23,6 +23,27 @@ fn grain() -> Material {
         .unwrap()
 }
 
+/// A world with a registered floor `y = 0` on the neighbour-list path, and the grain material.
+fn neighbour_list_on_floor() -> (
+    PhysicsWorld,
+    NeighbourListStepper<MdrElastoPlastic>,
+    MaterialHandle,
+) {
+    let mut world = PhysicsWorld::default();
+    let mut stepper =
+        NeighbourListStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
+    let m = stepper.insert_material(grain());
+    stepper
+        .insert_surface(
+            &mut world,
+            ColliderBuilder::new(SharedShape::halfspace(Vector::Y)),
+            None,
+            m,
+        )
+        .unwrap();
+    (world, stepper, m)
+}
+
 /// The integration parameters force mode's `configure` sets (one solver iteration, no CCD, no
 /// speed cap), for the plugin-free reference world.
 fn reference_parameters(world: &mut PhysicsWorld) {
@@ -151,18 +172,7 @@ fn a_users_constant_force_on_a_registered_body_acts_as_without_the_plugin() {
 /// registered surfaces.
 #[test]
 fn a_users_constant_force_acts_as_without_the_plugin_on_the_neighbour_list_path() {
-    let mut world = PhysicsWorld::default();
-    let mut stepper =
-        NeighbourListStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
-    let m = stepper.insert_material(grain());
-    stepper
-        .insert_surface(
-            &mut world,
-            ColliderBuilder::new(SharedShape::halfspace(Vector::Y)),
-            None,
-            m,
-        )
-        .unwrap();
+    let (mut world, mut stepper, m) = neighbour_list_on_floor();
     let bodies = user_bodies(&mut world, |w, c, b| {
         stepper.insert_surface(w, c, Some(b), m).unwrap();
     });
@@ -195,18 +205,7 @@ impl PhysicsHooks for PassThrough {
 /// through the floor.
 #[test]
 fn unregistered_bodies_rest_on_the_neighbour_list_paths_surfaces() {
-    let mut world = PhysicsWorld::default();
-    let mut stepper =
-        NeighbourListStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
-    let m = stepper.insert_material(grain());
-    stepper
-        .insert_surface(
-            &mut world,
-            ColliderBuilder::new(SharedShape::halfspace(Vector::Y)),
-            None,
-            m,
-        )
-        .unwrap();
+    let (mut world, mut stepper, m) = neighbour_list_on_floor();
     let on_floor = world.insert_body(
         RigidBodyBuilder::dynamic()
             .translation(Vector::new(0.5, HALF + 0.01, 0.0))
@@ -498,18 +497,7 @@ fn vectors_pass_and_read_in_rapiers_type() {
 #[test]
 fn an_unstable_step_on_the_neighbour_list_path_is_an_error() {
     let run = |dt: f64, spheres: &[(Vector, Vector)]| {
-        let mut world = PhysicsWorld::default();
-        let mut stepper =
-            NeighbourListStepper::new(ContactModel::new(MdrElastoPlastic::paper()), Boundary::Open);
-        let m = stepper.insert_material(grain());
-        stepper
-            .insert_surface(
-                &mut world,
-                ColliderBuilder::new(SharedShape::halfspace(Vector::Y)),
-                None,
-                m,
-            )
-            .unwrap();
+        let (mut world, mut stepper, m) = neighbour_list_on_floor();
         for &(x, v) in spheres {
             stepper
                 .insert_sphere(SphereBuilder::new(R, m).translation(x).linvel(v))
