@@ -226,10 +226,14 @@ fn energy_route_cost() -> (f64, f64) {
     for i in 0..n {
         acc += law
             .impact(&MdrState::default(), m, 0.5 + 1e-6 * i as f64)
+            .expect("a finite speed")
             .restitution;
     }
     let fresh = t0.elapsed().as_secs_f64() / n as f64 * 1e9;
-    let state = law.impact(&MdrState::default(), m, 2.0).state;
+    let state = law
+        .impact(&MdrState::default(), m, 2.0)
+        .expect("a finite speed")
+        .state;
     let t0 = Instant::now();
     for i in 0..n {
         let v = 0.5 + 1e-6 * i as f64;

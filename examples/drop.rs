@@ -39,7 +39,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let e = world.bodies[ball].linvel().y / v0;
     let law = MdrElastoPlastic::paper().bind(&pair)?;
-    let reference = law.impact(&MdrState::default(), pair.reduced_mass(), v0);
+    let reference = law.impact(&MdrState::default(), pair.reduced_mass(), v0)?;
     println!("contact resolved in {steps} steps of {dt:.3e} s");
     println!("e_n in rapier     = {e:.5}");
     println!("e_n energy route  = {:.5}", reference.restitution);

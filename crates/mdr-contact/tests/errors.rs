@@ -1,7 +1,9 @@
 //! Every invalid parameter gives its typed error, and the message names the parameter.
 
 use mdr_contact::damping::{HertzianViscous, StiffnessViscous};
-use mdr_contact::normal::SpringBed;
+use mdr_contact::normal::{
+    liggghts_thornton_ning_restitution, thornton_restitution, MdrState, SpringBed,
+};
 use mdr_contact::prelude::*;
 use mdr_contact::profile::{Cone, FlatPunch, NumericalProfile, PowerLaw, Sphere};
 use mdr_contact::tangential::SpringBedTangential;
@@ -283,4 +285,36 @@ fn bad_tables() {
         .unwrap_err()
         .to_string();
     assert!(message.contains("increase"), "{message}");
+}
+
+/// The energy route (`MdrLaw::impact`) and Thornton's closed forms refuse a speed that is NaN,
+/// infinite or negative instead of answering `e = 1`; speed 0 is the elastic limit.
+#[test]
+fn impact_speed_must_be_finite_and_not_negative() {
+    let pair = ContactPair::paper_fig2();
+    let law = MdrElastoPlastic::paper().bind(&pair).unwrap();
+    let m = pair.reduced_mass();
+    let fresh = MdrState::default();
+    assert_error(law.impact(&fresh, m, f64::NAN), "speed", "NotFinite");
+    assert_error(law.impact(&fresh, m, f64::INFINITY), "speed", "NotFinite");
+    assert_error(law.impact(&fresh, m, -1.0), "speed", "OutOfRange");
+    assert_error(law.impact(&fresh, m, 1.0e-3 - 1.0), "speed", "OutOfRange");
+    assert_error(law.impact(&fresh, f64::NAN, 1.0), "mass", "NotFinite");
+    assert_error(law.impact(&fresh, 0.0, 1.0), "mass", "OutOfRange");
+    let rest = law.impact(&fresh, m, 0.0).unwrap();
+    assert_eq!((rest.restitution, rest.max_overlap), (1.0, 0.0));
+    assert_eq!(rest.state, fresh);
+    for bad in [f64::NAN, f64::NEG_INFINITY, -0.5] {
+        let kind = if bad.is_finite() {
+            "OutOfRange"
+        } else {
+            "NotFinite"
+        };
+        assert_error(thornton_restitution(bad), "speed_over_yield_speed", kind);
+        assert_error(
+            liggghts_thornton_ning_restitution(bad),
+            "speed_over_yield_speed",
+            kind,
+        );
+    }
 }

@@ -283,7 +283,7 @@ fn elastic_re_impact_reaches_the_depth_that_stores_its_energy() {
     let depth = residual + 0.6 * (s - residual);
     let kinetic = 0.4 * c / theta.sqrt() * (depth - residual).powf(2.5);
     let speed = (2.0 * kinetic / m).sqrt();
-    let impact = law.impact(&state, m, speed);
+    let impact = law.impact(&state, m, speed).unwrap();
     assert_eq!(impact.restitution, 1.0);
     assert_eq!(impact.state, state);
     assert!(
@@ -296,7 +296,7 @@ fn elastic_re_impact_reaches_the_depth_that_stores_its_energy() {
     let kinetic = 0.4 * c / theta.sqrt() * (s - residual).powf(2.5)
         + 0.4 * c * (depth.powf(2.5) - s.powf(2.5))
         - (1.0 - theta) * c * s.powf(1.5) * (depth - s);
-    let impact = law.impact(&state, m, (2.0 * kinetic / m).sqrt());
+    let impact = law.impact(&state, m, (2.0 * kinetic / m).sqrt()).unwrap();
     assert_eq!(impact.restitution, 1.0);
     assert!(
         close(impact.max_overlap, depth, 1e-12),
@@ -339,7 +339,9 @@ fn energy_route_finds_the_overlap_that_spends_the_kinetic_energy() {
         for ratio in [1.5, 4.0, 30.0, 1000.0] {
             let depth = ratio * x.u_c;
             let kinetic = w_load(depth);
-            let impact = law.impact(&MdrState::default(), m, (2.0 * kinetic / m).sqrt());
+            let impact = law
+                .impact(&MdrState::default(), m, (2.0 * kinetic / m).sqrt())
+                .unwrap();
             assert!(
                 close(impact.max_overlap, depth, 1e-13),
                 "θ = {theta}, D = {ratio} u_c: {} vs {depth}",
@@ -357,7 +359,7 @@ fn energy_route_finds_the_overlap_that_spends_the_kinetic_energy() {
                 max_overlap: 0.5 * depth,
             };
             let kinetic = w_stored(0.5 * depth, 0.5 * depth) + w_load(depth) - w_load(0.5 * depth);
-            let impact = law.impact(&before, m, (2.0 * kinetic / m).sqrt());
+            let impact = law.impact(&before, m, (2.0 * kinetic / m).sqrt()).unwrap();
             assert!(
                 close(impact.max_overlap, depth, 1e-13),
                 "θ = {theta}, D = {ratio} u_c after D/2: {} vs {depth}",

@@ -53,9 +53,10 @@ fn integrate_unit(f: impl Fn(f64) -> f64) -> f64 {
     gauss_legendre().iter().map(|&(s, w)| w * f(s)).sum()
 }
 
-/// Energy route for a sphere of reduced mass `mass` (kg) at normal speed `speed` (m/s).
-pub(crate) fn energy_route(law: &MdrLaw, mass: f64, speed: f64) -> EnergyRun {
-    let outcome = law.impact(&MdrState::default(), mass, speed);
+/// Energy route for a sphere of reduced mass `mass` (kg) at normal speed `speed` (m/s); the
+/// law's error for a speed that is NaN, infinite or negative.
+pub(crate) fn energy_route(law: &MdrLaw, mass: f64, speed: f64) -> mdr_contact::Result<EnergyRun> {
+    let outcome = law.impact(&MdrState::default(), mass, speed)?;
     let d_max = outcome.max_overlap;
     let state = outcome.state;
     let residual = law.residual_overlap(&state);
@@ -75,11 +76,11 @@ pub(crate) fn energy_route(law: &MdrLaw, mass: f64, speed: f64) -> EnergyRun {
         let v_squared = (2.0 * (stored - law.elastic_energy(&state, d)) / mass).max(0.0);
         2.0 * span * s / v_squared.sqrt().max(f64::MIN_POSITIVE)
     });
-    EnergyRun {
+    Ok(EnergyRun {
         restitution: outcome.restitution,
         max_overlap: d_max,
         residual_overlap: residual,
         contact_time: loading + unloading,
         peak_force,
-    }
+    })
 }

@@ -122,7 +122,8 @@ pub struct FitReport {
     pub yield_speed: f64,
 }
 
-/// Model prediction `scale · e_n(v)` for every speed; an error if the values are out of range.
+/// Model prediction `scale · e_n(v)` for every speed; an error if the values are out of range
+/// or a speed is NaN, infinite or negative.
 pub fn predict(pair: &ContactPair, values: &FitValues, speeds: &[f64]) -> Result<Vec<f64>> {
     let params = MdrElastoPlastic::new(values.q_c, values.theta_ratio)
         .map_err(ImpactError::parameter("qc"))?;
@@ -142,10 +143,14 @@ pub fn predict(pair: &ContactPair, values: &FitValues, speeds: &[f64]) -> Result
             .collect();
     }
     let mass = pair.reduced_mass();
-    Ok(speeds
+    speeds
         .iter()
-        .map(|&v| values.scale * law.impact(&MdrState::default(), mass, v).restitution)
-        .collect())
+        .map(|&v| {
+            law.impact(&MdrState::default(), mass, v)
+                .map(|o| values.scale * o.restitution)
+                .map_err(ImpactError::parameter("speed"))
+        })
+        .collect()
 }
 
 struct Problem<'a> {
@@ -231,6 +236,23 @@ pub fn fit(
     }
     // Check the starting values through the law crate's own validation.
     predict(pair, &initial, &[1.0])?;
+    if let Some(bad) = data
+        .iter()
+        .find(|m| !(m.speed.is_finite() && m.speed > 0.0))
+    {
+        return Err(ImpactError::invalid(
+            "speed",
+            bad.speed,
+            "measured impact speeds > 0 m/s (finite)",
+        ));
+    }
+    if let Some(bad) = data.iter().find(|m| !m.restitution.is_finite()) {
+        return Err(ImpactError::invalid(
+            "restitution",
+            bad.restitution,
+            "measured coefficients of restitution (finite)",
+        ));
+    }
     if !(initial.scale.is_finite() && initial.scale > 0.0) {
         return Err(ImpactError::invalid("scale", initial.scale, "a scale > 0"));
     }

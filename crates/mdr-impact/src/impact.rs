@@ -357,6 +357,7 @@ impl Impact {
                 self.pair.reduced_mass(),
                 self.normal_speed(),
             )
+            .map_err(ImpactError::parameter("speed"))?
             .max_overlap;
         let radius = self.pair.effective_radius();
         SpringBed::sphere(&self.pair, model, springs)
@@ -401,7 +402,8 @@ impl Impact {
             let law = model
                 .bind(&self.pair)
                 .map_err(ImpactError::parameter("theta-ratio"))?;
-            let run = energy_route(&law, self.pair.reduced_mass(), self.speed);
+            let run = energy_route(&law, self.pair.reduced_mass(), self.speed)
+                .map_err(ImpactError::parameter("speed"))?;
             return Ok(self.head_on_outcome(NormalRun {
                 restitution: run.restitution,
                 max_overlap: run.max_overlap,

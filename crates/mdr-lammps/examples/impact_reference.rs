@@ -18,7 +18,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let law = MdrElastoPlastic::paper().bind(&pair)?;
     for v in speeds {
         let e = law
-            .impact(&MdrState::default(), pair.reduced_mass(), *v)
+            .impact(&MdrState::default(), pair.reduced_mass(), *v)?
             .restitution;
         println!("{v} {e:.12}");
     }

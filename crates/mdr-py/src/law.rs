@@ -524,13 +524,18 @@ impl MdrLaw {
         }
         let law = setup.law;
         let mass = setup.pair.reduced_mass();
-        let e = py.detach(|| {
-            values
-                .data
-                .iter()
-                .map(|&v| law.impact(&PlainState::default(), mass, v).restitution)
-                .collect()
-        });
+        let e = py
+            .detach(|| {
+                values
+                    .data
+                    .iter()
+                    .map(|&v| {
+                        law.impact(&PlainState::default(), mass, v)
+                            .map(|o| o.restitution)
+                    })
+                    .collect::<mdr_contact::Result<Vec<f64>>>()
+            })
+            .map_err(|e| invalid("v0", e))?;
         values.shaped(py, e)
     }
 

@@ -621,10 +621,12 @@ impl RestitutionHooks {
         // (docs/theory.md §4); skip the root solve.
         let restitution = if kinetic <= law.stored_energy(state.max_overlap, state.max_overlap) {
             1.0
-        } else {
-            let impact = law.impact(&state, mass, approach);
+        } else if let Ok(impact) = law.impact(&state, mass, approach) {
             self.history.commit(slot, impact.state.max_overlap);
             impact.restitution
+        } else {
+            // An infinite approach speed (a diverged run): no bounce to add.
+            1.0
         };
         *rigid.restitution = restitution;
     }

@@ -135,12 +135,15 @@ impl RestitutionLaw for MdrRestitution {
     type History = MdrState;
 
     fn restitution(&self, pair: &ImpactPair, history: &mut MdrState, approach_speed: f64) -> f64 {
-        // A pair that cannot be bound (non-positive radius or mass: a caller bug, never user
-        // input, which is validated when the ring is built) is treated as elastic.
+        // A pair that cannot be bound (non-positive radius or mass) or an approach speed that is
+        // not finite and ≥ 0 (caller bugs, never user input, which is validated when the ring is
+        // built) is treated as elastic.
         let Ok(law) = self.bind(pair) else {
             return 1.0;
         };
-        let outcome = law.impact(history, pair.reduced_mass(), approach_speed);
+        let Ok(outcome) = law.impact(history, pair.reduced_mass(), approach_speed) else {
+            return 1.0;
+        };
         *history = outcome.state;
         outcome.restitution.clamp(0.0, 1.0)
     }

@@ -593,6 +593,7 @@ fn a_forgotten_time_step_is_an_error() {
         .bind(&pair)
         .unwrap()
         .impact(&MdrState::default(), pair.reduced_mass(), 1.0)
+        .unwrap()
         .restitution;
     let vy = bodies[ball].linvel().y;
     assert!((vy - e).abs() < 5e-3 * e, "bounced at {vy}, law {e}");
@@ -726,6 +727,7 @@ fn the_second_bounce_follows_the_laws_rule_at_two_margins() {
     let law = MdrElastoPlastic::paper().bind(&pair).unwrap();
     let fresh = |v: f64| {
         law.impact(&MdrState::default(), pair.reduced_mass(), v)
+            .unwrap()
             .restitution
     };
     for normalized_prediction in [0.002, 3.0] {

@@ -9,7 +9,7 @@
 //! branches implemented in [`MdrLaw::update`].
 
 use super::{pow3_2, pow5_2, NormalLaw, NormalModel, NormalResponse};
-use crate::error::{finite, in_closed_range, non_negative, ContactError, Result};
+use crate::error::{finite, in_closed_range, non_negative, positive, ContactError, Result};
 use crate::material::ContactPair;
 use std::f64::consts::PI;
 
@@ -266,8 +266,23 @@ impl MdrLaw {
     /// with history `state`, without time stepping: the kinetic energy is spent first on the
     /// elastic reloading branch up to the old `d_max`, then on plastic loading; the restitution is
     /// `e² = W_returned / W_in` (docs/theory.md §4). A re-impact whose energy fits within the old branch
-    /// is elastic (`e = 1`).
-    pub fn impact(&self, state: &MdrState, mass: f64, speed: f64) -> EnergyRouteImpact {
+    /// is elastic (`e = 1`, as at `speed = 0`).
+    ///
+    /// Refuses (naming the parameter) a `speed` that is NaN, infinite or negative and a `mass`
+    /// that is not finite and positive: the energy route has no answer for them.
+    ///
+    /// ```
+    /// use mdr_contact::prelude::*;
+    /// use mdr_contact::normal::MdrState;
+    /// let pair = ContactPair::paper_fig2();
+    /// let law = MdrElastoPlastic::paper().bind(&pair).unwrap();
+    /// let m = pair.reduced_mass();
+    /// assert!(law.impact(&MdrState::default(), m, 1.0).unwrap().restitution < 1.0);
+    /// assert!(law.impact(&MdrState::default(), m, f64::NAN).is_err());
+    /// ```
+    pub fn impact(&self, state: &MdrState, mass: f64, speed: f64) -> Result<EnergyRouteImpact> {
+        non_negative("speed", speed)?;
+        positive("mass", mass)?;
         let kinetic = 0.5 * mass * speed * speed;
         let old_max = state.max_overlap;
         let capacity = self.stored_energy(old_max, old_max);
@@ -283,21 +298,21 @@ impl MdrLaw {
                     hi = mid;
                 }
             }
-            return EnergyRouteImpact {
+            return Ok(EnergyRouteImpact {
                 restitution: 1.0,
                 state: *state,
                 max_overlap: 0.5 * (lo + hi),
-            };
+            });
         }
         // Past the old maximum: W_load(D) − W_load(d_max,old) = kinetic − capacity.
         let target = kinetic - capacity + self.loading_work(old_max);
         let d = self.solve_loading_work(target, old_max);
         let returned = self.stored_energy(d, d);
-        EnergyRouteImpact {
+        Ok(EnergyRouteImpact {
             restitution: (returned / kinetic).sqrt().min(1.0),
             state: MdrState { max_overlap: d },
             max_overlap: d,
-        }
+        })
     }
 
     /// `D ≥ lower` with `loading_work(D) = target`. `loading_work` is increasing and convex, so

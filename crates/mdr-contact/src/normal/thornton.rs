@@ -10,7 +10,7 @@
 //! cross-code check of `docs/verification.md` §4.2.
 
 use super::{pow3_2, pow5_2, NormalLaw, NormalModel, NormalResponse};
-use crate::error::{positive, Result};
+use crate::error::{non_negative, positive, Result};
 use crate::material::ContactPair;
 use std::f64::consts::PI;
 
@@ -157,16 +157,16 @@ impl ThorntonLaw {
 
 /// Thornton's published restitution coefficient for `v_i > v_y` (eq. 31 of the 1997 paper):
 /// `e = [6√3/5 (1 − (v_y/v)²/6)]^{1/2} · [(v_y/v) / (v_y/v + 2 √(6/5 − (v_y/v)²/5))]^{1/4}`;
-/// `e = 1` for `v ≤ v_y`.
-pub fn thornton_restitution(speed_over_yield_speed: f64) -> f64 {
-    if speed_over_yield_speed <= 1.0 {
-        return 1.0;
+/// `e = 1` for `v ≤ v_y`. Refuses a ratio that is NaN, infinite or negative.
+pub fn thornton_restitution(speed_over_yield_speed: f64) -> Result<f64> {
+    if non_negative("speed_over_yield_speed", speed_over_yield_speed)? <= 1.0 {
+        return Ok(1.0);
     }
     let r = 1.0 / speed_over_yield_speed;
     let r2 = r * r;
     let first = (6.0 * 3f64.sqrt() / 5.0 * (1.0 - r2 / 6.0)).sqrt();
     let second = (r / (r + 2.0 * (6.0 / 5.0 - r2 / 5.0).sqrt())).powf(0.25);
-    first * second
+    Ok(first * second)
 }
 
 /// Restitution coefficient of the [`ThorntonUnloading::LiggghtsThorntonNing`] branch, closed form
@@ -174,17 +174,18 @@ pub fn thornton_restitution(speed_over_yield_speed: f64) -> f64 {
 /// `(2/5) r² = 2/5 + (s − 1) + (3/4)(s − 1)²`, `f = F*/F_y = 1 + (3/2)(s − 1)` and
 /// `q = δ_p/δ_y = (s^{3/2} − f)^{2/3}`:
 /// `e² = [(2/5)(s^{5/2} − q^{5/2}) − q^{3/2}(s − q)] / ((2/5) r²)`; `e = 1` for `r ≤ 1`.
-pub fn liggghts_thornton_ning_restitution(speed_over_yield_speed: f64) -> f64 {
-    let r = speed_over_yield_speed;
+/// Refuses a ratio that is NaN, infinite or negative.
+pub fn liggghts_thornton_ning_restitution(speed_over_yield_speed: f64) -> Result<f64> {
+    let r = non_negative("speed_over_yield_speed", speed_over_yield_speed)?;
     if r <= 1.0 {
-        return 1.0;
+        return Ok(1.0);
     }
     let x = ((1.0 + 1.2 * (r * r - 1.0)).sqrt() - 1.0) / 1.5;
     let s = 1.0 + x;
     let f = 1.0 + 1.5 * x;
     let q = (pow3_2(s) - f).max(0.0).powf(2.0 / 3.0);
     let returned = 0.4 * (pow5_2(s) - pow5_2(q)) - pow3_2(q) * (s - q);
-    (returned / (0.4 * r * r)).sqrt()
+    Ok((returned / (0.4 * r * r)).sqrt())
 }
 
 impl NormalLaw for ThorntonLaw {

@@ -80,9 +80,10 @@ impl HeadlineTracker for DropTracker {
                     .ok()
                     .zip(MdrElastoPlastic::new(critical_line_load, hardening_ratio).ok())
                     .and_then(|(pair, model)| model.bind(&pair).ok().map(|law| (pair, law)))
-                    .map(|(pair, law)| {
+                    .and_then(|(pair, law)| {
                         law.impact(&MdrState::default(), pair.reduced_mass(), before)
-                            .restitution
+                            .ok()
+                            .map(|impact| impact.restitution)
                     });
             if let Some(reference) = reference {
                 r.push("law_energy_route_restitution", reference);

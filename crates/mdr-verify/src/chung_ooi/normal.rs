@@ -197,7 +197,7 @@ pub fn line_load_for_restitution(
     let e_of = |q: f64| -> Result<f64> {
         let law = MdrElastoPlastic::new(q, hardening_ratio)?.bind(pair)?;
         Ok(law
-            .impact(&MdrState::default(), pair.reduced_mass(), v)
+            .impact(&MdrState::default(), pair.reduced_mass(), v)?
             .restitution)
     };
     let (mut lo, mut hi) = (1e-2_f64.ln(), 1e9_f64.ln());
