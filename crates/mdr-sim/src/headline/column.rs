@@ -1,5 +1,8 @@
 //! Column collapse: run-out distance and final height, compared with the axisymmetric run-out
-//! scaling of Lube, Huppert, Sparks & Hallworth, J. Fluid Mech. 508, 175 (2004).
+//! scaling of Lube, Huppert, Sparks & Hallworth, J. Fluid Mech. 508, 175 (2004), whose figures
+//! are those of the final deposit: the report says whether, and from when, the deposit was at
+//! rest ([`rest_time`]: run-out and height unchanged within [`REST_TOLERANCE`] of `R0` over the
+//! last [`REST_WINDOW_FREE_FALL_TIMES`] free-fall times of the column).
 
 use super::{HeadlineReport, HeadlineSample, HeadlineTracker, ParticleView};
 use crate::scene::Scene;
@@ -44,6 +47,37 @@ impl ColumnTracker {
     }
 }
 
+/// The deposit is at rest once its run-out and its height at the axis stay within this fraction
+/// of the initial radius `R0` (for the built-in column 0.46 mm, about a tenth of a diameter) ...
+pub const REST_TOLERANCE: f64 = 0.005;
+
+/// ... for at least this many free-fall times `√(2 H0/g)` of the column (the collapse itself
+/// lasts about three, Lube et al. 2004) until the end of the run.
+pub const REST_WINDOW_FREE_FALL_TIMES: f64 = 3.0;
+
+/// The earliest sample time from which every later `(run-out, height)` sample stays within
+/// `tolerance` of every other, provided that the run went on for `window` after it; `None` when
+/// the deposit was still changing within `window` of the end.
+pub fn rest_time(samples: &[HeadlineSample], tolerance: f64, window: f64) -> Option<f64> {
+    let last = samples.last()?;
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    let mut rest = None;
+    for sample in samples.iter().rev() {
+        if !sample.values[..2].iter().all(|v| v.is_finite()) {
+            break;
+        }
+        for k in 0..2 {
+            lo[k] = lo[k].min(sample.values[k]);
+            hi[k] = hi[k].max(sample.values[k]);
+        }
+        if (0..2).any(|k| hi[k] - lo[k] > tolerance) {
+            break;
+        }
+        rest = Some(sample.time);
+    }
+    rest.filter(|t| last.time - t >= window)
+}
+
 /// The `q` quantile of `v` (nearest rank); NaN for no values.
 fn percentile(mut v: Vec<f64>, q: f64) -> f64 {
     if v.is_empty() {
@@ -82,13 +116,20 @@ impl HeadlineTracker for ColumnTracker {
         vec![runout, height]
     }
 
-    fn report(&self, _scene: &Scene, samples: &[HeadlineSample]) -> HeadlineReport {
+    fn report(&self, scene: &Scene, samples: &[HeadlineSample]) -> HeadlineReport {
         let Self { r0, h0, .. } = *self;
         let mut r = HeadlineReport::default();
         let Some(last) = samples.last() else {
             return r;
         };
         let (runout, height) = (last.values[0], last.values[1]);
+        let g = scene.gravity.norm();
+        let window = if g > 0.0 {
+            REST_WINDOW_FREE_FALL_TIMES * (2.0 * h0 / g).sqrt()
+        } else {
+            f64::INFINITY
+        };
+        let rest = rest_time(samples, REST_TOLERANCE * r0, window);
         let a = h0 / r0;
         let spread = (runout - r0) / r0;
         // Lube et al. (2004), axisymmetric collapse: ΔR/R0 = 1.24 a (a < 1.7),
@@ -104,10 +145,27 @@ impl HeadlineTracker for ColumnTracker {
         r.push("normalised_runout", spread);
         r.push("lube_2004_normalised_runout", lube);
         r.push("lube_2004_final_height_m", lube_height);
+        r.push("at_rest", if rest.is_some() { 1.0 } else { 0.0 });
+        r.push("rest_time_s", rest.unwrap_or(f64::NAN));
+        r.push("rest_window_s", window);
+        let rest_text = match rest {
+            Some(t) => format!(
+                "at rest from t = {t:.3} s (run-out and height within {:.1} % of R0 until the end \
+                 at {:.3} s)",
+                100.0 * REST_TOLERANCE,
+                last.time
+            ),
+            None => format!(
+                "NOT at rest at the end ({:.3} s): run-out or height still changed by more than \
+                 {:.1} % of R0 within the last {window:.3} s; the deposit is not final",
+                last.time,
+                100.0 * REST_TOLERANCE
+            ),
+        };
         r.text = format!(
             "column collapse: aspect ratio a = H0/R0 = {a:.3} (R0 = {r0:.4e} m, H0 = {h0:.4e} m)\n  \
              run-out R = {runout:.4e} m, (R − R0)/R0 = {spread:.3} (Lube et al. 2004: {lube:.3})\n  \
-             final height at the axis H = {height:.4e} m, H/R0 = {:.3} ({})",
+             final height at the axis H = {height:.4e} m, H/R0 = {:.3} ({})\n  {rest_text}",
             height / r0,
             if a < 0.74 {
                 format!("Lube et al. 2004 for a < 0.74: H = H0 = {h0:.4e} m, ratio {:.3}", height / h0)
@@ -116,5 +174,51 @@ impl HeadlineTracker for ColumnTracker {
             }
         );
         r
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn samples(series: &[(f64, f64, f64)]) -> Vec<HeadlineSample> {
+        series
+            .iter()
+            .map(|&(time, runout, height)| HeadlineSample {
+                time,
+                values: vec![runout, height],
+            })
+            .collect()
+    }
+
+    #[test]
+    fn rest_starts_where_both_series_stop_changing() {
+        let s = samples(&[
+            (0.0, 1.0, 1.0),
+            (0.1, 1.5, 0.9),
+            (0.2, 1.80, 0.8),
+            (0.3, 1.81, 0.8),
+            (0.4, 1.805, 0.801),
+            (0.5, 1.81, 0.8),
+        ]);
+        // From 0.2 s the run-out spans 1.80..1.81 and the height 0.8..0.801.
+        assert_eq!(rest_time(&s, 0.011, 0.2), Some(0.2));
+        // A tighter tolerance moves the start later: from 0.3 s the run-out spans 0.005.
+        assert_eq!(rest_time(&s, 0.006, 0.1), Some(0.3));
+        assert_eq!(rest_time(&s, 0.004, 0.0), Some(0.5));
+        // The window must fit between the rest time and the end.
+        assert_eq!(rest_time(&s, 0.011, 0.35), None);
+    }
+
+    #[test]
+    fn a_height_that_still_changes_is_not_rest() {
+        let s = samples(&[(0.0, 1.0, 1.0), (0.1, 1.0, 0.9), (0.2, 1.0, 0.8)]);
+        assert_eq!(rest_time(&s, 0.05, 0.0), Some(0.2));
+        assert_eq!(rest_time(&s, 0.05, 0.1), None);
+        let spreading = samples(&[(0.0, 1.0, 1.0), (0.1, 1.1, 1.0), (0.2, 1.2, 1.0)]);
+        assert_eq!(rest_time(&spreading, 0.05, 0.1), None);
+        let broken = samples(&[(0.0, 1.0, 1.0), (0.1, f64::NAN, 1.0), (0.2, 1.0, 1.0)]);
+        assert_eq!(rest_time(&broken, 0.05, 0.1), None);
+        assert_eq!(rest_time(&[], 0.05, 0.0), None);
     }
 }
