@@ -34,6 +34,40 @@ fn low_column_is_compared_with_lube_in_its_regime() {
         height <= h0 * 1.01 && height > 0.5 * h0,
         "H = {height}, H0 = {h0}"
     );
+    // 0.15 s is about three free-fall times of this column: it is still spreading, and the
+    // report must say so.
+    assert_eq!(h.get("at_rest"), Some(0.0), "{}", h.text);
+    assert!(h.get("rest_time_s").unwrap().is_nan());
+    assert!(h.text.contains("NOT at rest"), "{}", h.text);
+}
+
+/// The same column with the built-in column's rolling resistance (`μ_r = 0.1`), run until its
+/// deposit is at rest: the report gives the rest time (run-out and height unchanged within
+/// 0.5 % of R0 over three free-fall times) and the run-out and height at rest, and these do not
+/// move when the run goes on. Smooth spheres on a flat floor are not sand: the run-out is
+/// reported against Lube et al. (2004), not held to it (docs/validation.md).
+#[test]
+fn small_column_with_rolling_resistance_comes_to_rest() {
+    let dir = common::temp_dir("column-rest");
+    let text = common::column(8, 3, 1.0, 0.5, "")
+        .replace("friction = 0.5", "friction = 0.5\nrolling_friction = 0.1");
+    assert!(text.contains("rolling_friction = 0.1"));
+    let scene = parse_scene(&dir.join("column.toml"), &text).unwrap_or_else(|p| panic!("{p}"));
+    let summary = run_scene(
+        &scene,
+        &RunOptions::new(dir.join("out")).quiet(true).no_frames(true),
+    )
+    .expect("run");
+    let h = &summary.headline;
+    eprintln!("{}", h.text);
+    assert_eq!(h.get("at_rest"), Some(1.0), "{}", h.text);
+    let rest = h.get("rest_time_s").unwrap();
+    let window = h.get("rest_window_s").unwrap();
+    let h0 = h.get("initial_height_m").unwrap();
+    // Three free-fall times of the column, √(2 H0/g), written out.
+    assert!((window - 3.0 * (2.0 * h0 / 9.81).sqrt()).abs() < 1e-12, "{window}");
+    assert!(rest > 0.0 && rest <= 1.0 - window, "{rest}");
+    assert!(h.text.contains("at rest from t ="), "{}", h.text);
 }
 
 /// A thin drum (two spheres deep) turning in the rolling regime: its dynamic angle of repose
@@ -85,4 +119,58 @@ fn small_drum_has_a_dynamic_angle_of_repose() {
     let std = h.get("angle_std_deg").unwrap();
     assert!((23.3..43.3).contains(&angle), "{angle}");
     assert!(std < 10.0, "{std}");
+}
+
+/// The built-in column's law, floor and aspect ratio (a = 0.60) at 3/7 of its size (1,703
+/// spheres, R0 = 10.4 d), run until its deposit is at rest, held to Lube et al. (2004):
+/// `(R − R0)/R0 = 1.24 a` within 25 %, a bound wider than the scatter of their sand, salt,
+/// couscous, rice and sugar columns on four floors (one line for all) and than the dependence on
+/// `R0/d` of later experiments (Warnett et al., Granular Matter 16, 115, 2014).
+///
+/// This test fails: the spheres' run-out is several times Lube's (docs/validation.md, "Column
+/// collapse at rest"): the smooth spheres roll away from the deposit, whose core stops early.
+/// Long (about 500,000 steps of 1,703 spheres):
+/// `cargo test --release -p mdr-sim --test sim_scenes_column_drum -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn column_at_rest_runs_out_as_lube() {
+    let dir = common::temp_dir("column-lube-rest");
+    let text = std::fs::read_to_string(
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/column.toml"),
+    )
+    .unwrap();
+    let mut small = text.clone();
+    for (a, b) in [
+        ("duration_s = 0.5", "duration_s = 4.0"),
+        ("checkpoint_interval_s = 0.25\n", ""),
+        ("count = 28350", "count = 2166"),
+        (
+            "region_min_m = [-0.09441, -0.09441, 0.0]",
+            "region_min_m = [-0.04046, -0.04046, 0.0]",
+        ),
+        (
+            "region_max_m = [0.09441, 0.09441, 0.0587]",
+            "region_max_m = [0.04046, 0.04046, 0.02516]",
+        ),
+        ("region_radius_m = 0.0925", "region_radius_m = 0.03964"),
+    ] {
+        assert!(small.contains(a), "{a}");
+        small = small.replace(a, b);
+    }
+    let scene = parse_scene(&dir.join("column.toml"), &small).unwrap_or_else(|p| panic!("{p}"));
+    assert_eq!(scene.particles.len(), 1703);
+    let summary = run_scene(
+        &scene,
+        &RunOptions::new(dir.join("out")).quiet(true).no_frames(true),
+    )
+    .expect("run");
+    let h = &summary.headline;
+    eprintln!("{}", h.text);
+    assert_eq!(h.get("at_rest"), Some(1.0), "{}", h.text);
+    let spread = h.get("normalised_runout").unwrap();
+    let lube = 1.24 * h.get("aspect_ratio").unwrap();
+    assert!(
+        (spread / lube - 1.0).abs() <= 0.25,
+        "(R − R0)/R0 = {spread} at rest against Lube's {lube}"
+    );
 }
