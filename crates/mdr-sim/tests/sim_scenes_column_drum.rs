@@ -65,7 +65,10 @@ fn small_column_with_rolling_resistance_comes_to_rest() {
     let window = h.get("rest_window_s").unwrap();
     let h0 = h.get("initial_height_m").unwrap();
     // Three free-fall times of the column, √(2 H0/g), written out.
-    assert!((window - 3.0 * (2.0 * h0 / 9.81).sqrt()).abs() < 1e-12, "{window}");
+    assert!(
+        (window - 3.0 * (2.0 * h0 / 9.81).sqrt()).abs() < 1e-12,
+        "{window}"
+    );
     assert!(rest > 0.0 && rest <= 1.0 - window, "{rest}");
     assert!(h.text.contains("at rest from t ="), "{}", h.text);
 }
