@@ -16,7 +16,10 @@
 #      does the split on 2 ranks with newton on (the split with rolling resistance is printed,
 #      not asserted: a known defect); the same split with the test hook setup_update (the setup
 #      call advances every history) must NOT (so the comparison can fail);
-#   5. examples/lammps/in.pour shortened to 80,000 steps: all 2,000 spheres inserted and none
+#   5. load balancing on 2 ranks (fix balance shift, rcb with comm_style tiled, the balance
+#      command between runs) on the bed split unevenly at the start: each follows its unbalanced
+#      run to 1e-11 diameters; the same runs with histories dropped on migration must NOT;
+#   6. examples/lammps/in.pour shortened to 80,000 steps: all 2,000 spheres inserted and none
 #      lost, the translational kinetic energy down to below 2 % of its peak, a contact network.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -156,6 +159,28 @@ drr=$(compare_dumps one.dump rolling.dump); echo "without vs with rolling resist
 check 'v[0] > 1e-6' "bed-rolling-resistance-changes-the-run" "$drr"
 dhk=$(compare_dumps one.dump hook.dump); echo "uninterrupted vs split with setup_update yes: $dhk diameters"
 check 'v[0] > 1e-7' "bed-check-detects-setup-history-update" "$dhk"
+
+echo "== load balancing on 2 ranks (the bed, split unevenly at the start, $bed_steps steps)"
+# fix balance every 100 steps (shift on a brick decomposition; rcb with comm_style tiled) and
+# the balance command between two runs: the first rebalance moves about a third of the spheres
+# with their contacts to the other rank. Each run follows its unbalanced 1-rank run (the split
+# one for the balance command) to round-off; the same run whose migrating spheres arrive
+# without their histories (fix_modify drop_migrated yes) must NOT.
+balance_run() { # style drop dump
+  "${mpirun2[@]}" "${lmp[@]}" -in "$inputs/in.balance" -var plugin "$plugin" -var data "$data" \
+    -var nsteps "$bed_steps" -var balance "$1" -var drop_migrated "$2" -var dump "$3" > /dev/null
+}
+for style in shift rcb between; do
+  reference=one.dump
+  [ "$style" = between ] && reference=split.dump
+  balance_run "$style" no "balance-$style.dump"
+  balance_run "$style" yes "balance-$style-drop.dump"
+  db=$(compare_dumps "$reference" "balance-$style.dump")
+  dd=$(compare_dumps "$reference" "balance-$style-drop.dump")
+  echo "balance $style vs unbalanced: $db diameters; with histories dropped on migration: $dd"
+  check 'v[0] <= 1e-11' "balance-$style-follows-unbalanced" "$db"
+  check 'v[0] > 1e-6' "balance-$style-check-detects-dropped-histories" "$dd"
+done
 
 echo "== pour (examples/lammps/in.pour, 80,000 of its 150,000 steps)"
 # (thermo_modify lost error: a sphere leaving the box ends the run with an error)

@@ -56,6 +56,7 @@ class FixMdrdemHistory : public Fix {
   class Pair *pair;    // the pair style whose neighbour list this history follows
   int dnum;            // values per contact
   bool drop_history;   // test hook: forget every history at each exchange
+  bool drop_migrated;  // test hook: an atom moving to another rank arrives without its histories
   bool setup_update;   // test hook: the setup call advances the histories as a step does
   bool partners_current;    // partner lists hold the latest histories (no force call since)
 
