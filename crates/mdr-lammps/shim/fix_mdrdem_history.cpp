@@ -34,7 +34,7 @@ static constexpr int REPLAY_COMM = 9;
 static const double NOT_KNOWN = std::numeric_limits<double>::quiet_NaN();
 
 FixMdrdemHistory::FixMdrdemHistory(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), pair(nullptr), drop_history(false), drop_migrated(false), setup_update(false),
+    Fix(lmp, narg, arg), replayed_step(-1), pair(nullptr), drop_history(false), drop_migrated(false), setup_update(false),
     partners_current(true),
     npartner(nullptr), poffset(nullptr), maxpartner(0), nlocal_neigh(0), nall_neigh(0),
     have_neigh(false), commflag(NPARTNER), saved_step(-1), record_step(-1), step_values_step(-1),
@@ -328,6 +328,7 @@ bool FixMdrdemHistory::replay_step(const double *&v_out, const double *&omega_ou
       if (v[i][c] != record[i][6 + c] || omega[i][c] != record[i][9 + c]) local = 0;
   int all = 0;
   MPI_Allreduce(&local, &all, 1, MPI_INT, MPI_MIN, world);
+  replayed_step = all ? now : -1;
   if (!all) return false;
 
   const int nall = nlocal + atom->nghost;

@@ -172,6 +172,7 @@ void PairMdrdem::compute(int eflag, int vflag)
   const bool setup = update->setupflag != 0 && !history->setup_update;
   double *values = history->values.data();
   double dt = update->dt;
+  if (update->setupflag) history->replayed_step = -1;
   if (setup) {
     if (!history->replay_step(atoms.v, atoms.omega, values)) dt = 0.0;
   } else if (update->whichflag == 1 &&
