@@ -108,6 +108,89 @@ poisson 0.286 qc 3.8e5 theta 0.37|youngs
 $good theta|theta
 LINES
 
+echo "== fix wall/mdrdem: the paper's Fig. 2 (a steel sphere on a steel zplane)"
+cargo run -q --release --locked -p mdr-lammps --example impact_reference --manifest-path "$root/Cargo.toml" \
+  -- wall 0.635e-2 0.3 1 3 > wall-reference.txt
+while read -r speed reference; do
+  out=$("${lmp[@]}" -in "$inputs/in.wall-impact" -var plugin "$plugin" -var speed "$speed")
+  e=$(sed -n 's/^EN //p' <<<"$out")
+  read -r f_wall f_atom <<<"$(sed -n 's/^WALL //p' <<<"$out")"
+  "${lmp[@]}" -in "$inputs/in.wall-impact" -var plugin "$plugin" -var speed "$speed" -var restart yes \
+    -var restart_file "wall-$speed.restart" > /dev/null
+  e_restarted=$("${lmp[@]}" -in "$inputs/in.wall-impact-restarted" -var plugin "$plugin" -var speed "$speed" \
+    -var restart_file "wall-$speed.restart" | sed -n 's/^EN //p')
+  printf '%s m/s: e_n %s, closed form %s; continued from a restart file mid-contact %s; wall force %s, on the atom %s\n' \
+    "$speed" "$e" "$reference" "$e_restarted" "$f_wall" "$f_atom"
+  # time-step error of e_n at dt = 2e-8 s: 1.3e-8, 2.8e-8, 1.9e-7 relative (docs/lammps.md)
+  check 'abs(v[0]-v[1]) <= 5e-7*v[1] and v[1] < 0.995' "wall-impact-$speed" "$e" "$reference"
+  check 'v[0] == v[1]' "wall-impact-restart-$speed" "$e" "$e_restarted"
+  check 'v[1] > 0 and abs(v[0]-v[1]) <= 1e-12*v[1]' "wall-force-vector-$speed" "$f_wall" "$f_atom"
+done < wall-reference.txt
+
+echo "== fix wall/mdrdem: history across the rank boundary and across a restart"
+slide=(-in "$inputs/in.wall-slide" -var plugin "$plugin")
+restarted=(-in "$inputs/in.wall-slide-restarted" -var plugin "$plugin" -var restart_file slide.restart)
+one=$("${lmp[@]}" "${slide[@]}" | final)
+two=$("${mpirun2[@]}" "${lmp[@]}" "${slide[@]}" | final)
+dropped=$("${mpirun2[@]}" "${lmp[@]}" "${slide[@]}" -var drop_migrated yes | final)
+"${lmp[@]}" "${slide[@]}" -var restart yes -var restart_file slide.restart > /dev/null
+cont=$("${lmp[@]}" "${restarted[@]}" | final)
+cont2=$("${mpirun2[@]}" "${lmp[@]}" "${restarted[@]}" | final)
+lost=$("${lmp[@]}" "${restarted[@]}" -var wall other | final)
+echo "1 rank: $one"; echo "2 ranks: $two"; echo "2 ranks, histories dropped on migration: $dropped"
+echo "restarted: $cont"; echo "restarted on 2 ranks: $cont2"; echo "restarted, the fix under another ID: $lost"
+# x, z, vx, vz, each relative to its own size (floors 1e-2 m, 1e-3 m/s)
+same='max(abs(a-b)/max(abs(a),f) for a,b,f in zip(v[:4],v[4:8],[1e-2,1e-2,1e-3,1e-3])) <= 1e-10'
+differs='max(abs(a-b)/max(abs(a),f) for a,b,f in zip(v[:4],v[4:8],[1e-2,1e-2,1e-3,1e-3])) > 1e-6'
+check "$same" "wall-migration" $one $two
+check "$differs" "wall-migration-check-detects-lost-history" $one $dropped
+check 'v[0] > 0.005' "wall-migration-crossed-the-boundary" $one  # from x = -0.02
+check "$same" "wall-restart" $one $cont
+check "$same" "wall-restart-2-ranks" $one $cont2
+check "$differs" "wall-restart-check-detects-lost-history" $one $lost
+
+echo "== bad fix wall/mdrdem lines"
+while IFS='|' read -r line keyword; do
+  cat > in.bad <<IN
+units si
+atom_style sphere
+boundary p p f
+region box block 0 1 0 1 0 1
+create_box 1 box
+plugin load $plugin
+pair_style mdrdem
+pair_coeff * * $good
+fix w all wall/mdrdem $line
+IN
+  set +e
+  out=$("${lmp[@]}" -in in.bad 2>&1)
+  rc=$?
+  set -e
+  if [ "$rc" -ne 0 ] && [ "$rc" -lt 128 ] && grep -q "ERROR.*wall/mdrdem.*$keyword" <<<"$out"; then
+    echo "ok   bad-wall $keyword (exit $rc)"
+  else
+    echo "FAIL bad-wall '$line' (exit $rc): $out" | tail -3; fail=1
+  fi
+done <<LINES
+$good colour 3 zplane 0 NULL|colour
+youngs -2e11 poisson 0.286 qc 3.8e5 theta 0.37 zplane 0 NULL|youngs
+$good theta 1.5 zplane 0 NULL|theta
+$good friction -0.5 zplane 0 NULL|friction
+$good damping abc zplane 0 NULL|damping
+$good rolling -1 zplane 0 NULL|rolling
+poisson 0.286 qc 3.8e5 theta 0.37 zplane 0 NULL|youngs
+$good|wall style
+$good zplane abc NULL|zplane lo
+$good zplane 0|zplane
+$good zcylinder -1|zcylinder radius
+$good region nowhere|region
+$good xplane 0 NULL|xplane
+$good zplane 0 NULL wiggle q 0.1 1|wiggle
+$good zplane 0 NULL wiggle z 0.1 0|wiggle period
+$good zplane 0 NULL shear z 1|shear
+$good zplane 0 NULL spin 3|spin
+LINES
+
 echo "== settled bed: 1 rank, 2 ranks, restart ($bed_steps steps)"
 data=$root/benches/lammps/settled.data
 bed=(-in "$inputs/in.bed" -var plugin "$plugin" -var data "$data" -var nsteps "$bed_steps")
