@@ -314,13 +314,17 @@ void FixWallMdrdem::post_force(int /*vflag*/)
   c_vwall.clear();
   c_radius.clear();
   c_row.clear();
-  c_scratch.assign((size_t) nlocal * tmax * (1 + 2 * dnum), 0.0);
+  if (setup) c_scratch.assign((size_t) nlocal * tmax * (1 + 2 * dnum), 0.0);
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     candidates(i, wlo, whi, vwall, found);
     if (!setup) {
+      if (found.empty()) {
+        ncontact[i] = 0;
+        continue;
+      }
       // keep the slots of the walls still in reach (in the order found), forget the others
-      std::vector<double> kept((size_t) found.size() * width, 0.0);
+      kept.assign((size_t) found.size() * width, 0.0);
       for (size_t k = 0; k < found.size(); k++) {
         double *slot = find_slot(i, found[k].iwall);
         if (slot) std::memcpy(&kept[k * width], slot, width * sizeof(double));

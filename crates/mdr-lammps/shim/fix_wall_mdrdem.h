@@ -71,6 +71,7 @@ class FixWallMdrdem : public Fix {
   int total_flag;
 
   std::vector<Candidate> found;
+  std::vector<double> kept;
   std::vector<int> c_atom;
   std::vector<double> c_branch, c_vwall, c_radius, c_replay, c_scratch;
   std::vector<double *> c_row;

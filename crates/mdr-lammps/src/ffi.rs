@@ -48,7 +48,10 @@ fn guarded(
 ///
 /// # Safety
 /// `words` holds `nwords` NUL-terminated strings (or is null with `nwords` ≤ 0).
-unsafe fn read_words(nwords: c_int, words: *const *const c_char) -> Result<Vec<String>, PluginError> {
+unsafe fn read_words(
+    nwords: c_int,
+    words: *const *const c_char,
+) -> Result<Vec<String>, PluginError> {
     if nwords > 0 && words.is_null() {
         return Err(PluginError::Abi("null words"));
     }
