@@ -132,6 +132,19 @@ while read -r speed reference; do
   check 'v[1] > 0 and abs(v[0]-v[1]) <= 1e-12*v[1]' "wall-force-vector-$speed" "$f_wall" "$f_atom"
 done < wall-reference.txt
 
+# The same plane as a LAMMPS region (fix wall/mdrdem region) gives the zplane's e_n; a sphere
+# hitting the inside of a zcylinder (radius 4 cm) at 1 m/s gives the closed form for the Hertz
+# equivalent radius of that concave wall.
+e_plane=$(sed -n 's/^1 //p' wall-reference.txt)
+e_zplane=$("${lmp[@]}" -in "$inputs/in.wall-impact" -var plugin "$plugin" -var speed 1 | sed -n 's/^EN //p')
+e_region=$("${lmp[@]}" -in "$inputs/in.wall-impact" -var plugin "$plugin" -var speed 1 -var wall region | sed -n 's/^EN //p')
+cylinder_reference=$(cargo run -q --release --locked -p mdr-lammps --example impact_reference --manifest-path "$root/Cargo.toml" \
+  -- cylinder 0.04 0.635e-2 1 | cut -d' ' -f2)
+e_cylinder=$("${lmp[@]}" -in "$inputs/in.wall-impact" -var plugin "$plugin" -var speed 1 -var wall zcylinder | sed -n 's/^EN //p')
+echo "1 m/s: region plane e_n $e_region (zplane $e_zplane); zcylinder e_n $e_cylinder, closed form $cylinder_reference (a plane's $e_plane)"
+check 'abs(v[0]-v[1]) <= 1e-12*v[1]' "wall-region-plane-equals-zplane" "$e_region" "$e_zplane"
+check 'abs(v[0]-v[1]) <= 5e-7*v[1] and abs(v[1]-v[2]) > 1e-3' "wall-zcylinder-impact" "$e_cylinder" "$cylinder_reference" "$e_plane"
+
 echo "== fix wall/mdrdem: history across the rank boundary and across a restart"
 slide=(-in "$inputs/in.wall-slide" -var plugin "$plugin")
 restarted=(-in "$inputs/in.wall-slide-restarted" -var plugin "$plugin" -var restart_file slide.restart)

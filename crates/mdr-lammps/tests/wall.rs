@@ -33,8 +33,8 @@ fn wall_for_type_1() -> WallTable {
     wall
 }
 
-/// One sphere (type `itype`) at height `z` above a zplane at 0; returns the force, the torque and
-/// the row after the call (touch, 5 values, 5 values before the step).
+/// One sphere (type `itype`) above a zplane at 0; its row (touch, 5 values, 5 values before the
+/// step) is the caller's.
 struct Sphere {
     x: [f64; 3],
     v: [f64; 3],
@@ -44,13 +44,16 @@ struct Sphere {
     itype: i32,
 }
 
+/// Force and torque on the sphere, and the sum of the forces the wall reported.
+type WallOutcome = ([f64; 3], [f64; 3], Vector3<f64>);
+
 fn on_plane(
     wall: &WallTable,
     s: &Sphere,
     row: &mut [f64; 11],
     (history_update, replay): (i32, Option<[f64; 6]>),
     dt: f64,
-) -> Result<([f64; 3], [f64; 3], Vector3<f64>), PluginError> {
+) -> Result<WallOutcome, PluginError> {
     let mut f = [0.0; 3];
     let mut torque = [0.0; 3];
     let atoms = MdrdemAtoms {
