@@ -113,6 +113,33 @@ poisson 0.286 qc 3.8e5 theta 0.37|youngs
 $good theta|theta
 LINES
 
+# fix balance defined before pair_style mdrdem (the order LAMMPS's granular styles refuse too):
+# an error naming the fix and the order to use, not a run that loses histories
+cat > in.order <<IN
+units si
+atom_style sphere
+boundary p p f
+comm_modify vel yes
+region box block 0 1 0 1 0 1
+create_box 1 box
+create_atoms 1 single 0.5 0.5 0.5
+fix early all balance 100 1.0 shift x 5 1.1
+plugin load $plugin
+pair_style mdrdem
+pair_coeff * * $good
+fix integ all nve/sphere
+run 1
+IN
+set +e
+out=$("${lmp[@]}" -in in.order 2>&1)
+rc=$?
+set -e
+if [ "$rc" -ne 0 ] && [ "$rc" -lt 128 ] && grep -q "ERROR.*fix early.*define pair_style mdrdem before fix early" <<<"$out"; then
+  echo "ok   balance-before-pair-style-is-an-error (exit $rc)"
+else
+  echo "FAIL balance-before-pair-style (exit $rc): $out" | tail -3; fail=1
+fi
+
 echo "== fix wall/mdrdem: the paper's Fig. 2 (a steel sphere on a steel zplane)"
 cargo run -q --release --locked -p mdr-lammps --example impact_reference --manifest-path "$root/Cargo.toml" \
   -- wall 0.635e-2 0.3 1 3 > wall-reference.txt

@@ -255,10 +255,8 @@ void FixWallMdrdem::candidates(int i, double wlo, double whi, const double *vwal
       c.branch[0] = rc.delx;
       c.branch[1] = rc.dely;
       c.branch[2] = rc.delz;
-      if (region->dynamic_check())
-        region->velocity_contact(c.vwall, x, ic);
-      else
-        c.vwall[0] = c.vwall[1] = c.vwall[2] = 0.0;
+      c.vwall[0] = c.vwall[1] = c.vwall[2] = 0.0;
+      if (region->dynamic_check()) region->velocity_contact(c.vwall, x, ic);
       // LAMMPS's regions report a curved surface's diameter, negative where it is concave
       c.radii[0] = 0.5 * rc.radius;
       c.radii[1] = sphere ? 0.5 * rc.radius : 0.0;
