@@ -2,12 +2,18 @@
 # Side by side on the settled 10,000-sphere bed (benches/lammps/settled.data), one run after the
 # other on this machine: LAMMPS gran/hertz/history, LAMMPS granular mdr (Zunker–Kamrin), the
 # plugin pair_style mdrdem (MDR + Mindlin + damping, the parameters of `mdr-dem bench bed --law
-# mdr`), each with 1 and 2 MPI ranks; then `mdr-dem bench bed --law mdr`.
-# Usage: benches/compare_lammps_plugin.sh [nbench]   (timed steps after 2,000 warm-up steps;
-# default 10000). Prints one table of particle-steps per second (LAMMPS's Matom-step/s).
+# mdr`) on LAMMPS's wall/gran hertz/history floor and on a fix wall/mdrdem floor (the same law,
+# R = r), each with 1 and 2 MPI ranks; then `mdr-dem bench bed --law mdr`; then LAMMPS's drum
+# example with the plugin (examples/lammps/in.drum) on 2 ranks with and without fix balance.
+# The Modify column is LAMMPS's time in fixes (average over ranks, seconds of the timed run):
+# nve/sphere, gravity and the floor, so plugin against plugin-wall compares the two floors.
+# Usage: benches/compare_lammps_plugin.sh [nbench] [drum]  (timed steps after 2,000 warm-up steps;
+# default 10000; drum: yes (default) or no). Prints one table of particle-steps per second
+# (LAMMPS's Matom-step/s) and the drum's loop times.
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 nbench=${1:-10000}
+drum=${2:-yes}
 plugin=$("$repo/crates/mdr-lammps/build-plugin.sh" | tail -1)
 venv=$("$repo/crates/mdr-lammps/install-lammps.sh" | tail -1)
 export LD_LIBRARY_PATH="$venv/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
@@ -17,7 +23,8 @@ trap 'rm -rf "$work"' EXIT
 cp "$repo/benches/lammps/in.bench" "$repo/benches/lammps/settled.data" "$work/"
 cd "$work"
 # the plugin variant of in.bench: same bed, warm-up, neighbour settings and floor
-sed -e '/^if "${model} == hertzhist"/i if "${model} == plugin" then \&\n  "plugin load '"$plugin"'" \&\n  "pair_style mdrdem" \&\n  "pair_coeff * * youngs ${E} poisson ${nu} qc 10.0 theta 0.37 friction 0.5 damping 50.0 tangential_damping 0.5 estar 1.5e5 gstar $(2.0e5/7.0)" \&\n  "fix floor all wall/gran hertz/history 2.0e5 NULL 50.0 NULL 0.5 0 zplane 0.0 NULL"' in.bench > in.plugin
+sed -e '/^if "${model} == hertzhist"/i if "${model} == plugin" then \&\n  "plugin load '"$plugin"'" \&\n  "pair_style mdrdem" \&\n  "pair_coeff * * youngs ${E} poisson ${nu} qc 10.0 theta 0.37 friction 0.5 damping 50.0 tangential_damping 0.5 estar 1.5e5 gstar $(2.0e5/7.0)" \&\n  "fix floor all wall/gran hertz/history 2.0e5 NULL 50.0 NULL 0.5 0 zplane 0.0 NULL"' -e '/^if "${model} == hertzhist"/i if "${model} == pluginwall" then \&\n  "plugin load '"$plugin"'" \&\n  "pair_style mdrdem" \&\n  "pair_coeff * * youngs ${E} poisson ${nu} qc 10.0 theta 0.37 friction 0.5 damping 50.0 tangential_damping 0.5 estar 1.5e5 gstar $(2.0e5/7.0)" \&\n  "fix floor all wall/mdrdem youngs ${E} poisson ${nu} qc 10.0 theta 0.37 friction 0.5 damping 50.0 tangential_damping 0.5 estar 1.5e5 gstar $(2.0e5/7.0) zplane 0.0 NULL"' \
+  in.bench > in.plugin
 # LAMMPS's Performance line gives the rate in Matom-step/s, or in katom-step/s below 1 M (as for
 # the slower granular mdr model): both as M particle-steps/s.
 rate() {
@@ -25,13 +32,18 @@ rate() {
     if ($i=="Matom-step/s") printf "%.4f\n", $(i-1);
     if ($i=="katom-step/s") printf "%.4f\n", $(i-1) / 1000.0 } }' | tail -1
 }
-printf '%-28s %6s %14s %14s\n' law ranks "M steps/s" "per core"
-for model in hertzhist mdr plugin; do
+# LAMMPS's average time in fixes (Modify row of the task timing breakdown) of the timed run
+modify_time() {
+  awk '/^Modify /{t=$5} END{print t}' "$1"
+}
+printf '%-28s %6s %14s %14s %12s\n' law ranks "M steps/s" "per core" "Modify s"
+for model in hertzhist mdr plugin pluginwall; do
   for np in 1 2; do
     "$venv/bin/mpirun" -np $np "$venv/bin/lmp" -in in.plugin -var model $model -var nbench "$nbench" \
       -log log.$model.$np -screen none
     r=$(rate log.$model.$np)
-    printf '%-28s %6d %14s %14s\n' "lammps-$model" $np "$r" "$(python3 -c "print(f'{$r/$np:.3f}')")"
+    printf '%-28s %6d %14s %14s %12s\n' "lammps-$model" $np "$r" "$(python3 -c "print(f'{$r/$np:.3f}')")" \
+      "$(modify_time log.$model.$np)"
   done
 done
 cd "$repo"
@@ -40,3 +52,12 @@ json=$(target/release/mdr-dem bench bed --law mdr --data benches/lammps/settled.
 r=$(python3 -c "import json,sys; d=json.loads(sys.argv[1]); print(f\"{d['particle_steps_per_s']/1e6:.3f}\")" "$json" 2>/dev/null || echo "?")
 printf '%-28s %6d %14s %14s\n' "mdr-dem bench bed --law mdr" 1 "$r" "$r"
 echo "json: $json"
+if [ "$drum" = yes ]; then
+  cd "$work"
+  for balance in no yes; do
+    "$venv/bin/mpirun" -np 2 "$venv/bin/lmp" -in "$repo/examples/lammps/in.drum" -var plugin "$plugin" \
+      -var balance $balance -log log.drum.$balance -screen none
+    printf 'drum (examples/lammps/in.drum), 2 ranks, fix balance %-3s: loop time %s s (fill + turn)\n' "$balance" \
+      "$(awk '/^Loop time/{s+=$4} END{print s}' log.drum.$balance)"
+  done
+fi

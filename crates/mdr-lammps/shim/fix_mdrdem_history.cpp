@@ -34,7 +34,7 @@ static constexpr int REPLAY_COMM = 9;
 static const double NOT_KNOWN = std::numeric_limits<double>::quiet_NaN();
 
 FixMdrdemHistory::FixMdrdemHistory(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), pair(nullptr), drop_history(false), setup_update(false),
+    Fix(lmp, narg, arg), replayed_step(-1), pair(nullptr), drop_history(false), drop_migrated(false), setup_update(false),
     partners_current(true),
     npartner(nullptr), poffset(nullptr), maxpartner(0), nlocal_neigh(0), nall_neigh(0),
     have_neigh(false), commflag(NPARTNER), saved_step(-1), record_step(-1), step_values_step(-1),
@@ -84,8 +84,9 @@ void FixMdrdemHistory::init()
   for (auto &ifix : modify->get_fix_list()) {
     if (ifix == this) break;
     if (ifix->pre_exchange_migrate)
-      error->all(FLERR, "fix MDRDEM/HISTORY comes after fix {} which migrates atoms in pre_exchange",
-                 ifix->id);
+      error->all(FLERR, "fix {} migrates atoms in pre_exchange and comes before the contact "
+                 "histories of pair_style mdrdem: define pair_style mdrdem before fix {}",
+                 ifix->id, ifix->id);
   }
 }
 
@@ -94,6 +95,14 @@ int FixMdrdemHistory::modify_param(int narg, char **arg)
   if (strcmp(arg[0], "drop_history") == 0) {
     if (narg < 2) error->all(FLERR, "fix_modify drop_history needs yes or no");
     drop_history = utils::logical(FLERR, arg[1], false, lmp) == 1;
+    return 2;
+  }
+  // Test hook: an atom sent to another rank (an exchange, fix balance, the balance command)
+  // arrives there without its partner list, as with a history kept only where the atom was.
+  // The balancing tests use it to show that their comparison detects histories left behind.
+  if (strcmp(arg[0], "drop_migrated") == 0) {
+    if (narg < 2) error->all(FLERR, "fix_modify drop_migrated needs yes or no");
+    drop_migrated = utils::logical(FLERR, arg[1], false, lmp) == 1;
     return 2;
   }
   // Test hook: the setup call of a run advances every history by one more step (with the
@@ -319,6 +328,7 @@ bool FixMdrdemHistory::replay_step(const double *&v_out, const double *&omega_ou
       if (v[i][c] != record[i][6 + c] || omega[i][c] != record[i][9 + c]) local = 0;
   int all = 0;
   MPI_Allreduce(&local, &all, 1, MPI_INT, MPI_MIN, world);
+  replayed_step = all ? now : -1;
   if (!all) return false;
 
   const int nall = nlocal + atom->nghost;
@@ -422,8 +432,9 @@ void FixMdrdemHistory::set_arrays(int i)
 int FixMdrdemHistory::pack_exchange(int i, double *buf)
 {
   int m = 0;
-  buf[m++] = npartner[i];
-  for (int n = 0; n < npartner[i]; n++) {
+  const int sent = drop_migrated ? 0 : npartner[i];
+  buf[m++] = sent;
+  for (int n = 0; n < sent; n++) {
     buf[m++] = ubuf(partner_tag[poffset[i] + n]).d;
     std::memcpy(&buf[m], &partner_values[(poffset[i] + n) * width], width * sizeof(double));
     m += width;

@@ -53,9 +53,15 @@ class FixMdrdemHistory : public Fix {
   void save_step();
   bool replay_step(const double *&v, const double *&omega, double *&step_values);
 
+  // v and omega (6 values) the force call of the saved step saw, for owned atom i; valid in the
+  // setup call of a run whose pair force call repeated that step (replayed_step == ntimestep).
+  const double *step_velocity(int i) const { return record[i]; }
+  bigint replayed_step;    // the step the last setup call repeated, or -1
+
   class Pair *pair;    // the pair style whose neighbour list this history follows
   int dnum;            // values per contact
   bool drop_history;   // test hook: forget every history at each exchange
+  bool drop_migrated;  // test hook: an atom moving to another rank arrives without its histories
   bool setup_update;   // test hook: the setup call advances the histories as a step does
   bool partners_current;    // partner lists hold the latest histories (no force call since)
 

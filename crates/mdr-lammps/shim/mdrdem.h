@@ -1,5 +1,5 @@
-/* C ABI of the mdr-lammps Rust library (crates/mdr-lammps/src/ffi.rs, src/compute.rs).
-   The structs mirror the #[repr(C)] structs of src/compute.rs field for field. */
+/* C ABI of the mdr-lammps Rust library (crates/mdr-lammps/src/ffi.rs, src/compute.rs,
+   src/wall.rs). The structs mirror the #[repr(C)] structs there field for field. */
 #ifndef MDRDEM_H
 #define MDRDEM_H
 #include <stddef.h>
@@ -34,6 +34,21 @@ typedef struct {
   double *eng_vdwl, *virial, *eatom, *vatom;
 } MdrdemTally;
 
+/* One wall's sphere-wall contacts in one step (src/wall.rs, MdrdemWallContacts). Each row:
+   touch flag, dnum history values, dnum values before the step a run ended on. */
+typedef struct {
+  int n;
+  const int *atom;
+  const double *branch;        /* 3n: from the sphere's point on the wall to its centre */
+  const double *wall_velocity; /* 3n */
+  const double *wall_radius;   /* 2n: principal radii of curvature (0 flat, < 0 concave) */
+  double *const *row;          /* n rows of 1 + 2 dnum */
+  int dnum;
+  int history_update;
+  int replay;
+  const double *replay_velocity; /* 6 per local atom: v, omega of the replayed step */
+} MdrdemWallContacts;
+
 void *mdrdem_new(int ntypes);
 void mdrdem_free(void *handle);
 int mdrdem_coeff(void *handle, int ilo, int ihi, int jlo, int jhi, int nwords,
@@ -48,6 +63,14 @@ int mdrdem_single(const void *handle, int itype, int jtype, const double *radius
                   const double *delta, const double *relative_velocity, const double *omega_i,
                   const double *omega_j, const double *history, double *out /* 5 */,
                   char *err, size_t errlen);
+
+void *mdrdem_wall_new(int nwords, const char *const *words, char *err, size_t errlen);
+void mdrdem_wall_free(void *wall);
+int mdrdem_wall_init(void *wall, const void *pair_table, char *err, size_t errlen);
+int mdrdem_wall_history_size(const void *wall);
+int mdrdem_wall_compute(const void *wall, const MdrdemAtoms *atoms,
+                        const MdrdemWallContacts *contacts, double dt, double *total_force /* 3 */,
+                        char *err, size_t errlen);
 
 #ifdef __cplusplus
 }

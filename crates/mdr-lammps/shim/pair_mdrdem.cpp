@@ -24,6 +24,11 @@
 using namespace LAMMPS_NS;
 
 static const char *HISTORY_ID = "MDRDEM_HISTORY";
+// Placeholder that reserves the history fix's place in the fix list when the pair style is
+// defined (replaced by the history fix in init_style), as LAMMPS's granular pair styles reserve
+// NEIGH_HISTORY_*_DUMMY: a fix defined later that migrates atoms in pre_exchange (fix balance)
+// then runs after the histories are collected into the per-atom partner lists.
+static const char *PLACEHOLDER_ID = "MDRDEM_HISTORY_DUMMY";
 
 PairMdrdem::PairMdrdem(LAMMPS *lmp) : Pair(lmp), handle(nullptr), history(nullptr), maxrad(nullptr)
 {
@@ -34,6 +39,8 @@ PairMdrdem::PairMdrdem(LAMMPS *lmp) : Pair(lmp), handle(nullptr), history(nullpt
   finitecutflag = 1;
   no_virial_fdotr_compute = 1;    // the Rust loop tallies the virial pair by pair
   beyond_contact = 0;
+  if (modify->get_fix_by_id(HISTORY_ID) == nullptr && modify->get_fix_by_id(PLACEHOLDER_ID) == nullptr)
+    modify->add_fix(fmt::format("{} all DUMMY", PLACEHOLDER_ID));
 }
 
 PairMdrdem::~PairMdrdem()
@@ -45,8 +52,9 @@ PairMdrdem::~PairMdrdem()
     memory->destroy(cutsq);
     delete[] maxrad;
   }
-  // The history fix stays (as LAMMPS's granular styles leave theirs) so that a redefined
-  // pair_style mdrdem keeps the contacts' histories.
+  // The history fix stays so that a redefined pair_style mdrdem keeps the contacts' histories;
+  // a placeholder never replaced goes.
+  if (modify->get_fix_by_id(PLACEHOLDER_ID)) modify->delete_fix(PLACEHOLDER_ID);
 }
 
 void PairMdrdem::allocate()
@@ -103,7 +111,11 @@ void PairMdrdem::init_style()
 
   Fix *fix = modify->get_fix_by_id(HISTORY_ID);
   if (fix == nullptr) {
-    fix = modify->add_fix(fmt::format("{} all MDRDEM/HISTORY {}", HISTORY_ID, dnum));
+    const std::string command = fmt::format("{} all MDRDEM/HISTORY {}", HISTORY_ID, dnum);
+    if (modify->get_fix_by_id(PLACEHOLDER_ID))
+      fix = modify->replace_fix(PLACEHOLDER_ID, command, 1);
+    else
+      fix = modify->add_fix(command);
   }
   history = dynamic_cast<FixMdrdemHistory *>(fix);
   if (history == nullptr) error->all(FLERR, "fix {} is not the mdrdem history fix", HISTORY_ID);
@@ -160,6 +172,7 @@ void PairMdrdem::compute(int eflag, int vflag)
   const bool setup = update->setupflag != 0 && !history->setup_update;
   double *values = history->values.data();
   double dt = update->dt;
+  if (update->setupflag) history->replayed_step = -1;
   if (setup) {
     if (!history->replay_step(atoms.v, atoms.omega, values)) dt = 0.0;
   } else if (update->whichflag == 1 &&

