@@ -33,7 +33,7 @@
 use super::boundary::Boundary;
 use super::neighbours::{NeighbourBuilder, PairList};
 use super::particles::{NeighbourListParticles, Species};
-use super::surfaces::{surface_displacement, FastSurface, SurfacePairs};
+use super::surfaces::{surface_displacement, NeighbourListSurface, SurfacePairs};
 use super::workers::map_tasks;
 use crate::added_forces::AddedForces;
 use crate::convert::{to_glam, to_na};
@@ -79,7 +79,7 @@ pub type NeighbourListHistory<N, T, R, B = Books> = PairHistory<
     <<R as RollingModel>::Law as RollingLaw>::State,
 >;
 
-/// What one fast step did.
+/// What one neighbour-list step did.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct NeighbourListStepReport {
     /// Touching sphere–sphere pairs.
@@ -192,7 +192,7 @@ pub struct NeighbourListStepper<
     /// Mass of each surface's dynamic body (infinite otherwise) when `surface_laws` were bound.
     surface_masses: Vec<f64>,
     laws_species: usize,
-    surfaces: Vec<FastSurface>,
+    surfaces: Vec<NeighbourListSurface>,
     pairs: PairList<NeighbourListHistory<N, T, R, B>>,
     old_pairs: PairList<NeighbourListHistory<N, T, R, B>>,
     builder: NeighbourBuilder,
@@ -584,7 +584,7 @@ where
         let co = colliders
             .get(collider)
             .ok_or(CouplingError::UnknownCollider(collider))?;
-        let surface = FastSurface {
+        let surface = NeighbourListSurface {
             collider,
             body: co.parent(),
             material,
@@ -701,7 +701,7 @@ where
 
     /// The registered surfaces, in collider-index order (the `surface` index of
     /// [`SurfacePairs`]).
-    pub fn surfaces(&self) -> &[FastSurface] {
+    pub fn surfaces(&self) -> &[NeighbourListSurface] {
         &self.surfaces
     }
 

@@ -19,7 +19,7 @@ use std::sync::Arc;
 
 /// A rapier collider registered as a surface of the neighbour-list path.
 #[derive(Debug, Clone)]
-pub struct FastSurface {
+pub struct NeighbourListSurface {
     /// The collider.
     pub collider: ColliderHandle,
     /// Its parent body, if any (receives the reaction forces when dynamic).
@@ -44,8 +44,8 @@ pub struct FastSurface {
     pub plane: Option<Vector3<f64>>,
 }
 
-impl FastSurface {
-    /// [`FastSurface::plane`] in rapier's vector type.
+impl NeighbourListSurface {
+    /// [`NeighbourListSurface::plane`] in rapier's vector type.
     pub fn plane_normal(&self) -> Option<Vector> {
         self.plane.map(|n| n.glam())
     }
@@ -190,7 +190,7 @@ impl<H: Default> SurfacePairs<H> {
 
 /// Largest distance any point of a surface moved between two poses, bounded by the translation
 /// of its origin plus the rotation angle times its bounding radius.
-pub(crate) fn surface_displacement(surface: &FastSurface, now: &Pose) -> f64 {
+pub(crate) fn surface_displacement(surface: &NeighbourListSurface, now: &Pose) -> f64 {
     let before = &surface.pose_at_build;
     let dt = (now.translation - before.translation).length();
     let angle = (now.rotation * before.rotation.inverse())
