@@ -7,8 +7,9 @@
 
 use crate::convert::AnyVector;
 use crate::geometry::{
-    convex_distance_within, half_space_distance, sphere_convex, sphere_half_space, sphere_shape,
-    ConvexFaces, SurfaceContact, SurfaceOfRevolution,
+    convex_distance_within, half_space_distance, sphere_convex, sphere_convex_signed,
+    sphere_half_space, sphere_half_space_signed, sphere_shape, sphere_shape_signed, ConvexFaces,
+    SurfaceContact, SurfaceOfRevolution,
 };
 use crate::kernel::PairWrench;
 use crate::particles::MaterialHandle;
@@ -68,6 +69,32 @@ impl NeighbourListSurface {
         match &self.convex {
             Some(faces) => sphere_convex(center, radius, faces, co.shape(), co.position()),
             None => sphere_shape(center, radius, co.shape(), co.position()),
+        }
+    }
+
+    /// [`NeighbourListSurface::sphere_contact`] at any distance: a negative overlap while the
+    /// sphere is apart (a held adhesive contact; see [`crate::geometry::sphere_sphere_signed`]).
+    pub fn sphere_contact_signed(
+        &self,
+        co: &Collider,
+        center: impl AnyVector,
+        radius: f64,
+    ) -> Option<SurfaceContact> {
+        let center = &center.na();
+        if let Some(surface) = &self.revolution {
+            return surface.sphere_contact_signed(center, radius, co.position());
+        }
+        if let Some(normal) = &self.plane {
+            return Some(sphere_half_space_signed(
+                center,
+                radius,
+                normal,
+                co.position(),
+            ));
+        }
+        match &self.convex {
+            Some(faces) => sphere_convex_signed(center, radius, faces, co.shape(), co.position()),
+            None => sphere_shape_signed(center, radius, co.shape(), co.position()),
         }
     }
 

@@ -64,6 +64,7 @@ where
             bounds: &bounds,
             block_len,
             dt,
+            adhesive: self.adhesive,
         };
         // Blocks of one colour have disjoint windows: all of one colour in parallel, then all
         // of the other.
@@ -138,6 +139,7 @@ where
         let surfaces = &self.surfaces;
         let nsurf = surfaces.len();
         let record = self.ended.is_some();
+        let adhesive = self.adhesive;
         let SurfacePairs {
             particle,
             surface,
@@ -166,9 +168,20 @@ where
                     let q = base + k;
                     let (i, s) = (particle[q] as usize, surface[q] as usize);
                     let surf = &surfaces[s];
-                    let contact = colliders
-                        .get(surf.collider)
-                        .and_then(|co| surf.sphere_contact(co, &p.position[i], p.radius[i]));
+                    let (law, rolling) = &laws[p.species[i] as usize * nsurf + s];
+                    let contact = colliders.get(surf.collider).and_then(|co| {
+                        surf.sphere_contact(co, &p.position[i], p.radius[i])
+                            .or_else(|| {
+                                // A held adhesive contact goes on at its negative overlap.
+                                let held = adhesive
+                                    && active[k]
+                                    && law.normal.holds(&history[k].contact.normal);
+                                held.then(|| {
+                                    surf.sphere_contact_signed(co, &p.position[i], p.radius[i])
+                                })
+                                .flatten()
+                            })
+                    });
                     let Some(contact) = contact else {
                         if active[k] {
                             if record {
@@ -207,7 +220,6 @@ where
                         linvel2,
                         angvel2,
                     };
-                    let (law, rolling) = &laws[p.species[i] as usize * nsurf + s];
                     wrench[k] = evaluate_pair(law, rolling, &mut history[k], &kinematics, dt);
                     contacts[k] = contact;
                 }
@@ -262,6 +274,8 @@ struct PairPass<'a, N: NormalModel, T: TangentialModel, D: DampingModel, R: Roll
     bounds: &'a [usize],
     block_len: usize,
     dt: f64,
+    /// Whether a law is adhesive: a contact may hold apart.
+    adhesive: bool,
 }
 
 /// One block's share of the pair list, and its deferred shares.
@@ -397,7 +411,11 @@ where
         window: &mut Window<'_>,
         ended: &mut Vec<EndedContact>,
     ) -> usize {
-        let touching = self.touching(&mut chunk, ended);
+        let touching = if self.adhesive {
+            self.touching_or_held(&mut chunk, ended)
+        } else {
+            self.touching(&mut chunk, ended)
+        };
         // Per group of touching pairs: first the geometry (a square root and a division per
         // pair, independent of each other, so they overlap instead of heading each pair's
         // dependency chain through the law), then the law.
@@ -452,21 +470,68 @@ where
             touching.pairs[touching.len] = k as u16;
             touching.len += usize::from(touch);
             if chunk.active[k] & !touch {
-                // Separated: the rapier pipeline path drops the entry; this one marks the pair
-                // inactive and leaves its history as it is (a pair that touches again starts
-                // from the default, in `evaluate`).
-                if self.record {
-                    ended.push(EndedContact::of(
-                        i as u32,
-                        ContactPartner::Sphere(j as u32),
-                        self.laws(i, j),
-                        &chunk.history[k],
-                    ));
-                }
-                chunk.active[k] = false;
+                self.separate(chunk, k, ended);
             }
         }
         touching
+    }
+
+    /// [`PairPass::touching`] with adhesive laws: a live pair whose contact still holds
+    /// ([`mdr_contact::normal::NormalLaw::holds`]) is evaluated like a touching one, at its
+    /// negative overlap, until its law lets go.
+    #[inline(always)]
+    fn touching_or_held<B: WorkBooks>(
+        &self,
+        chunk: &mut ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
+        ended: &mut Vec<EndedContact>,
+    ) -> Touching {
+        let p = self.particles;
+        let mut touching = Touching {
+            pairs: [0u16; CHUNK],
+            len: 0,
+        };
+        for k in 0..chunk.history.len() {
+            let (i, j, offset) = self.pair(chunk.base, k);
+            let xj = p.position[j] + offset.position;
+            let dist2 = (p.position[i] - xj).norm_squared();
+            let reach = p.radius[i] + p.radius[j];
+            let touch = !(dist2 >= reach * reach || dist2 == 0.0);
+            let held = chunk.active[k]
+                && dist2 != 0.0
+                && self
+                    .laws(i, j)
+                    .0
+                    .normal
+                    .holds(&chunk.history[k].contact.normal);
+            touching.pairs[touching.len] = k as u16;
+            touching.len += usize::from(touch | held);
+            if chunk.active[k] & !(touch | held) {
+                self.separate(chunk, k, ended);
+            }
+        }
+        touching
+    }
+
+    /// The chunk's live pair `k` separated: the rapier pipeline path drops the entry; this one
+    /// marks the pair inactive and leaves its history as it is (a pair that touches again
+    /// starts from the default, in `evaluate`).
+    #[inline(always)]
+    fn separate<B: WorkBooks>(
+        &self,
+        chunk: &mut ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
+        k: usize,
+        ended: &mut Vec<EndedContact>,
+    ) {
+        if self.record {
+            let (i, j, _) = self.pair(chunk.base, k);
+            ended.push(EndedContact::of(
+                i as u32,
+                ContactPartner::Sphere(j as u32),
+                self.laws(i, j),
+                &chunk.history[k],
+            ));
+        }
+        chunk.active[k] = false;
     }
 
     /// Overlap and normal of the touching pairs `group` of the chunk starting at `base`.
@@ -477,9 +542,13 @@ where
         out.extend(group.iter().map(|&k| {
             let (i, j, offset) = self.pair(base, k as usize);
             let xj = p.position[j] + offset.position;
-            // Always `Some`: pass 1 made the same test.
-            sphere_sphere(&p.position[i], p.radius[i], &xj, p.radius[j])
-                .map_or((0.0, Vector3::zeros()), |c| (c.overlap, c.normal))
+            // Always `Some`: pass 1 made the same test (and a held pair's centres differ).
+            let contact = if self.adhesive {
+                sphere_sphere_signed(&p.position[i], p.radius[i], &xj, p.radius[j])
+            } else {
+                sphere_sphere(&p.position[i], p.radius[i], &xj, p.radius[j])
+            };
+            contact.map_or((0.0, Vector3::zeros()), |c| (c.overlap, c.normal))
         }));
     }
 
