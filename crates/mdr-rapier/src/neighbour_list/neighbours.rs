@@ -117,10 +117,10 @@ impl BlockBuffers {
 /// The cell grid and the search buffers, kept between rebuilds.
 ///
 /// A build is LAMMPS's sequence of neighbour steps, each a function of its own:
-/// [`NeighbourBuilder::add_ghosts`] (periodic images), [`CellGrid::over`] and
-/// [`NeighbourBuilder::bin`] (NBin: the grid and a counting sort of the points into its cells),
-/// [`NeighbourBuilder::search`] (NStencil and NPair: the 27-cell stencil of every particle, one
-/// parallel task per block of particles) and [`carry_histories`] (FixNeighHistory: the new list
+/// `NeighbourBuilder::add_ghosts` (periodic images), `CellGrid::over` and
+/// `NeighbourBuilder::bin` (NBin: the grid and a counting sort of the points into its cells),
+/// `NeighbourBuilder::search` (NStencil and NPair: the 27-cell stencil of every particle, one
+/// parallel task per block of particles) and `carry_histories` (FixNeighHistory: the new list
 /// written and the histories carried over by key).
 #[derive(Debug, Default)]
 pub struct NeighbourBuilder {
