@@ -109,7 +109,7 @@ fn bad_work_of_adhesion_is_refused_by_every_command() {
             assert!(stderr.contains("--work-of-adhesion"), "{args:?}: {stderr}");
         }
     }
-    // Adhesion is the MDR law's, and rapier runs the non-adhesive law.
+    // Adhesion is the MDR law's.
     let hertz = mdr_dem(&[
         "impact",
         "curve",
@@ -119,7 +119,66 @@ fn bad_work_of_adhesion_is_refused_by_every_command() {
         "0.1",
     ]);
     assert!(String::from_utf8_lossy(&hertz.stderr).contains("--work-of-adhesion"));
-    let drop = mdr_dem(&["sim", "drop", "--v0", "1", "--work-of-adhesion", "0.1"]);
-    assert!(!drop.status.success());
-    assert!(String::from_utf8_lossy(&drop.stderr).contains("--work-of-adhesion"));
+    for command in ["drop", "pair"] {
+        for bad in ["-0.1", "nan", "inf"] {
+            let args = ["sim", command, "--v0", "1", "--work-of-adhesion", bad];
+            let output = mdr_dem(&args);
+            assert!(!output.status.success(), "{args:?} accepted");
+            assert!(String::from_utf8_lossy(&output.stderr).contains("--work-of-adhesion"));
+        }
+    }
+}
+
+/// `sim drop` and `sim pair` run the adhesive law in both rapier coupling modes: the slow
+/// impact sticks (`e_n = 0`, `stuck` 1) and the fast one rebounds with the validator's `e_n`
+/// (`impact curve`, an integration of the law without rapier) to the coupling's step error
+/// (measured below 1.3e-4 at 1000 steps per contact, crates/mdr-rapier/tests/adhesion.rs).
+#[test]
+fn sim_drop_and_pair_stick_and_rebound_with_adhesion() {
+    let curve = stdout(&mdr_dem(&with_glass(&[
+        "impact",
+        "curve",
+        "--elastic",
+        "--work-of-adhesion",
+        "0.2",
+        "--velocities",
+        "0.02,0.5",
+        "--csv",
+        "-",
+        "--quiet",
+    ])));
+    let reference: Vec<f64> = curve
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(reference[0], 0.0);
+    for command in ["drop", "pair"] {
+        for mode in ["force", "restitution"] {
+            let text = stdout(&mdr_dem(&with_glass(&[
+                "sim",
+                command,
+                "--elastic",
+                "--work-of-adhesion",
+                "0.2",
+                "--mode",
+                mode,
+                "--v0",
+                "0.02,0.5",
+            ])));
+            let mut lines = text.lines();
+            assert_eq!(lines.next().unwrap(), "v0_m_per_s,e_n,steps,stuck");
+            let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+            assert_eq!((rows[0][1], rows[0][3]), ("0", "1"), "{command} {mode}");
+            assert_eq!(rows[1][3], "0", "{command} {mode}");
+            if command == "drop" {
+                let e: f64 = rows[1][1].parse().unwrap();
+                assert!(
+                    (e - reference[1]).abs() < 5e-4,
+                    "{command} {mode}: {e} vs {}",
+                    reference[1]
+                );
+            }
+        }
+    }
 }

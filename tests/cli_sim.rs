@@ -10,7 +10,7 @@ fn mdr_dem(args: &[&str]) -> Output {
         .expect("run mdr-dem")
 }
 
-/// The rows of a successful `v0_m_per_s,e_n,steps` CSV on stdout.
+/// The rows of a successful `v0_m_per_s,e_n,steps,stuck` CSV on stdout.
 fn rows(output: &Output) -> Vec<Vec<f64>> {
     assert!(
         output.status.success(),
@@ -19,7 +19,7 @@ fn rows(output: &Output) -> Vec<Vec<f64>> {
     );
     let text = String::from_utf8(output.stdout.clone()).unwrap();
     let mut lines = text.lines();
-    assert_eq!(lines.next().unwrap(), "v0_m_per_s,e_n,steps");
+    assert_eq!(lines.next().unwrap(), "v0_m_per_s,e_n,steps,stuck");
     lines
         .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
         .collect()

@@ -5,7 +5,7 @@
 use super::impact::{contact_error, friction, materials, normal_laws, CommonArgs, MethodName};
 use anyhow::{anyhow, bail, Context};
 use clap::{Args, Subcommand, ValueEnum};
-use mdr_contact::normal::MdrElastoPlastic;
+use mdr_contact::normal::{AdhesiveMdr, MdrElastoPlastic};
 use mdr_contact::{ContactPair, Material};
 use mdr_impact::NormalSpec;
 use mdr_rapier::scenario::{CouplingMode, ImpactScene, SceneLaw, SceneOutcome, Target};
@@ -17,10 +17,10 @@ use std::path::Path;
 #[derive(Debug, Subcommand)]
 pub enum SimCommand {
     /// A sphere launched without gravity at a fixed half-space in rapier; prints
-    /// `v0_m_per_s,e_n,steps`.
+    /// `v0_m_per_s,e_n,steps,stuck`.
     Drop(DropArgs),
     /// Head-on impact of two free spheres in rapier (`--v0` is the relative approach speed);
-    /// prints `v0_m_per_s,e_n,steps`.
+    /// prints `v0_m_per_s,e_n,steps,stuck`.
     Pair(PairArgs),
     /// A planetary-ring shearing box (REBOUND's shearing sheet) with the MDR, Bridges or a
     /// constant restitution law.
@@ -152,8 +152,13 @@ impl SceneSettings {
             } => ContactPair::sphere_on_sphere(radius, &particle, r2, &material),
         }
         .map_err(contact_error(false))?;
+        // Validates `--work-of-adhesion` (finite, ≥ 0, with the MDR law only).
         let (_, laws) = normal_laws(&a, &pair)?;
+        let adhesion = a.work_of_adhesion.unwrap_or(0.0);
         let law = match laws.as_slice() {
+            [NormalSpec::Mdr(model)] if adhesion > 0.0 => SceneLaw::AdhesiveMdr(
+                AdhesiveMdr::new(*model, adhesion).map_err(contact_error(false))?,
+            ),
             [NormalSpec::Mdr(model)] => SceneLaw::Mdr(*model),
             [NormalSpec::Hertz] => SceneLaw::Mdr(MdrElastoPlastic::elastic()),
             [NormalSpec::Thornton(model)] => SceneLaw::Thornton(*model),
@@ -208,12 +213,6 @@ fn refuse_validator_only_flags(a: &CommonArgs) -> anyhow::Result<()> {
     if a.scale.is_some() {
         bail!("invalid value for --scale: `sim` reports the model's raw e_n (no scale)");
     }
-    if a.work_of_adhesion.is_some_and(|w| w != 0.0) {
-        bail!(
-            "invalid value for --work-of-adhesion: rapier runs the non-adhesive law; adhesive \
-             impacts are the validator's (`mdr-dem impact … --work-of-adhesion`)"
-        );
-    }
     Ok(())
 }
 
@@ -259,13 +258,17 @@ fn run_impacts(args: &ImpactRunArgs, sphere_target: bool, angle: f64) -> anyhow:
     write_csv(&args.csv, &rows)
 }
 
-/// Write `v0_m_per_s,e_n,steps` rows to `path` (atomically) or stdout.
+/// Write `v0_m_per_s,e_n,steps,stuck` rows to `path` (atomically) or stdout; `stuck` is 1
+/// where the sphere stuck (adhesion; `e_n = 0`), else 0, as in `mdr-dem impact`.
 fn write_csv(path: &str, rows: &[SceneOutcome]) -> anyhow::Result<()> {
-    let mut text = String::from("v0_m_per_s,e_n,steps\n");
+    let mut text = String::from("v0_m_per_s,e_n,steps,stuck\n");
     for r in rows {
         text.push_str(&format!(
-            "{},{},{}\n",
-            r.speed, r.normal_restitution, r.steps
+            "{},{},{},{}\n",
+            r.speed,
+            r.normal_restitution,
+            r.steps,
+            u8::from(r.stuck)
         ));
     }
     if path == "-" {

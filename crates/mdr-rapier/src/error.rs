@@ -115,7 +115,7 @@ pub enum CouplingError {
         /// `sphere–sphere` or `sphere–surface`.
         kind: &'static str,
     },
-    /// A saved fast-path state (neighbour lists, histories) does not fit the stepper it is
+    /// A saved neighbour-list state (neighbour lists, histories) does not fit the stepper it is
     /// restored into.
     #[error("the saved neighbour-list state does not fit this stepper: {0}")]
     StateMismatch(String),

@@ -5,7 +5,9 @@
 //!    [`PairKey`];
 //! 2. exact geometry at the current poses, in parallel ([`crate::geometry`]);
 //! 3. the history store is merged with the touching pairs (sorted by key: history created at
-//!    first touch, dropped at separation);
+//!    first touch, dropped at separation); a contact whose adhesive law still holds
+//!    ([`mdr_contact::normal::NormalLaw::holds`]) stays, with its geometry at its negative
+//!    overlap, until the law lets it go, whether or not the narrow phase still lists it;
 //! 4. the per-pair kernel ([`crate::kernel::evaluate_pair`]) in parallel;
 //! 5. forces and torques reduced per body in key order (deterministic for any thread count) and
 //!    added to the forces the user put on the bodies (rapier's `add_force`, kept from step to
@@ -17,7 +19,9 @@
 use crate::added_forces::AddedForces;
 use crate::convert::{to_glam, to_na};
 use crate::error::{positive, CouplingError, Result};
-use crate::geometry::{sphere_shape, sphere_sphere, SurfaceContact};
+use crate::geometry::{
+    sphere_shape, sphere_shape_signed, sphere_sphere, sphere_sphere_signed, SurfaceContact,
+};
 use crate::kernel::{evaluate_pair, Arms, ContactKinematics, PairHistory, PairWrench};
 use crate::particles::{MaterialHandle, Particle, ParticleSet, ParticleShape, SphereBuilder};
 use crate::registration::{add_force_flags, check_force_flags};
@@ -25,7 +29,7 @@ use crate::store::{ContactStore, Keyed, PairKey};
 use crate::timestep::stable_time_step;
 use mdr_contact::damping::{DampingModel, NoDamping};
 use mdr_contact::model::{ContactLaw, ContactModel, StateOf};
-use mdr_contact::normal::NormalModel;
+use mdr_contact::normal::{NormalLaw, NormalModel};
 use mdr_contact::rolling::{NoRolling, RollingLaw, RollingModel};
 use mdr_contact::tangential::{Frictionless, TangentialModel};
 use mdr_contact::ContactPair;
@@ -581,6 +585,7 @@ where
             c.contact = candidate_geometry(particles, colliders, c.sphere, c.other);
         });
         self.candidates.par_sort_unstable_by_key(|c| c.key);
+        keep_held_contacts(&self.store, particles, colliders, &mut self.candidates);
         let t2 = Instant::now();
 
         for c in &self.candidates {
@@ -935,6 +940,69 @@ fn candidate_geometry(
     match p2.radius() {
         Some(r2) => sphere_sphere(&c1, r1, &to_na(co2.position().translation), r2),
         None => sphere_shape(&c1, r1, co2.shape(), co2.position()),
+    }
+}
+
+/// Keep every stored contact whose law still holds adhesively
+/// ([`mdr_contact::normal::NormalLaw::holds`]) among the `candidates` (sorted by key), with its
+/// geometry at any distance ([`sphere_sphere_signed`], [`sphere_shape_signed`]): its neck
+/// outlives geometric contact, and may outlive the narrow phase's pair (whose AABBs are
+/// enlarged by the prediction distance only), so the store, not the narrow phase, says which
+/// pairs are held; the law is evaluated on them at their (negative) overlap until it lets go.
+fn keep_held_contacts<NL, TL, DL, RL>(
+    store: &ContactStore<ForceContact<NL, TL, DL, RL>>,
+    particles: &ParticleSet,
+    colliders: &ColliderSet,
+    candidates: &mut Vec<Candidate>,
+) where
+    NL: NormalLaw,
+    TL: mdr_contact::tangential::TangentialLaw,
+    RL: RollingLaw,
+{
+    let mut added = false;
+    for entry in store.entries() {
+        if !entry.law.normal.holds(&entry.history.contact.normal) {
+            continue;
+        }
+        let geometry = held_geometry(particles, colliders, entry.collider1, entry.collider2);
+        match candidates.binary_search_by_key(&entry.key, |c| c.key) {
+            Ok(k) => {
+                if candidates[k].contact.is_none() {
+                    candidates[k].contact = geometry;
+                }
+            }
+            Err(_) => {
+                candidates.push(Candidate {
+                    key: entry.key,
+                    sphere: entry.collider1,
+                    other: entry.collider2,
+                    contact: geometry,
+                });
+                added = true;
+            }
+        }
+    }
+    if added {
+        candidates.sort_unstable_by_key(|c| c.key);
+    }
+}
+
+/// The geometry of a held pair at any distance (negative overlap while apart).
+fn held_geometry(
+    particles: &ParticleSet,
+    colliders: &ColliderSet,
+    sphere: ColliderHandle,
+    other: ColliderHandle,
+) -> Option<SurfaceContact> {
+    let p1 = particles.get(sphere)?;
+    let p2 = particles.get(other)?;
+    let co1 = colliders.get(sphere)?;
+    let co2 = colliders.get(other)?;
+    let c1 = to_na(co1.position().translation);
+    let r1 = p1.radius()?;
+    match p2.radius() {
+        Some(r2) => sphere_sphere_signed(&c1, r1, &to_na(co2.position().translation), r2),
+        None => sphere_shape_signed(&c1, r1, co2.shape(), co2.position()),
     }
 }
 

@@ -66,6 +66,113 @@ pub fn sphere_sphere(
     })
 }
 
+/// [`sphere_sphere`] at any distance: the overlap is negative by the gap between the spheres
+/// while they are apart. An adhesive contact that still holds there
+/// ([`mdr_contact::normal::NormalLaw::holds`]) is evaluated at it. `None` only when the centres
+/// coincide.
+#[inline]
+pub fn sphere_sphere_signed(
+    c1: impl AnyVector,
+    r1: f64,
+    c2: impl AnyVector,
+    r2: f64,
+) -> Option<SurfaceContact> {
+    let (c1, c2) = (c1.na(), c2.na());
+    let d = c1 - c2;
+    let dist2 = d.norm_squared();
+    if dist2 == 0.0 {
+        return None;
+    }
+    let dist = dist2.sqrt();
+    let overlap = r1 + r2 - dist;
+    let normal = d * (1.0 / dist);
+    Some(SurfaceContact {
+        overlap,
+        normal,
+        point: c2 + normal * (r2 - 0.5 * overlap),
+    })
+}
+
+/// [`sphere_shape`] at any distance: the overlap is negative by the gap between the sphere and
+/// the shape while they are apart (see [`sphere_sphere_signed`]). `None` only when the centre
+/// lies on the shape's boundary.
+pub fn sphere_shape_signed(
+    c1: impl AnyVector,
+    r1: f64,
+    shape: &dyn Shape,
+    pose: &Pose,
+) -> Option<SurfaceContact> {
+    let c1 = c1.na();
+    let projection = shape.project_point(pose, to_glam(&c1), false);
+    let p = to_na(projection.point);
+    let d = c1 - p;
+    let dist = d.norm();
+    if dist == 0.0 {
+        return None;
+    }
+    let (signed, normal) = if projection.is_inside {
+        (-dist, -d / dist)
+    } else {
+        (dist, d / dist)
+    };
+    let overlap = r1 - signed;
+    Some(SurfaceContact {
+        overlap,
+        normal,
+        point: p - normal * (0.5 * overlap),
+    })
+}
+
+/// [`sphere_half_space`] at any distance (see [`sphere_sphere_signed`]).
+#[inline]
+pub fn sphere_half_space_signed(
+    c1: impl AnyVector,
+    r1: f64,
+    local_normal: impl AnyVector,
+    pose: &Pose,
+) -> SurfaceContact {
+    let c1 = c1.na();
+    let (normal, signed) = half_space_normal_and_distance(&c1, &local_normal.na(), pose);
+    let overlap = r1 - signed;
+    SurfaceContact {
+        overlap,
+        normal,
+        point: c1 - normal * (signed + 0.5 * overlap),
+    }
+}
+
+/// [`sphere_convex`] at any distance (see [`sphere_sphere_signed`]).
+pub fn sphere_convex_signed(
+    c1: impl AnyVector,
+    r1: f64,
+    faces: &ConvexFaces,
+    shape: &dyn Shape,
+    pose: &Pose,
+) -> Option<SurfaceContact> {
+    let c1 = &c1.na();
+    let local = to_na(pose.inverse_transform_point(to_glam(c1)));
+    match faces.project(&local, f64::INFINITY) {
+        ConvexProjection::Nearest(q) => {
+            let p = to_na(pose.transform_point(to_glam(&q)));
+            let d = c1 - p;
+            let dist = d.norm();
+            if dist == 0.0 {
+                return None;
+            }
+            let overlap = r1 - dist;
+            let normal = d / dist;
+            Some(SurfaceContact {
+                overlap,
+                normal,
+                point: p - normal * (0.5 * overlap),
+            })
+        }
+        ConvexProjection::Inside | ConvexProjection::Beyond => {
+            sphere_shape_signed(c1, r1, shape, pose)
+        }
+    }
+}
+
 /// Sphere 1 (centre `c1`, radius `r1`) against any shape at `pose`, through the projection of the
 /// centre on the shape's boundary; `None` when they do not overlap.
 pub fn sphere_shape(
@@ -457,6 +564,29 @@ impl SurfaceOfRevolution {
         })
     }
 
+    /// [`SurfaceOfRevolution::sphere_contact`] at any distance (see [`sphere_sphere_signed`]).
+    pub fn sphere_contact_signed(
+        &self,
+        c1: impl AnyVector,
+        r1: f64,
+        pose: &Pose,
+    ) -> Option<SurfaceContact> {
+        let c1 = &c1.na();
+        let local = to_na(pose.inverse_transform_point(to_glam(c1)));
+        let (dist, normal, _) = self.nearest(&local);
+        if dist == 0.0 {
+            return None;
+        }
+        let overlap = r1 - dist;
+        let normal = to_na(pose.rotation * to_glam(&normal));
+        let p = c1 - normal * dist;
+        Some(SurfaceContact {
+            overlap,
+            normal,
+            point: p - normal * (0.5 * overlap),
+        })
+    }
+
     /// Whether the world point `x` is within `reach` of the surface on a collider at `pose`.
     pub fn within(&self, x: impl AnyVector, pose: &Pose, reach: f64) -> bool {
         let local = to_na(pose.inverse_transform_point(x.glam()));
@@ -470,6 +600,59 @@ mod tests {
     use rapier3d_f64::math::Vector;
     use rapier3d_f64::parry::query::PointQuery;
     use rapier3d_f64::parry::shape::{Cuboid, HalfSpace};
+
+    /// The signed forms agree with the overlapping ones where both give a contact, and give
+    /// minus the gap (the distance between the surfaces, computed here from the centres)
+    /// where the bodies are apart.
+    #[test]
+    fn signed_contacts_give_minus_the_gap_when_apart() {
+        let c = Vector3::new(0.3, -0.2, 2.5);
+        let apart = sphere_sphere_signed(&c, 1.0, &Vector3::zeros(), 1.0).unwrap();
+        assert!((apart.overlap - (2.0 - c.norm())).abs() < 1e-15);
+        assert!((apart.normal - c / c.norm()).norm() < 1e-15);
+        let close = Vector3::new(0.0, 0.0, 1.9);
+        assert_eq!(
+            sphere_sphere_signed(&close, 1.0, &Vector3::zeros(), 1.0),
+            sphere_sphere(&close, 1.0, &Vector3::zeros(), 1.0)
+        );
+        let pose = Pose::from_translation(Vector::new(0.0, 0.0, -0.5));
+        let floor = HalfSpace::new(Vector::Z);
+        for z in [0.3, 0.6, 1.2] {
+            let centre = Vector3::new(0.2, 0.1, z);
+            let gap = z + 0.5 - 1.0;
+            let plane = sphere_half_space_signed(&centre, 1.0, &Vector3::z(), &pose);
+            let shape = sphere_shape_signed(&centre, 1.0, &floor, &pose).unwrap();
+            for contact in [plane, shape] {
+                assert!((contact.overlap + gap).abs() < 1e-14, "z = {z}");
+                assert!((contact.normal - Vector3::z()).norm() < 1e-14);
+            }
+            if gap < 0.0 {
+                let exact = sphere_half_space(&centre, 1.0, &Vector3::z(), &pose).unwrap();
+                assert!((exact.overlap - plane.overlap).abs() < 1e-15);
+            }
+        }
+        let corners: Vec<Vector> = (0..8)
+            .map(|k| {
+                let side = |bit: usize| if k & bit == 0 { -0.5 } else { 0.5 };
+                Vector::new(side(1), side(2), side(4))
+            })
+            .collect();
+        let hull =
+            rapier3d_f64::parry::shape::ConvexPolyhedron::from_convex_hull(&corners).unwrap();
+        let faces = ConvexFaces::of(&hull);
+        let centre = Vector3::new(0.1, 0.0, 1.7);
+        let convex = sphere_convex_signed(&centre, 1.0, &faces, &hull, &Pose::IDENTITY).unwrap();
+        assert!((convex.overlap - (1.0 - 1.2)).abs() < 1e-14);
+        let surface =
+            SurfaceOfRevolution::new(Vector::ZERO, Vector::Z, vec![(2.0, -1.0), (2.0, 1.0)])
+                .unwrap();
+        let inside = Vector3::new(0.5, 0.0, 0.0);
+        let wall = surface
+            .sphere_contact_signed(&inside, 1.0, &Pose::IDENTITY)
+            .unwrap();
+        assert!((wall.overlap - (1.0 - 1.5)).abs() < 1e-14);
+        assert!((wall.normal + Vector3::x()).norm() < 1e-14);
+    }
 
     #[test]
     fn sphere_sphere_overlap_and_normal() {

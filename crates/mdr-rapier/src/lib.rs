@@ -46,6 +46,7 @@
 #![warn(missing_docs)]
 
 mod added_forces;
+pub mod adhesion;
 pub mod convert;
 pub mod error;
 pub mod neighbour_list;

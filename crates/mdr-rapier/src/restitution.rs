@@ -15,6 +15,7 @@
 use crate::error::{positive, CouplingError, Result};
 use crate::particles::{MaterialHandle, ParticleSet, SphereBuilder};
 use crate::registration::{add_restitution_flags, check_restitution_flags};
+use crate::restitution_law::adhesive_impact;
 use crate::store::PairKey;
 use mdr_contact::normal::{MdrElastoPlastic, MdrLaw, MdrState, NormalModel};
 use mdr_contact::ContactPair;
@@ -252,6 +253,7 @@ pub struct RestitutionReport {
 #[derive(Debug)]
 pub struct RestitutionHooks {
     model: MdrElastoPlastic,
+    work_of_adhesion: f64,
     friction: FrictionRule,
     /// The step of the last [`RestitutionHooks::prepare`].
     dt: Option<f64>,
@@ -287,6 +289,7 @@ impl RestitutionHooks {
         }
         Ok(Self {
             model,
+            work_of_adhesion: 0.0,
             friction: rule,
             dt: None,
             declared_dt: None,
@@ -298,6 +301,21 @@ impl RestitutionHooks {
             impacts: AtomicU64::new(0),
             report: RestitutionReport::default(),
         })
+    }
+
+    /// Adhesive contacts with the work of adhesion `work_of_adhesion` (J/m², finite, ≥ 0; the
+    /// adhesive MDR law, docs/theory.md §9): an impact's rebound pays the adhesive hysteresis
+    /// of its unloading ([`crate::restitution_law::adhesive_impact`]), and an impact whose
+    /// rebound energy that takes whole sticks: zero normal rebound.
+    pub fn with_work_of_adhesion(mut self, work_of_adhesion: f64) -> Result<Self> {
+        mdr_contact::normal::AdhesiveMdr::new(self.model, work_of_adhesion)?;
+        self.work_of_adhesion = work_of_adhesion;
+        Ok(self)
+    }
+
+    /// The work of adhesion `Δγ` (J/m²).
+    pub fn work_of_adhesion(&self) -> f64 {
+        self.work_of_adhesion
     }
 
     /// Keep a pair's impact history while the gap between its surfaces is below `reach`
@@ -617,11 +635,15 @@ impl RestitutionHooks {
         let state = self.history.state(slot);
         let kinetic = 0.5 * mass * approach * approach;
         self.impacts.fetch_add(1, Ordering::Relaxed);
-        // Energy that fits within the old unloading branch is returned: elastic re-impact
-        // (docs/theory.md §4); skip the root solve.
-        let restitution = if kinetic <= law.stored_energy(state.max_overlap, state.max_overlap) {
+        // Energy that fits within the old unloading branch is returned without adhesion:
+        // elastic re-impact (docs/theory.md §4); skip the root solve.
+        let restitution = if self.work_of_adhesion == 0.0
+            && kinetic <= law.stored_energy(state.max_overlap, state.max_overlap)
+        {
             1.0
-        } else if let Ok(impact) = law.impact(&state, mass, approach) {
+        } else if let Ok(impact) =
+            adhesive_impact(&law, self.work_of_adhesion, &state, mass, approach)
+        {
             self.history.commit(slot, impact.state.max_overlap);
             impact.restitution
         } else {

@@ -5,13 +5,19 @@
 //!
 //! - [`MdrRestitution`]: the MDR elasto-plastic law of `mdr-contact` through its energy route
 //!   ([`MdrLaw::impact`], docs/theory.md §4, eqs. 7–14); the history is the pair's largest indentation.
+//!   With a work of adhesion ([`MdrRestitution::with_work_of_adhesion`]) the rebound also pays
+//!   the adhesive hysteresis of the unloading ([`unloading_restitution`]); an impact whose
+//!   rebound energy it takes whole sticks (`e = 0`).
 //! - [`ConstantRestitution`]: one ε for every impact, not contact mechanics of the MDR model but
 //!   the simplest law to compare it with.
 //!
 //! The empirical law of Bridges, Hatzes & Lin (1984) for ring particles is next to the ring, in
 //! `mdr-ring` (`mdr_ring::law::BridgesLaw`).
 
-use mdr_contact::normal::{MdrElastoPlastic, MdrLaw, MdrState, NormalModel};
+use mdr_contact::normal::{
+    AdhesiveMdr, AdhesiveMdrLaw, AdhesiveMdrState, EnergyRouteImpact, MdrElastoPlastic, MdrLaw,
+    MdrState, NormalLaw, NormalModel,
+};
 use mdr_contact::{ContactPair, Material};
 
 /// What a restitution law may need to know about the two spheres of an impact.
@@ -65,6 +71,82 @@ pub trait RestitutionLaw: Send + Sync {
     fn name(&self) -> &'static str;
 }
 
+/// The restitution of an impact by the energy route through any normal law, given the history
+/// `state` at the deepest point `overlap` of the impact and the kinetic energy `kinetic` (J) the
+/// impact came in with: the contact returns the elastic energy stored there
+/// ([`NormalLaw::elastic_energy`]) less what it dissipates on the way out, the work its let-go
+/// springs held ([`NormalLaw::dissipated_work`] grows by it while unloading to the let-go
+/// overlap [`NormalLaw::detachment_overlap`]; nothing without adhesion), so
+/// `e² = (E_el(δ_max) − W_let-go) / W_in` (eq. 14; docs/theory.md §9). Zero when the let-go
+/// work takes the whole rebound energy: the impact sticks. The unloading is one monotone path
+/// from `δ_max` to the let-go, as in a head-on impact.
+pub fn unloading_restitution<L: NormalLaw>(
+    law: &L,
+    state: &L::State,
+    overlap: f64,
+    kinetic: f64,
+) -> f64 {
+    if kinetic.is_nan() || kinetic <= 0.0 {
+        return 0.0;
+    }
+    let stored = law.elastic_energy(state, overlap);
+    let mut released = state.clone();
+    let before = law.dissipated_work(&released);
+    let mut below = law.detachment_overlap(&released);
+    // Just past the let-go overlap (the law holds at it); a few tries cover a let-go overlap
+    // that moves as springs let go.
+    for _ in 0..8 {
+        below -= below.abs().max(f64::MIN_POSITIVE) * 1e-9 + f64::MIN_POSITIVE;
+        law.update(&mut released, below);
+        if !law.holds(&released) {
+            break;
+        }
+        below = law.detachment_overlap(&released);
+    }
+    let returned = stored - (law.dissipated_work(&released) - before);
+    if returned > 0.0 {
+        (returned / kinetic).sqrt().min(1.0)
+    } else {
+        0.0
+    }
+}
+
+/// One impact of the adhesive MDR law by the energy route, on the history `state` of the MDR
+/// law `law` with the work of adhesion `work_of_adhesion` (J/m²): the loading is the MDR law's
+/// ([`MdrLaw::impact`]: Heß's rule attaches a spring with zero elongation, so the adhesion does
+/// no work on the way in), the rebound [`unloading_restitution`] of the adhesive law at the
+/// impact's deepest point. Without adhesion it is [`MdrLaw::impact`] exactly.
+///
+/// # Errors
+/// [`MdrLaw::impact`]'s: a negative, NaN or infinite `speed`, or a `mass` that is not positive.
+pub fn adhesive_impact(
+    law: &MdrLaw,
+    work_of_adhesion: f64,
+    state: &MdrState,
+    mass: f64,
+    speed: f64,
+) -> mdr_contact::Result<EnergyRouteImpact> {
+    let impact = law.impact(state, mass, speed)?;
+    if work_of_adhesion == 0.0 {
+        return Ok(impact);
+    }
+    let adhesive = AdhesiveMdrLaw::new(*law, work_of_adhesion);
+    let mut loaded = AdhesiveMdrState {
+        max_overlap: impact.state.max_overlap,
+        ..AdhesiveMdrState::default()
+    };
+    adhesive.update(&mut loaded, impact.max_overlap);
+    Ok(EnergyRouteImpact {
+        restitution: unloading_restitution(
+            &adhesive,
+            &loaded,
+            impact.max_overlap,
+            0.5 * mass * speed * speed,
+        ),
+        ..impact
+    })
+}
+
 /// The MDR elasto-plastic law (Lyashenko & Popov 2018) for spheres of one material: each impact
 /// binds the law to the pair (`E*` eq. 3, `R`, `m`) and evaluates the energy route
 /// ([`MdrLaw::impact`]): `e² = W_returned / W_in` (eq. 14), with re-impacts of a contact that
@@ -73,6 +155,7 @@ pub trait RestitutionLaw: Send + Sync {
 pub struct MdrRestitution {
     material: Material,
     model: MdrElastoPlastic,
+    work_of_adhesion: f64,
     effective_modulus: f64,
     effective_shear_modulus: f64,
 }
@@ -86,6 +169,7 @@ impl MdrRestitution {
         Ok(Self {
             material,
             model,
+            work_of_adhesion: 0.0,
             effective_modulus: probe.effective_modulus(),
             effective_shear_modulus: probe.effective_shear_modulus(),
         })
@@ -100,6 +184,19 @@ impl MdrRestitution {
         let ice = Material::new(9.0e9, 0.33, 400.0).expect("valid ice constants");
         let model = MdrElastoPlastic::new(8.0e3, 0.2).expect("valid MDR parameters");
         Self::new(ice, model).expect("valid ice law")
+    }
+
+    /// The same law with the work of adhesion `work_of_adhesion` (J/m², finite, ≥ 0): impacts
+    /// pay the adhesive hysteresis ([`adhesive_impact`]) and slow ones stick.
+    pub fn with_work_of_adhesion(mut self, work_of_adhesion: f64) -> mdr_contact::Result<Self> {
+        AdhesiveMdr::new(self.model, work_of_adhesion)?;
+        self.work_of_adhesion = work_of_adhesion;
+        Ok(self)
+    }
+
+    /// The work of adhesion `Δγ` (J/m²).
+    pub fn work_of_adhesion(&self) -> f64 {
+        self.work_of_adhesion
     }
 
     /// The material.
@@ -141,7 +238,13 @@ impl RestitutionLaw for MdrRestitution {
         let Ok(law) = self.bind(pair) else {
             return 1.0;
         };
-        let Ok(outcome) = law.impact(history, pair.reduced_mass(), approach_speed) else {
+        let Ok(outcome) = adhesive_impact(
+            &law,
+            self.work_of_adhesion,
+            history,
+            pair.reduced_mass(),
+            approach_speed,
+        ) else {
             return 1.0;
         };
         *history = outcome.state;

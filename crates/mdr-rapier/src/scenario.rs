@@ -10,7 +10,7 @@ use crate::restitution::RestitutionHooks;
 use crate::timestep::stable_time_step;
 use mdr_contact::damping::DampingModel;
 use mdr_contact::model::ContactModel;
-use mdr_contact::normal::{MdrElastoPlastic, NormalModel, Thornton};
+use mdr_contact::normal::{AdhesiveMdr, MdrElastoPlastic, NormalModel, Thornton};
 use mdr_contact::rolling::RollingModel;
 use mdr_contact::tangential::Mindlin;
 use mdr_contact::tangential::TangentialModel;
@@ -35,6 +35,14 @@ pub enum SceneLaw {
     /// Thornton's (1997) elastic–perfectly-plastic law: force mode only (the restitution hook
     /// keeps the MDR law's history).
     Thornton(Thornton),
+    /// The adhesive MDR law (docs/theory.md §9): both coupling modes; an impact can stick.
+    AdhesiveMdr(AdhesiveMdr),
+}
+
+impl From<AdhesiveMdr> for SceneLaw {
+    fn from(model: AdhesiveMdr) -> Self {
+        SceneLaw::AdhesiveMdr(model)
+    }
 }
 
 impl From<MdrElastoPlastic> for SceneLaw {
@@ -104,6 +112,9 @@ pub struct SceneOutcome {
     pub steps: u64,
     /// Time step used (s).
     pub time_step: f64,
+    /// Whether the sphere stuck (adhesion): it turned back towards the target while the
+    /// contact held, as the single-impact validator decides; `normal_restitution` is then 0.
+    pub stuck: bool,
 }
 
 impl ImpactScene {
@@ -189,24 +200,48 @@ impl ImpactScene {
                 "restitution mode takes its e(v) and history from the MDR law (or Hertz); \
                      use force mode for Thornton's law",
             )),
+            (CouplingMode::Force, SceneLaw::AdhesiveMdr(model)) => {
+                self.run_force(model, world, dt, centre, launch, (vn, vt))
+            }
             (CouplingMode::Restitution, SceneLaw::Mdr(model)) => {
-                let mut hooks = RestitutionHooks::new(model, self.friction)?;
-                let (ball, target) = self.place_bodies(&mut hooks, &mut world, centre, launch)?;
-                world.integration_parameters.dt = dt;
-                world.integration_parameters.normalized_max_linear_velocity = f64::MAX;
-                let mut steps = 0;
-                for _ in 0..50 {
-                    hooks.step(&mut world)?;
-                    if separating(&world, ball, target) {
-                        steps += 1;
-                        // One more step to let the solver settle, then stop.
-                        hooks.step(&mut world)?;
-                        break;
-                    }
-                }
-                Ok(self.outcome(&world, ball, target, vn, vt, steps, dt))
+                let hooks = RestitutionHooks::new(model, self.friction)?;
+                self.run_restitution(hooks, world, dt, centre, launch, (vn, vt))
+            }
+            (CouplingMode::Restitution, SceneLaw::AdhesiveMdr(model)) => {
+                let hooks = RestitutionHooks::new(*model.params(), self.friction)?
+                    .with_work_of_adhesion(model.work_of_adhesion())?;
+                self.run_restitution(hooks, world, dt, centre, launch, (vn, vt))
             }
         }
+    }
+
+    /// Restitution mode with `hooks`: step until the bodies separate.
+    fn run_restitution(
+        &self,
+        mut hooks: RestitutionHooks,
+        mut world: PhysicsWorld,
+        dt: f64,
+        centre: Vector,
+        launch: Vector,
+        (vn, vt): (f64, f64),
+    ) -> Result<SceneOutcome> {
+        let (ball, target) = self.place_bodies(&mut hooks, &mut world, centre, launch)?;
+        world.integration_parameters.dt = dt;
+        world.integration_parameters.normalized_max_linear_velocity = f64::MAX;
+        let mut steps = 0;
+        for _ in 0..50 {
+            hooks.step(&mut world)?;
+            if separating(&world, ball, target) {
+                steps += 1;
+                // One more step to let the solver settle, then stop.
+                hooks.step(&mut world)?;
+                break;
+            }
+        }
+        let mut outcome = self.outcome(&world, ball, target, vn, vt, steps, dt);
+        // No rebound: the impact stuck (zero normal restitution from the law).
+        outcome.stuck = hooks.work_of_adhesion() > 0.0 && outcome.normal_restitution <= 0.0;
+        Ok(outcome)
     }
 
     /// Force mode with normal law `model`: step until the bodies have touched and separate.
@@ -226,11 +261,22 @@ impl ImpactScene {
         let max_steps = (200.0 * self.steps_per_contact) as u64 + 100;
         let mut steps = 0;
         let mut touched = false;
+        // Whether the sphere moved away while in contact: turning back towards the target
+        // while the contact still holds (adhesion) is sticking, the validator's rule.
+        let mut receding = false;
         for _ in 0..max_steps {
             let report = stepper.step(&mut world)?;
             if report.contacts > 0 {
                 touched = true;
                 steps += 1;
+                let away = separating(&world, ball, target);
+                if receding && !away {
+                    let mut outcome = self.outcome(&world, ball, target, vn, vt, steps, dt);
+                    outcome.normal_restitution = 0.0;
+                    outcome.stuck = true;
+                    return Ok(outcome);
+                }
+                receding = away;
             } else if touched && separating(&world, ball, target) {
                 break;
             }
@@ -299,6 +345,7 @@ impl ImpactScene {
             spin: -b.angvel().z,
             steps,
             time_step: dt,
+            stuck: false,
         }
     }
 }

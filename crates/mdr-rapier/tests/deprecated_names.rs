@@ -29,6 +29,8 @@ fn former_names_are_the_renamed_items() {
         new::particles::NeighbourListParticles,
     >());
     assert!(same::<old::bed::Bed, new::bed::Bed>());
+    assert!(same::<old::FastSurface, new::surfaces::NeighbourListSurface>());
+    assert!(same::<new::FastSurface, new::surfaces::NeighbourListSurface>());
     assert!(!same::<
         old::FastForceStepper<Hertz>,
         new::NeighbourListStepper<Hertz, Mindlin>,

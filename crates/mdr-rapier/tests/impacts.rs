@@ -25,13 +25,14 @@ fn spec(scene: &ImpactScene) -> NormalSpec {
     match scene.model {
         SceneLaw::Mdr(model) => NormalSpec::Mdr(model),
         SceneLaw::Thornton(model) => NormalSpec::Thornton(model),
+        SceneLaw::AdhesiveMdr(model) => NormalSpec::Mdr(*model.params()),
     }
 }
 
 fn reference_restitution(scene: &ImpactScene) -> f64 {
     let route = match scene.model {
         SceneLaw::Mdr(_) => Route::Energy,
-        SceneLaw::Thornton(_) => Route::TimeIntegration,
+        SceneLaw::Thornton(_) | SceneLaw::AdhesiveMdr(_) => Route::TimeIntegration,
     };
     Impact::new(scene.pair().unwrap(), spec(scene), scene.speed)
         .route(route)

@@ -61,6 +61,10 @@ mod deprecated_names {
     #[deprecated(note = "renamed `NeighbourListState`")]
     pub type FastListState<H> = super::NeighbourListState<H>;
 
+    /// Former name of [`super::surfaces::NeighbourListSurface`].
+    #[deprecated(note = "renamed `surfaces::NeighbourListSurface`")]
+    pub type FastSurface = super::surfaces::NeighbourListSurface;
+
     /// Former name of [`super::particles::NeighbourListParticles`].
     #[deprecated(note = "renamed `particles::NeighbourListParticles`")]
     pub type FastParticles = super::particles::NeighbourListParticles;

@@ -98,12 +98,30 @@ impl<H> PairList<H> {
     }
 }
 
-/// One search block's buffers: the partners found, as `(j << 8) | image code` (one integer, so
-/// that sorting a particle's partners by `(j, image)` compares one word), and per-particle
-/// counts.
-type BlockBuffers = (Vec<u64>, Vec<u32>);
+/// One search block's buffers, kept between rebuilds.
+#[derive(Debug, Default)]
+struct BlockBuffers {
+    /// The partners found, as `(j << 8) | image code` (one integer, so that sorting a
+    /// particle's partners by `(j, image)` compares one word), particle after particle.
+    partners: Vec<u64>,
+    /// Partners per particle of the block.
+    counts: Vec<u32>,
+}
+
+impl BlockBuffers {
+    fn bytes(&self) -> usize {
+        self.partners.capacity() * 8 + self.counts.capacity() * 4
+    }
+}
 
 /// The cell grid and the search buffers, kept between rebuilds.
+///
+/// A build is LAMMPS's sequence of neighbour steps, each a function of its own:
+/// `NeighbourBuilder::add_ghosts` (periodic images), `CellGrid::over` and
+/// `NeighbourBuilder::bin` (NBin: the grid and a counting sort of the points into its cells),
+/// `NeighbourBuilder::search` (NStencil and NPair: the 27-cell stencil of every particle, one
+/// parallel task per block of particles) and `carry_histories` (FixNeighHistory: the new list
+/// written and the histories carried over by key).
 #[derive(Debug, Default)]
 pub struct NeighbourBuilder {
     /// Ghost images: `(owner, image code)`.
@@ -119,7 +137,7 @@ pub struct NeighbourBuilder {
     sorted_owner: Vec<(u32, u8)>,
     /// Fill cursors of the counting sorts.
     fill: Vec<u32>,
-    /// Per block: `(j, image)` candidates and per-particle counts.
+    /// Per block: candidates and per-particle counts.
     blocks: Vec<BlockBuffers>,
 }
 
@@ -131,11 +149,7 @@ impl NeighbourBuilder {
             + (self.cell_of.capacity() + self.cell_start.capacity() + self.fill.capacity()) * 4
             + self.sorted.capacity() * 32
             + self.sorted_owner.capacity() * 8
-            + self
-                .blocks
-                .iter()
-                .map(|(a, b)| a.capacity() * 8 + b.capacity() * 4)
-                .sum::<usize>()
+            + self.blocks.iter().map(BlockBuffers::bytes).sum::<usize>()
     }
 
     /// Build the new list into `out` (its histories defaulted) from the positions `x` (inside
@@ -152,56 +166,43 @@ impl NeighbourBuilder {
         let n = x.len();
         let r_max = r.iter().cloned().fold(0.0, f64::max);
         let cutoff = 2.0 * r_max + skin;
-        let offsets = boundary.offsets();
+        self.add_ghosts(boundary, x, cutoff);
+        let grid = CellGrid::over(&self.points, cutoff);
+        self.bin(&grid, r, n);
+        let nblocks = n.div_ceil(BLOCK);
+        self.search(&grid, Reach { radius: r, skin }, nblocks);
+        carry_histories(&self.blocks[..nblocks], n, old, out);
+    }
 
-        // Ghosts: periodic images within one cutoff of the box.
+    /// The particles, then their periodic images within one cutoff of the box (the ghosts).
+    fn add_ghosts(&mut self, boundary: &Boundary, x: &[Vector3<f64>], cutoff: f64) {
         self.ghosts.clear();
         self.points.clear();
         self.points.extend_from_slice(x);
-        if boundary.is_periodic() {
-            for (i, xi) in x.iter().enumerate() {
-                for image in Image::shifted() {
-                    let code = image.code();
-                    let p = xi + offsets[code as usize].position;
-                    if boundary.near_box(&p, cutoff) {
-                        self.ghosts.push((i as u32, code));
-                        self.points.push(p);
-                    }
+        if !boundary.is_periodic() {
+            return;
+        }
+        let offsets = boundary.offsets();
+        for (i, xi) in x.iter().enumerate() {
+            for image in Image::shifted() {
+                let code = image.code();
+                let p = xi + offsets[code as usize].position;
+                if boundary.near_box(&p, cutoff) {
+                    self.ghosts.push((i as u32, code));
+                    self.points.push(p);
                 }
             }
         }
+    }
 
-        // Cell grid over the bounding box of all points; the cell side is at least the cutoff
-        // and grows if the box is so sparse that the grid would exceed 8 cells per point (a
-        // hopper's particles fill a cylinder inside their square bounding box, and the parked
-        // ones a sparse lattice below it: a tighter cap would grow the cells, and with them the
-        // candidates of every particle, by half).
-        let mut lo = Vector3::repeat(f64::INFINITY);
-        let mut hi = Vector3::repeat(f64::NEG_INFINITY);
-        for p in &self.points {
-            lo = lo.inf(p);
-            hi = hi.sup(p);
-        }
-        let mut cell = cutoff.max(1e-300);
-        let dims = |cell: f64| -> [usize; 3] {
-            std::array::from_fn(|k| (((hi[k] - lo[k]) / cell).floor() as usize + 1).max(1))
-        };
-        let mut d = dims(cell);
-        while (d[0] as f64) * (d[1] as f64) * (d[2] as f64) > 8.0 * self.points.len() as f64 + 27.0
-        {
-            cell *= 1.26;
-            d = dims(cell);
-        }
-        let inv_cell = 1.0 / cell;
-        let cell_index = |p: &Vector3<f64>| -> [usize; 3] {
-            std::array::from_fn(|k| (((p[k] - lo[k]) * inv_cell) as usize).min(d[k] - 1))
-        };
-        let ncells = d[0] * d[1] * d[2];
+    /// Counting sort of the points (the first `n` are the particles, radii `r`) into the cells
+    /// of `grid`: `cell_start` and the cell-ordered copies `sorted` and `sorted_owner`, a cell's
+    /// points in increasing point index.
+    fn bin(&mut self, grid: &CellGrid, r: &[f64], n: usize) {
+        let ncells = grid.len();
         self.cell_of.clear();
-        self.cell_of.extend(self.points.iter().map(|p| {
-            let c = cell_index(p);
-            ((c[2] * d[1] + c[1]) * d[0] + c[0]) as u32
-        }));
+        self.cell_of
+            .extend(self.points.iter().map(|p| grid.index(grid.cell(p)) as u32));
         self.cell_start.clear();
         self.cell_start.resize(ncells + 1, 0);
         for &c in &self.cell_of {
@@ -210,7 +211,6 @@ impl NeighbourBuilder {
         for c in 0..ncells {
             self.cell_start[c + 1] += self.cell_start[c];
         }
-        // Fill in point order: a cell's points are in increasing point index.
         self.sorted.clear();
         self.sorted.resize(self.points.len(), [0.0; 4]);
         self.sorted_owner.clear();
@@ -228,138 +228,268 @@ impl NeighbourBuilder {
             self.sorted_owner[at] = (owner, code);
             self.fill[c as usize] += 1;
         }
+    }
 
-        // Parallel search, one buffer per block of particles.
-        let nblocks = n.div_ceil(BLOCK);
+    /// The partners of every particle, in parallel over `nblocks` blocks of particles, each into
+    /// its own buffers.
+    fn search(&mut self, grid: &CellGrid, reach: Reach<'_>, nblocks: usize) {
         if self.blocks.len() < nblocks {
             self.blocks.resize_with(nblocks, Default::default);
         }
-        let points = &self.points;
-        let sorted = &self.sorted;
-        let sorted_owner = &self.sorted_owner;
-        let cell_start = &self.cell_start;
-        let search: Vec<_> = self.blocks[..nblocks].iter_mut().enumerate().collect();
-        map_tasks(search, |(b, (cands, counts))| {
-            cands.clear();
-            counts.clear();
+        let bins = Bins {
+            grid,
+            points: &self.points,
+            cell_start: &self.cell_start,
+            sorted: &self.sorted,
+            sorted_owner: &self.sorted_owner,
+        };
+        let n = reach.radius.len();
+        let tasks: Vec<_> = self.blocks[..nblocks].iter_mut().enumerate().collect();
+        map_tasks(tasks, |(b, block)| {
+            block.partners.clear();
+            block.counts.clear();
             for i in b * BLOCK..((b + 1) * BLOCK).min(n) {
-                let start = cands.len();
-                let xi = &points[i];
-                let ri = r[i];
-                let c = cell_index(xi);
-                // The three cells of a stencil row are adjacent in cell order, so their
-                // points are one run of `sorted`.
-                let (x_lo, x_hi) = (c[0].saturating_sub(1), (c[0] + 1).min(d[0] - 1));
-                let mut runs = [(0, 0); 9];
-                let mut total = 0;
-                let mut rows = 0;
-                for cz in c[2].saturating_sub(1)..(c[2] + 2).min(d[2]) {
-                    for cy in c[1].saturating_sub(1)..(c[1] + 2).min(d[1]) {
-                        let row = (cz * d[1] + cy) * d[0];
-                        let run = (
-                            cell_start[row + x_lo] as usize,
-                            cell_start[row + x_hi + 1] as usize,
-                        );
-                        total += run.1 - run.0;
-                        runs[rows] = run;
-                        rows += 1;
-                    }
-                }
-                // Every point of the stencil is written at the cursor, which advances only
-                // past a partner: no branch on whether a point is one (a third or so are,
-                // at random in a packing, so a branch would mispredict often).
-                let mut len = start;
-                cands.resize(start + total, 0);
-                for &(a, b) in &runs[..rows] {
-                    for (s, &(j, code)) in sorted[a..b].iter().zip(&sorted_owner[a..b]) {
-                        let reach = ri + s[3] + skin;
-                        let (dx, dy, dz) = (xi.x - s[0], xi.y - s[1], xi.z - s[2]);
-                        let partner =
-                            (j as usize > i) & (dx * dx + dy * dy + dz * dz < reach * reach);
-                        cands[len] = (u64::from(j) << 8) | u64::from(code);
-                        len += usize::from(partner);
-                    }
-                }
-                cands.truncate(len);
-                cands[start..].sort_unstable();
-                counts.push((cands.len() - start) as u32);
+                let start = block.partners.len();
+                bins.partners_of(i, &reach, &mut block.partners);
+                block.counts.push((block.partners.len() - start) as u32);
             }
         });
-
-        // Each block's range in the new list (its candidates, in block order) and in the old
-        // one (the old pairs whose first particle is in the block: the old list is sorted by
-        // `i`, and may be for another number of particles).
-        let mut bounds = Vec::with_capacity(nblocks + 1);
-        bounds.push(0);
-        for (cands, _) in &self.blocks[..nblocks] {
-            bounds.push(bounds[bounds.len() - 1] + cands.len());
-        }
-        let m = bounds[nblocks];
-        let old_bounds: Vec<usize> = (0..nblocks)
-            .map(|b| old.i.partition_point(|&i| (i as usize) < b * BLOCK))
-            // The last block also takes the old pairs of particles past `n` (none match).
-            .chain([old.len()])
-            .collect();
-
-        // Only the live histories are copied; the other entries keep whatever the buffer held,
-        // since a history counts only while its pair is active (`old` is overwritten by the
-        // next build; its active entries are what this build dropped). Wrenches are stored only
-        // by a force evaluation that keeps them, for the list it runs on.
-        out.i.resize(m, 0);
-        out.j.resize(m, 0);
-        out.image.resize(m, 0);
-        out.active.resize(m, false);
-        out.history.resize(m, H::default());
-        out.wrench.clear();
-        out.first.resize(n + 1, 0);
-        out.first[0] = 0;
-
-        // Per block, in parallel: write the block's pairs, then carry the histories over by
-        // merging its new pairs with its old ones (both sorted by `(i, j, image)`).
-        let PairList {
-            i: old_i,
-            j: old_j,
-            image: old_image,
-            active: old_active,
-            history: old_history,
-            ..
-        } = old;
-        let old = OldPairs {
-            i: old_i,
-            j: old_j,
-            image: old_image,
-            history: old_history,
-        };
-        let tasks: Vec<BlockTask<'_, H>> = self.blocks[..nblocks]
-            .iter()
-            .zip(split_at_bounds(&mut out.i, &bounds))
-            .zip(split_at_bounds(&mut out.j, &bounds))
-            .zip(split_at_bounds(&mut out.image, &bounds))
-            .zip(split_at_bounds(&mut out.active, &bounds))
-            .zip(split_at_bounds(&mut out.history, &bounds))
-            .zip(out.first[1..].chunks_mut(BLOCK))
-            .zip(split_at_bounds(old_active, &old_bounds))
-            .enumerate()
-            .map(
-                |(b, (((((((block, i), j), image), active), history), first), old_active))| {
-                    BlockTask {
-                        first_particle: b * BLOCK,
-                        base: bounds[b],
-                        old_range: old_bounds[b]..old_bounds[b + 1],
-                        block,
-                        i,
-                        j,
-                        image,
-                        active,
-                        history,
-                        first,
-                        old_active,
-                    }
-                },
-            )
-            .collect();
-        map_tasks(tasks, |task| task.run(&old));
     }
+}
+
+/// Who is a partner of whom: particles closer than `radius[i] + radius[j] + skin`.
+#[derive(Debug, Clone, Copy)]
+struct Reach<'a> {
+    radius: &'a [f64],
+    skin: f64,
+}
+
+/// The cell grid of one build over the bounding box of all points: the cell side is at least
+/// the cutoff and grows if the box is so sparse that the grid would exceed 8 cells per point (a
+/// hopper's particles fill a cylinder inside their square bounding box, and the parked ones a
+/// sparse lattice below it: a tighter cap would grow the cells, and with them the candidates of
+/// every particle, by half).
+#[derive(Debug, Clone, Copy)]
+struct CellGrid {
+    lo: Vector3<f64>,
+    inv_cell: f64,
+    dims: [usize; 3],
+}
+
+impl CellGrid {
+    fn over(points: &[Vector3<f64>], cutoff: f64) -> Self {
+        let mut lo = Vector3::repeat(f64::INFINITY);
+        let mut hi = Vector3::repeat(f64::NEG_INFINITY);
+        for p in points {
+            lo = lo.inf(p);
+            hi = hi.sup(p);
+        }
+        let mut cell = cutoff.max(1e-300);
+        let dims_of = |cell: f64| -> [usize; 3] {
+            std::array::from_fn(|k| (((hi[k] - lo[k]) / cell).floor() as usize + 1).max(1))
+        };
+        let mut dims = dims_of(cell);
+        while (dims[0] as f64) * (dims[1] as f64) * (dims[2] as f64)
+            > 8.0 * points.len() as f64 + 27.0
+        {
+            cell *= 1.26;
+            dims = dims_of(cell);
+        }
+        Self {
+            lo,
+            inv_cell: 1.0 / cell,
+            dims,
+        }
+    }
+
+    /// Number of cells.
+    fn len(&self) -> usize {
+        self.dims[0] * self.dims[1] * self.dims[2]
+    }
+
+    /// The cell of a point inside the grid's box.
+    #[inline(always)]
+    fn cell(&self, p: &Vector3<f64>) -> [usize; 3] {
+        std::array::from_fn(|k| {
+            (((p[k] - self.lo[k]) * self.inv_cell) as usize).min(self.dims[k] - 1)
+        })
+    }
+
+    /// The index of cell `c` in cell order (x fastest).
+    #[inline(always)]
+    fn index(&self, c: [usize; 3]) -> usize {
+        (c[2] * self.dims[1] + c[1]) * self.dims[0] + c[0]
+    }
+}
+
+/// What the search reads of a binned build.
+#[derive(Clone, Copy)]
+struct Bins<'a> {
+    grid: &'a CellGrid,
+    points: &'a [Vector3<f64>],
+    cell_start: &'a [u32],
+    sorted: &'a [[f64; 4]],
+    sorted_owner: &'a [(u32, u8)],
+}
+
+impl Bins<'_> {
+    /// The stencil of cell `c` (NStencil): the runs of the cell-ordered points of its (up to)
+    /// nine rows of three cells, which are adjacent in cell order, so each row is one run of
+    /// `sorted`. Returns the runs and their number of points.
+    #[inline(always)]
+    fn stencil(&self, c: [usize; 3]) -> (StencilRuns, usize) {
+        let d = self.grid.dims;
+        let (x_lo, x_hi) = (c[0].saturating_sub(1), (c[0] + 1).min(d[0] - 1));
+        let mut runs = StencilRuns::default();
+        let mut total = 0;
+        for cz in c[2].saturating_sub(1)..(c[2] + 2).min(d[2]) {
+            for cy in c[1].saturating_sub(1)..(c[1] + 2).min(d[1]) {
+                let row = self.grid.index([0, cy, cz]);
+                let run = (
+                    self.cell_start[row + x_lo] as usize,
+                    self.cell_start[row + x_hi + 1] as usize,
+                );
+                total += run.1 - run.0;
+                runs.push(run);
+            }
+        }
+        (runs, total)
+    }
+
+    /// Append the partners `j > i` of particle `i` (NPair), sorted by `(j, image)`.
+    #[inline(always)]
+    fn partners_of(&self, i: usize, reach: &Reach<'_>, partners: &mut Vec<u64>) {
+        let start = partners.len();
+        let xi = &self.points[i];
+        let ri = reach.radius[i];
+        let (runs, total) = self.stencil(self.grid.cell(xi));
+        // Every point of the stencil is written at the cursor, which advances only past a
+        // partner: no branch on whether a point is one (a third or so are, at random in a
+        // packing, so a branch would mispredict often).
+        let mut len = start;
+        partners.resize(start + total, 0);
+        for &(a, b) in runs.as_slice() {
+            for (s, &(j, code)) in self.sorted[a..b].iter().zip(&self.sorted_owner[a..b]) {
+                let reach = ri + s[3] + reach.skin;
+                let (dx, dy, dz) = (xi.x - s[0], xi.y - s[1], xi.z - s[2]);
+                let partner = (j as usize > i) & (dx * dx + dy * dy + dz * dz < reach * reach);
+                partners[len] = (u64::from(j) << 8) | u64::from(code);
+                len += usize::from(partner);
+            }
+        }
+        partners.truncate(len);
+        partners[start..].sort_unstable();
+    }
+}
+
+/// The `[start, end)` runs of a stencil's rows.
+#[derive(Debug, Clone, Copy, Default)]
+struct StencilRuns {
+    runs: [(usize, usize); 9],
+    len: usize,
+}
+
+impl StencilRuns {
+    #[inline(always)]
+    fn push(&mut self, run: (usize, usize)) {
+        self.runs[self.len] = run;
+        self.len += 1;
+    }
+
+    #[inline(always)]
+    fn as_slice(&self) -> &[(usize, usize)] {
+        &self.runs[..self.len]
+    }
+}
+
+/// Write the new list of `n` particles into `out` from the blocks' partners, and carry the
+/// histories of `old` over (FixNeighHistory), in parallel per block: each block writes its
+/// share of the list (whose place follows from the blocks' counts) and merges its new pairs
+/// with its share of the old list (both sorted by `(i, j, image)`).
+fn carry_histories<H: Clone + Default + Send + Sync>(
+    blocks: &[BlockBuffers],
+    n: usize,
+    old: &mut PairList<H>,
+    out: &mut PairList<H>,
+) {
+    let nblocks = blocks.len();
+    // Each block's range in the new list (its candidates, in block order) and in the old
+    // one (the old pairs whose first particle is in the block: the old list is sorted by
+    // `i`, and may be for another number of particles).
+    let mut bounds = Vec::with_capacity(nblocks + 1);
+    bounds.push(0);
+    for block in blocks {
+        bounds.push(bounds[bounds.len() - 1] + block.partners.len());
+    }
+    let m = bounds[nblocks];
+    let old_bounds: Vec<usize> = (0..nblocks)
+        .map(|b| old.i.partition_point(|&i| (i as usize) < b * BLOCK))
+        // The last block also takes the old pairs of particles past `n` (none match).
+        .chain([old.len()])
+        .collect();
+
+    // Only the live histories are copied; the other entries keep whatever the buffer held,
+    // since a history counts only while its pair is active (`old` is overwritten by the
+    // next build; its active entries are what this build dropped). Wrenches are stored only
+    // by a force evaluation that keeps them, for the list it runs on.
+    out.i.resize(m, 0);
+    out.j.resize(m, 0);
+    out.image.resize(m, 0);
+    out.active.resize(m, false);
+    out.history.resize(m, H::default());
+    out.wrench.clear();
+    out.first.resize(n + 1, 0);
+    out.first[0] = 0;
+
+    let PairList {
+        i: old_i,
+        j: old_j,
+        image: old_image,
+        active: old_active,
+        history: old_history,
+        ..
+    } = old;
+    let old_pairs = OldPairs {
+        i: old_i,
+        j: old_j,
+        image: old_image,
+        history: old_history,
+    };
+    let PairList {
+        i,
+        j,
+        image,
+        active,
+        history,
+        first,
+        ..
+    } = out;
+    let new_pairs = NewPairs {
+        i,
+        j,
+        image,
+        active,
+        history,
+    };
+    let mut new_parts = new_pairs.split_at_bounds(&bounds).into_iter();
+    let mut old_active = split_at_bounds(old_active, &old_bounds).into_iter();
+    let tasks: Vec<BlockTask<'_, H>> = blocks
+        .iter()
+        .zip(first[1..].chunks_mut(BLOCK))
+        .enumerate()
+        .filter_map(|(b, (block, first))| {
+            Some(BlockTask {
+                first_particle: b * BLOCK,
+                base: bounds[b],
+                old_range: old_bounds[b]..old_bounds[b + 1],
+                block,
+                new: new_parts.next()?,
+                first,
+                old_active: old_active.next()?,
+            })
+        })
+        .collect();
+    map_tasks(tasks, |task| task.run(&old_pairs));
 }
 
 /// `slice` cut at `bounds` (increasing, starting at 0): the parts
@@ -382,6 +512,54 @@ struct OldPairs<'a, H> {
     history: &'a [H],
 }
 
+/// A share of the new list's pair arrays.
+struct NewPairs<'a, H> {
+    i: &'a mut [u32],
+    j: &'a mut [u32],
+    image: &'a mut [u8],
+    active: &'a mut [bool],
+    history: &'a mut [H],
+}
+
+impl<H> NewPairs<'_, H> {
+    /// The first `mid` pairs and the rest.
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        let (i, i_rest) = self.i.split_at_mut(mid);
+        let (j, j_rest) = self.j.split_at_mut(mid);
+        let (image, image_rest) = self.image.split_at_mut(mid);
+        let (active, active_rest) = self.active.split_at_mut(mid);
+        let (history, history_rest) = self.history.split_at_mut(mid);
+        (
+            Self {
+                i,
+                j,
+                image,
+                active,
+                history,
+            },
+            Self {
+                i: i_rest,
+                j: j_rest,
+                image: image_rest,
+                active: active_rest,
+                history: history_rest,
+            },
+        )
+    }
+
+    /// The shares `bounds[k]..bounds[k + 1]` (as [`split_at_bounds`]).
+    fn split_at_bounds(self, bounds: &[usize]) -> Vec<Self> {
+        let mut parts = Vec::with_capacity(bounds.len().saturating_sub(1));
+        let mut rest = self;
+        for w in bounds.windows(2) {
+            let (head, tail) = rest.split_at(w[1] - w[0]);
+            parts.push(head);
+            rest = tail;
+        }
+        parts
+    }
+}
+
 /// One search block's share of the new list, and its old pairs' `active` flags.
 struct BlockTask<'a, H> {
     /// Index of the block's first particle.
@@ -391,11 +569,7 @@ struct BlockTask<'a, H> {
     /// The block's pairs in the old list.
     old_range: std::ops::Range<usize>,
     block: &'a BlockBuffers,
-    i: &'a mut [u32],
-    j: &'a mut [u32],
-    image: &'a mut [u8],
-    active: &'a mut [bool],
-    history: &'a mut [H],
+    new: NewPairs<'a, H>,
     /// `first[i + 1]` of the block's particles.
     first: &'a mut [u32],
     old_active: &'a mut [bool],
@@ -403,14 +577,15 @@ struct BlockTask<'a, H> {
 
 impl<H: Clone> BlockTask<'_, H> {
     fn run(self, old: &OldPairs<'_, H>) {
-        let (cands, counts) = self.block;
+        let BlockBuffers { partners, counts } = self.block;
+        let new = self.new;
         let mut p = 0;
         for (di, &count) in counts.iter().enumerate() {
             let i = (self.first_particle + di) as u32;
-            for &partner in &cands[p..p + count as usize] {
-                self.i[p] = i;
-                self.j[p] = (partner >> 8) as u32;
-                self.image[p] = partner as u8;
+            for &partner in &partners[p..p + count as usize] {
+                new.i[p] = i;
+                new.j[p] = (partner >> 8) as u32;
+                new.image[p] = partner as u8;
                 p += 1;
             }
             self.first[di] = (self.base + p) as u32;
@@ -418,8 +593,8 @@ impl<H: Clone> BlockTask<'_, H> {
         let old_base = self.old_range.start;
         let old_key = |q: usize| (old.i[q], old.j[q], old.image[q]);
         let mut q = self.old_range.start;
-        for p in 0..self.i.len() {
-            let key = (self.i[p], self.j[p], self.image[p]);
+        for p in 0..new.i.len() {
+            let key = (new.i[p], new.j[p], new.image[p]);
             while q < self.old_range.end && old_key(q) < key {
                 q += 1;
             }
@@ -427,9 +602,9 @@ impl<H: Clone> BlockTask<'_, H> {
                 && old_key(q) == key
                 && std::mem::take(&mut self.old_active[q - old_base]);
             // Carried over: what stays active in `old` was dropped by this build.
-            self.active[p] = carried;
+            new.active[p] = carried;
             if carried {
-                self.history[p].clone_from(&old.history[q]);
+                new.history[p].clone_from(&old.history[q]);
             }
         }
     }

@@ -33,12 +33,15 @@
 use super::boundary::Boundary;
 use super::neighbours::{NeighbourBuilder, PairList};
 use super::particles::{NeighbourListParticles, Species};
-use super::surfaces::{surface_displacement, FastSurface, SurfacePairs};
+use super::surfaces::{surface_displacement, NeighbourListSurface, SurfacePairs};
 use super::workers::map_tasks;
 use crate::added_forces::AddedForces;
+use crate::adhesion::neck_reach;
 use crate::convert::{to_glam, to_na};
 use crate::error::{positive, CouplingError, Result};
-use crate::geometry::{sphere_sphere, ConvexFaces, SurfaceContact, SurfaceOfRevolution};
+use crate::geometry::{
+    sphere_sphere, sphere_sphere_signed, ConvexFaces, SurfaceContact, SurfaceOfRevolution,
+};
 use crate::kernel::{
     evaluate_pair, Arms, ContactKinematics, ContactWorks, PairHistory, PairWrench, SphereArms,
 };
@@ -50,7 +53,7 @@ use mdr_contact::material::{effective_modulus, effective_shear_modulus};
 use mdr_contact::model::{
     Books, ContactLaw, ContactModel, ContactState, NoBooks, StateOf, WorkBooks,
 };
-use mdr_contact::normal::NormalModel;
+use mdr_contact::normal::{NormalLaw, NormalModel};
 use mdr_contact::rolling::{NoRolling, RollingLaw, RollingModel};
 use mdr_contact::tangential::{Frictionless, TangentialModel};
 use mdr_contact::{ContactPair, Material};
@@ -79,7 +82,7 @@ pub type NeighbourListHistory<N, T, R, B = Books> = PairHistory<
     <<R as RollingModel>::Law as RollingLaw>::State,
 >;
 
-/// What one fast step did.
+/// What one neighbour-list step did.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct NeighbourListStepReport {
     /// Touching sphere–sphere pairs.
@@ -192,7 +195,16 @@ pub struct NeighbourListStepper<
     /// Mass of each surface's dynamic body (infinite otherwise) when `surface_laws` were bound.
     surface_masses: Vec<f64>,
     laws_species: usize,
-    surfaces: Vec<FastSurface>,
+    /// Largest separation at which a sphere–sphere contact of the bound laws still holds
+    /// ([`crate::adhesion::neck_reach`]; zero without adhesion): added to the list's cut-off.
+    sphere_neck: f64,
+    /// The same for particle–surface contacts: added to the candidates' reach.
+    surface_neck: f64,
+    /// Whether a bound law is adhesive (a contact may hold apart).
+    adhesive: bool,
+    /// Whether the cut-off covers the necks (always, but for a negative control in tests).
+    neck_rule: bool,
+    surfaces: Vec<NeighbourListSurface>,
     pairs: PairList<NeighbourListHistory<N, T, R, B>>,
     old_pairs: PairList<NeighbourListHistory<N, T, R, B>>,
     builder: NeighbourBuilder,
@@ -276,6 +288,10 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> NeighbourListStepper<N
             surface_laws: Vec::new(),
             surface_masses: Vec::new(),
             laws_species: 0,
+            sphere_neck: 0.0,
+            surface_neck: 0.0,
+            adhesive: false,
+            neck_rule: true,
             surfaces: Vec::new(),
             pairs: PairList::default(),
             old_pairs: PairList::default(),
@@ -381,6 +397,10 @@ where
             laws_species: if fresh { 0 } else { self.laws_species },
             sphere_laws,
             surface_laws,
+            sphere_neck: self.sphere_neck,
+            surface_neck: self.surface_neck,
+            adhesive: self.adhesive,
+            neck_rule: self.neck_rule,
             surface_masses: if fresh {
                 Vec::new()
             } else {
@@ -434,6 +454,25 @@ where
         self.skin = positive("skin", skin)?;
         self.needs_build = true;
         Ok(self)
+    }
+
+    /// The largest separation (m) at which a contact of the bound laws can still hold
+    /// adhesively ([`crate::adhesion::neck_reach`], over the sphere–sphere and particle–surface
+    /// laws; zero without adhesion, and before the first build binds the laws). The sphere
+    /// list's cut-off is `r_i + r_j + skin + neck` and a particle's surface candidates lie within
+    /// `r + skin + neck`: a held pair is never dropped by a rebuild (docs/coupling.md).
+    pub fn neck_reach(&self) -> f64 {
+        self.sphere_neck.max(self.surface_neck)
+    }
+
+    /// Whether the cut-off covers the adhesive necks ([`NeighbourListStepper::neck_reach`]);
+    /// always on, switched off only by tests to show that a held contact is lost without it.
+    #[doc(hidden)]
+    pub fn cover_necks(mut self, yes: bool) -> Self {
+        self.neck_rule = yes;
+        self.laws_species = 0;
+        self.needs_build = true;
+        self
     }
 
     /// Whether to integrate the particles' orientations (default: yes, as rapier does). Contact
@@ -584,7 +623,7 @@ where
         let co = colliders
             .get(collider)
             .ok_or(CouplingError::UnknownCollider(collider))?;
-        let surface = FastSurface {
+        let surface = NeighbourListSurface {
             collider,
             body: co.parent(),
             material,
@@ -701,7 +740,7 @@ where
 
     /// The registered surfaces, in collider-index order (the `surface` index of
     /// [`SurfacePairs`]).
-    pub fn surfaces(&self) -> &[FastSurface] {
+    pub fn surfaces(&self) -> &[NeighbourListSurface] {
         &self.surfaces
     }
 

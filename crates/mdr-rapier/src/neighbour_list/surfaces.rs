@@ -7,8 +7,9 @@
 
 use crate::convert::AnyVector;
 use crate::geometry::{
-    convex_distance_within, half_space_distance, sphere_convex, sphere_half_space, sphere_shape,
-    ConvexFaces, SurfaceContact, SurfaceOfRevolution,
+    convex_distance_within, half_space_distance, sphere_convex, sphere_convex_signed,
+    sphere_half_space, sphere_half_space_signed, sphere_shape, sphere_shape_signed, ConvexFaces,
+    SurfaceContact, SurfaceOfRevolution,
 };
 use crate::kernel::PairWrench;
 use crate::particles::MaterialHandle;
@@ -19,7 +20,7 @@ use std::sync::Arc;
 
 /// A rapier collider registered as a surface of the neighbour-list path.
 #[derive(Debug, Clone)]
-pub struct FastSurface {
+pub struct NeighbourListSurface {
     /// The collider.
     pub collider: ColliderHandle,
     /// Its parent body, if any (receives the reaction forces when dynamic).
@@ -44,8 +45,8 @@ pub struct FastSurface {
     pub plane: Option<Vector3<f64>>,
 }
 
-impl FastSurface {
-    /// [`FastSurface::plane`] in rapier's vector type.
+impl NeighbourListSurface {
+    /// [`NeighbourListSurface::plane`] in rapier's vector type.
     pub fn plane_normal(&self) -> Option<Vector> {
         self.plane.map(|n| n.glam())
     }
@@ -68,6 +69,32 @@ impl FastSurface {
         match &self.convex {
             Some(faces) => sphere_convex(center, radius, faces, co.shape(), co.position()),
             None => sphere_shape(center, radius, co.shape(), co.position()),
+        }
+    }
+
+    /// [`NeighbourListSurface::sphere_contact`] at any distance: a negative overlap while the
+    /// sphere is apart (a held adhesive contact; see [`crate::geometry::sphere_sphere_signed`]).
+    pub fn sphere_contact_signed(
+        &self,
+        co: &Collider,
+        center: impl AnyVector,
+        radius: f64,
+    ) -> Option<SurfaceContact> {
+        let center = &center.na();
+        if let Some(surface) = &self.revolution {
+            return surface.sphere_contact_signed(center, radius, co.position());
+        }
+        if let Some(normal) = &self.plane {
+            return Some(sphere_half_space_signed(
+                center,
+                radius,
+                normal,
+                co.position(),
+            ));
+        }
+        match &self.convex {
+            Some(faces) => sphere_convex_signed(center, radius, faces, co.shape(), co.position()),
+            None => sphere_shape_signed(center, radius, co.shape(), co.position()),
         }
     }
 
@@ -190,7 +217,7 @@ impl<H: Default> SurfacePairs<H> {
 
 /// Largest distance any point of a surface moved between two poses, bounded by the translation
 /// of its origin plus the rotation angle times its bounding radius.
-pub(crate) fn surface_displacement(surface: &FastSurface, now: &Pose) -> f64 {
+pub(crate) fn surface_displacement(surface: &NeighbourListSurface, now: &Pose) -> f64 {
     let before = &surface.pose_at_build;
     let dt = (now.translation - before.translation).length();
     let angle = (now.rotation * before.rotation.inverse())

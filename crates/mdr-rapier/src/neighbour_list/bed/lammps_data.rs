@@ -103,7 +103,10 @@ impl Bed {
         };
         mdr_output::write_atomic_with(path, |temporary| {
             let mut f = std::io::BufWriter::new(std::fs::File::create(temporary)?);
-            writeln!(f, "LAMMPS data file written by mdr-rapier (fast::bed)\n")?;
+            writeln!(
+                f,
+                "LAMMPS data file written by mdr-rapier (neighbour_list::bed)\n"
+            )?;
             writeln!(f, "{} atoms\n1 atom types\n", self.len())?;
             for (k, axis) in ["x", "y", "z"].iter().enumerate() {
                 writeln!(f, "{} {} {axis}lo {axis}hi", self.lo[k], self.hi[k])?;

@@ -2,6 +2,7 @@
 //! per chunk, summed per particle block in an order fixed by the particle count alone.
 
 use super::*;
+use crate::neighbour_list::boundary::ImageOffset;
 use crate::neighbour_list::neighbours::split_at_bounds;
 
 impl<N, T, D, R, B> NeighbourListStepper<N, T, D, R, B>
@@ -28,24 +29,16 @@ where
     /// of threads. With `keep`, every pair's wrench is also stored in [`PairList::wrench`] (zero
     /// where the pair does not touch). Returns the number of touching pairs.
     pub(super) fn sphere_wrenches(&mut self, dt: f64, keep: bool) -> usize {
-        let offsets = self.boundary.offsets();
-        let p = &self.particles;
-        let n = p.len();
-        let laws = &self.sphere_laws;
-        let ns = self.laws_species;
-        let record = self.ended.is_some();
-        let sp = &self.surface_pairs;
+        let n = self.particles.len();
         let PairList {
-            i: pi,
-            j: pj,
+            i,
+            j,
             image,
             active,
             history,
             wrench,
             first,
-            ..
         } = &mut self.pairs;
-        let (pi, pj, image) = (&*pi, &*pj, &*image);
         let block_len = particle_block(n);
         let nblocks = n.div_ceil(block_len);
         let bounds: Vec<usize> = (0..=nblocks)
@@ -57,163 +50,25 @@ where
         }
         self.sums.resize(n, (Vector3::zeros(), Vector3::zeros()));
         self.deferred.resize_with(nblocks, Vec::new);
-        // One chunk of a block's pairs (`base` is its first pair's index in the list).
-        let chunk = |base: usize,
-                     history: &mut [NeighbourListHistory<N, T, R, B>],
-                     active: &mut [bool],
-                     mut wrench: Option<&mut [PairWrench]>,
-                     window: &mut [(Vector3<f64>, Vector3<f64>)],
-                     p0: usize,
-                     deferred: &mut Vec<DeferredShare>,
-                     ended: &mut Vec<EndedContact>|
-         -> usize {
-            let len = history.len();
-            let (pi, pj, image) = (
-                &pi[base..base + len],
-                &pj[base..base + len],
-                &image[base..base + len],
-            );
-            // Pass 1, the overlap test alone (the exact test `sphere_sphere` makes): collect
-            // the touching pairs of the chunk without a data-dependent branch, and forget
-            // the pairs that separated. Pass 2 runs the law on the touching ones only, so
-            // the unpredictable touch/apart branch of a mixed list is not taken per pair.
-            let mut touching_pairs = [0u16; CHUNK];
-            let mut touching = 0usize;
-            for k in 0..len {
-                let (i, j) = (pi[k] as usize, pj[k] as usize);
-                let xj = p.position[j] + offsets[image[k] as usize].position;
-                let dist2 = (p.position[i] - xj).norm_squared();
-                let reach = p.radius[i] + p.radius[j];
-                let touch = !(dist2 >= reach * reach || dist2 == 0.0);
-                touching_pairs[touching] = k as u16;
-                touching += usize::from(touch);
-                if active[k] & !touch {
-                    // Separated: the rapier pipeline path drops the entry; this one marks the pair
-                    // inactive and leaves its history as it is (a pair that touches again
-                    // starts from the default, below).
-                    if record {
-                        ended.push(EndedContact::of(
-                            i as u32,
-                            ContactPartner::Sphere(j as u32),
-                            &laws[p.species[i] as usize * ns + p.species[j] as usize],
-                            &history[k],
-                        ));
-                    }
-                    active[k] = false;
-                }
-            }
-            // Pass 2, per block of touching pairs: first the geometry (a square root and a
-            // division per pair, independent of each other, so they overlap instead of
-            // heading each pair's dependency chain through the law), then the law.
-            let mut geometry: Vec<(f64, Vector3<f64>)> = Vec::with_capacity(BLOCK);
-            for group in touching_pairs[..touching].chunks(BLOCK) {
-                geometry.clear();
-                geometry.extend(group.iter().map(|&k| {
-                    let k = k as usize;
-                    let (i, j) = (pi[k] as usize, pj[k] as usize);
-                    let xj = p.position[j] + offsets[image[k] as usize].position;
-                    // Always `Some`: pass 1 made the same test.
-                    sphere_sphere(&p.position[i], p.radius[i], &xj, p.radius[j])
-                        .map_or((0.0, Vector3::zeros()), |c| (c.overlap, c.normal))
-                }));
-                for (&k, &(overlap, normal)) in group.iter().zip(&geometry) {
-                    let k = k as usize;
-                    let (i, j) = (pi[k] as usize, pj[k] as usize);
-                    let offset = &offsets[image[k] as usize];
-                    if !active[k] {
-                        // A contact begins: from the default history (an inactive pair's
-                        // entry is stale, see `PairList::history`).
-                        history[k] = Default::default();
-                        active[k] = true;
-                    }
-                    let kinematics = ContactKinematics {
-                        overlap,
-                        normal,
-                        arms: SphereArms {
-                            lever1: p.radius[i] - 0.5 * overlap,
-                            lever2: p.radius[j] - 0.5 * overlap,
-                        },
-                        linvel1: p.linvel[i],
-                        angvel1: p.angvel[i],
-                        linvel2: p.linvel[j] + offset.velocity,
-                        angvel2: p.angvel[j],
-                    };
-                    let (law, rolling) = &laws[p.species[i] as usize * ns + p.species[j] as usize];
-                    let w = evaluate_pair(law, rolling, &mut history[k], &kinematics, dt);
-                    if let Some(wrench) = wrench.as_deref_mut() {
-                        wrench[k] = w;
-                    }
-                    // `i` is in this block and `j ≥ i`: the window holds this block and the
-                    // next, so only a partner further on is deferred (rare once a block is
-                    // thicker than the reach of a pair in index).
-                    let first = &mut window[i - p0];
-                    first.0 += w.force;
-                    first.1 += w.torque1;
-                    match window.get_mut(j.wrapping_sub(p0)) {
-                        Some(second) => {
-                            second.0 += -w.force;
-                            second.1 += w.torque2;
-                        }
-                        None => deferred.push(DeferredShare {
-                            particle: j as u32,
-                            force: -w.force,
-                            torque: w.torque2,
-                        }),
-                    }
-                }
-            }
-            touching
-        };
-        // One block's pairs: its window is the block's sums and the next block's. A block of
-        // the first colour (even index) first starts both blocks' sums with their surface
-        // wrenches.
-        let block = |b: usize,
-                     history: &mut [NeighbourListHistory<N, T, R, B>],
-                     active: &mut [bool],
-                     mut wrench: Option<&mut [PairWrench]>,
-                     window: &mut [(Vector3<f64>, Vector3<f64>)],
-                     deferred: &mut Vec<DeferredShare>|
-         -> (usize, Vec<EndedContact>) {
-            let mut ended = Vec::new();
-            deferred.clear();
-            let p0 = b * block_len;
-            if b % 2 == 0 {
-                for (sum, i) in window.iter_mut().zip(p0..) {
-                    let mut force = Vector3::zeros();
-                    let mut torque = Vector3::zeros();
-                    for w in &sp.wrench[sp.start[i] as usize..sp.start[i + 1] as usize] {
-                        force += w.force;
-                        torque += w.torque1;
-                    }
-                    *sum = (force, torque);
-                }
-            }
-            let mut touching = 0;
-            for sub in (0..history.len()).step_by(CHUNK) {
-                let len = (history.len() - sub).min(CHUNK);
-                touching += chunk(
-                    bounds[b] + sub,
-                    &mut history[sub..sub + len],
-                    &mut active[sub..sub + len],
-                    wrench.as_deref_mut().map(|w| &mut w[sub..sub + len]),
-                    window,
-                    p0,
-                    deferred,
-                    &mut ended,
-                );
-            }
-            (touching, ended)
+        let pass = PairPass::<N, T, D, R> {
+            particles: &self.particles,
+            offsets: self.boundary.offsets(),
+            laws: &self.sphere_laws,
+            species: self.laws_species,
+            record: self.ended.is_some(),
+            surface_start: &self.surface_pairs.start,
+            surface_wrench: &self.surface_pairs.wrench,
+            i,
+            j,
+            image,
+            bounds: &bounds,
+            block_len,
+            dt,
+            adhesive: self.adhesive,
         };
         // Blocks of one colour have disjoint windows: all of one colour in parallel, then all
         // of the other.
-        type Task<'a, H> = (
-            usize,
-            &'a mut [H],
-            &'a mut [bool],
-            Option<&'a mut [PairWrench]>,
-            &'a mut Vec<DeferredShare>,
-        );
-        let wrench_parts: Vec<Option<&mut [PairWrench]>> = if keep {
+        let mut wrench_parts: Vec<Option<&mut [PairWrench]>> = if keep {
             split_at_bounds(wrench, &bounds)
                 .into_iter()
                 .map(Some)
@@ -221,18 +76,23 @@ where
         } else {
             (0..nblocks).map(|_| None).collect()
         };
-        let tasks: Vec<Task<'_, NeighbourListHistory<N, T, R, B>>> =
+        let mut active_parts = split_at_bounds(active, &bounds).into_iter();
+        let tasks: Vec<BlockPairs<'_, NeighbourListHistory<N, T, R, B>>> =
             split_at_bounds(history, &bounds)
                 .into_iter()
-                .zip(split_at_bounds(active, &bounds))
-                .zip(wrench_parts)
                 .zip(self.deferred.iter_mut())
                 .enumerate()
-                .map(|(b, (((history, active), wrench), deferred))| {
-                    (b, history, active, wrench, deferred)
+                .filter_map(|(b, (history, deferred))| {
+                    Some(BlockPairs {
+                        index: b,
+                        history,
+                        active: active_parts.next()?,
+                        wrench: wrench_parts.get_mut(b)?.take(),
+                        deferred,
+                    })
                 })
                 .collect();
-        let (even, odd): (Vec<_>, Vec<_>) = tasks.into_iter().partition(|t| t.0 % 2 == 0);
+        let (even, odd): (Vec<_>, Vec<_>) = tasks.into_iter().partition(|t| t.index % 2 == 0);
         // An even block's window starts at its own first particle, and so does an odd one's.
         let mut results = Vec::with_capacity(nblocks);
         for (colour, start) in [(even, 0), (odd, block_len.min(n))] {
@@ -240,12 +100,7 @@ where
                 .into_iter()
                 .zip(self.sums[start..].chunks_mut(2 * block_len))
                 .collect();
-            results.extend(map_tasks(
-                tasks,
-                |((b, history, active, wrench, deferred), window)| {
-                    (b, block(b, history, active, wrench, window, deferred))
-                },
-            ));
+            results.extend(map_tasks(tasks, |(block, sums)| pass.block(block, sums)));
         }
         // The shares for particles beyond the next block, in block and pair order.
         for deferred in &self.deferred {
@@ -256,8 +111,8 @@ where
             }
         }
         // Ended contacts in block order.
-        results.sort_unstable_by_key(|r| r.0);
-        self.collect_ended(results.into_iter().map(|r| r.1).collect())
+        results.sort_unstable_by_key(|r| r.block);
+        self.collect_ended(results.into_iter().map(|r| (r.touching, r.ended)).collect())
     }
 
     /// Sum the chunks' touching counts and append their ended contacts in chunk order.
@@ -284,6 +139,7 @@ where
         let surfaces = &self.surfaces;
         let nsurf = surfaces.len();
         let record = self.ended.is_some();
+        let adhesive = self.adhesive;
         let SurfacePairs {
             particle,
             surface,
@@ -312,9 +168,20 @@ where
                     let q = base + k;
                     let (i, s) = (particle[q] as usize, surface[q] as usize);
                     let surf = &surfaces[s];
-                    let contact = colliders
-                        .get(surf.collider)
-                        .and_then(|co| surf.sphere_contact(co, &p.position[i], p.radius[i]));
+                    let (law, rolling) = &laws[p.species[i] as usize * nsurf + s];
+                    let contact = colliders.get(surf.collider).and_then(|co| {
+                        surf.sphere_contact(co, &p.position[i], p.radius[i])
+                            .or_else(|| {
+                                // A held adhesive contact goes on at its negative overlap.
+                                let held = adhesive
+                                    && active[k]
+                                    && law.normal.holds(&history[k].contact.normal);
+                                held.then(|| {
+                                    surf.sphere_contact_signed(co, &p.position[i], p.radius[i])
+                                })
+                                .flatten()
+                            })
+                    });
                     let Some(contact) = contact else {
                         if active[k] {
                             if record {
@@ -353,7 +220,6 @@ where
                         linvel2,
                         angvel2,
                     };
-                    let (law, rolling) = &laws[p.species[i] as usize * nsurf + s];
                     wrench[k] = evaluate_pair(law, rolling, &mut history[k], &kinematics, dt);
                     contacts[k] = contact;
                 }
@@ -381,4 +247,346 @@ pub(super) struct DeferredShare {
     particle: u32,
     force: Vector3<f64>,
     torque: Vector3<f64>,
+}
+
+/// The composed and rolling laws bound to one species pair.
+type BoundLaws<N, T, D, R> = (Law<N, T, D>, <R as RollingModel>::Law);
+
+/// Per-particle force and torque sums.
+type Sums = (Vector3<f64>, Vector3<f64>);
+
+/// What every block of the sphere pair pass reads: the particles, the list's pairs, the bound
+/// laws and the surface wrenches that start the sums.
+struct PairPass<'a, N: NormalModel, T: TangentialModel, D: DampingModel, R: RollingModel> {
+    particles: &'a NeighbourListParticles,
+    offsets: [ImageOffset; 9],
+    /// Sphere–sphere laws by species pair `(a, b)` at `a * species + b`.
+    laws: &'a [BoundLaws<N, T, D, R>],
+    species: usize,
+    /// Whether ended contacts are recorded.
+    record: bool,
+    surface_start: &'a [u32],
+    surface_wrench: &'a [PairWrench],
+    i: &'a [u32],
+    j: &'a [u32],
+    image: &'a [u8],
+    /// `bounds[b]..bounds[b + 1]`: the pairs of block `b`.
+    bounds: &'a [usize],
+    block_len: usize,
+    dt: f64,
+    /// Whether a law is adhesive: a contact may hold apart.
+    adhesive: bool,
+}
+
+/// One block's share of the pair list, and its deferred shares.
+struct BlockPairs<'a, H> {
+    index: usize,
+    history: &'a mut [H],
+    active: &'a mut [bool],
+    wrench: Option<&'a mut [PairWrench]>,
+    deferred: &'a mut Vec<DeferredShare>,
+}
+
+/// One chunk of a block's pairs (`base` is its first pair's index in the list).
+struct ChunkPairs<'a, H> {
+    base: usize,
+    history: &'a mut [H],
+    active: &'a mut [bool],
+    wrench: Option<&'a mut [PairWrench]>,
+}
+
+/// Where a block adds its wrenches: the sums of its particles and the next block's, from
+/// particle `first` on, and the shares deferred for particles beyond them.
+struct Window<'a> {
+    sums: &'a mut [Sums],
+    first: usize,
+    deferred: &'a mut Vec<DeferredShare>,
+}
+
+impl Window<'_> {
+    /// Add the wrench of the pair `(i, j)` to both particles' sums (`i` is in the window and
+    /// `j ≥ i`: only a partner further on is deferred, rare once a block is thicker than the
+    /// reach of a pair in index).
+    #[inline(always)]
+    fn add(&mut self, i: usize, j: usize, w: &PairWrench) {
+        let first = &mut self.sums[i - self.first];
+        first.0 += w.force;
+        first.1 += w.torque1;
+        match self.sums.get_mut(j.wrapping_sub(self.first)) {
+            Some(second) => {
+                second.0 += -w.force;
+                second.1 += w.torque2;
+            }
+            None => self.deferred.push(DeferredShare {
+                particle: j as u32,
+                force: -w.force,
+                torque: w.torque2,
+            }),
+        }
+    }
+}
+
+/// What one block of the pair pass found.
+struct BlockOutcome {
+    block: usize,
+    touching: usize,
+    ended: Vec<EndedContact>,
+}
+
+/// The touching pairs of a chunk, by index in the chunk.
+struct Touching {
+    pairs: [u16; CHUNK],
+    len: usize,
+}
+
+impl<N, T, D, R> PairPass<'_, N, T, D, R>
+where
+    N: NormalModel,
+    T: TangentialModel,
+    D: DampingModel,
+    R: RollingModel,
+{
+    /// One block's pairs: its window is the block's sums and the next block's. A block of the
+    /// first colour (even index) first starts both blocks' sums with their surface wrenches.
+    fn block<B: WorkBooks>(
+        &self,
+        block: BlockPairs<'_, NeighbourListHistory<N, T, R, B>>,
+        sums: &mut [Sums],
+    ) -> BlockOutcome {
+        let BlockPairs {
+            index: b,
+            history,
+            active,
+            mut wrench,
+            deferred,
+        } = block;
+        let mut ended = Vec::new();
+        deferred.clear();
+        let mut window = Window {
+            sums,
+            first: b * self.block_len,
+            deferred,
+        };
+        if b % 2 == 0 {
+            self.start_sums(&mut window);
+        }
+        let mut touching = 0;
+        for sub in (0..history.len()).step_by(CHUNK) {
+            let len = (history.len() - sub).min(CHUNK);
+            let chunk = ChunkPairs {
+                base: self.bounds[b] + sub,
+                history: &mut history[sub..sub + len],
+                active: &mut active[sub..sub + len],
+                wrench: wrench.as_deref_mut().map(|w| &mut w[sub..sub + len]),
+            };
+            touching += self.chunk(chunk, &mut window, &mut ended);
+        }
+        BlockOutcome {
+            block: b,
+            touching,
+            ended,
+        }
+    }
+
+    /// Start the window's sums with each particle's surface wrenches.
+    fn start_sums(&self, window: &mut Window<'_>) {
+        for (sum, i) in window.sums.iter_mut().zip(window.first..) {
+            let mut force = Vector3::zeros();
+            let mut torque = Vector3::zeros();
+            let own = self.surface_start[i] as usize..self.surface_start[i + 1] as usize;
+            for w in &self.surface_wrench[own] {
+                force += w.force;
+                torque += w.torque1;
+            }
+            *sum = (force, torque);
+        }
+    }
+
+    /// One chunk: the touching pairs (pass 1), then per group of them their geometry and law
+    /// (pass 2). Returns the number of touching pairs.
+    #[inline(always)]
+    fn chunk<B: WorkBooks>(
+        &self,
+        mut chunk: ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
+        window: &mut Window<'_>,
+        ended: &mut Vec<EndedContact>,
+    ) -> usize {
+        let touching = if self.adhesive {
+            self.touching_or_held(&mut chunk, ended)
+        } else {
+            self.touching(&mut chunk, ended)
+        };
+        // Per group of touching pairs: first the geometry (a square root and a division per
+        // pair, independent of each other, so they overlap instead of heading each pair's
+        // dependency chain through the law), then the law.
+        let mut geometry: Vec<(f64, Vector3<f64>)> = Vec::with_capacity(BLOCK);
+        for group in touching.pairs[..touching.len].chunks(BLOCK) {
+            self.geometry(chunk.base, group, &mut geometry);
+            for (&k, contact) in group.iter().zip(&geometry) {
+                self.evaluate(&mut chunk, k as usize, contact, window);
+            }
+        }
+        touching.len
+    }
+
+    /// The particles and image offset of the chunk's pair `k`.
+    #[inline(always)]
+    fn pair(&self, base: usize, k: usize) -> (usize, usize, &ImageOffset) {
+        (
+            self.i[base + k] as usize,
+            self.j[base + k] as usize,
+            &self.offsets[self.image[base + k] as usize],
+        )
+    }
+
+    /// The bound laws of particles `i` and `j`.
+    #[inline(always)]
+    fn laws(&self, i: usize, j: usize) -> &BoundLaws<N, T, D, R> {
+        let s = &self.particles.species;
+        &self.laws[s[i] as usize * self.species + s[j] as usize]
+    }
+
+    /// Pass 1, the overlap test alone (the exact test `sphere_sphere` makes): collect the
+    /// touching pairs of the chunk without a data-dependent branch, and forget the pairs that
+    /// separated. Pass 2 runs the law on the touching ones only, so the unpredictable
+    /// touch/apart branch of a mixed list is not taken per pair.
+    #[inline(always)]
+    fn touching<B: WorkBooks>(
+        &self,
+        chunk: &mut ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
+        ended: &mut Vec<EndedContact>,
+    ) -> Touching {
+        let p = self.particles;
+        let mut touching = Touching {
+            pairs: [0u16; CHUNK],
+            len: 0,
+        };
+        for k in 0..chunk.history.len() {
+            let (i, j, offset) = self.pair(chunk.base, k);
+            let xj = p.position[j] + offset.position;
+            let dist2 = (p.position[i] - xj).norm_squared();
+            let reach = p.radius[i] + p.radius[j];
+            let touch = !(dist2 >= reach * reach || dist2 == 0.0);
+            touching.pairs[touching.len] = k as u16;
+            touching.len += usize::from(touch);
+            if chunk.active[k] & !touch {
+                self.separate(chunk, k, ended);
+            }
+        }
+        touching
+    }
+
+    /// [`PairPass::touching`] with adhesive laws: a live pair whose contact still holds
+    /// ([`mdr_contact::normal::NormalLaw::holds`]) is evaluated like a touching one, at its
+    /// negative overlap, until its law lets go.
+    #[inline(always)]
+    fn touching_or_held<B: WorkBooks>(
+        &self,
+        chunk: &mut ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
+        ended: &mut Vec<EndedContact>,
+    ) -> Touching {
+        let p = self.particles;
+        let mut touching = Touching {
+            pairs: [0u16; CHUNK],
+            len: 0,
+        };
+        for k in 0..chunk.history.len() {
+            let (i, j, offset) = self.pair(chunk.base, k);
+            let xj = p.position[j] + offset.position;
+            let dist2 = (p.position[i] - xj).norm_squared();
+            let reach = p.radius[i] + p.radius[j];
+            let touch = !(dist2 >= reach * reach || dist2 == 0.0);
+            let held = chunk.active[k]
+                && dist2 != 0.0
+                && self
+                    .laws(i, j)
+                    .0
+                    .normal
+                    .holds(&chunk.history[k].contact.normal);
+            touching.pairs[touching.len] = k as u16;
+            touching.len += usize::from(touch | held);
+            if chunk.active[k] & !(touch | held) {
+                self.separate(chunk, k, ended);
+            }
+        }
+        touching
+    }
+
+    /// The chunk's live pair `k` separated: the rapier pipeline path drops the entry; this one
+    /// marks the pair inactive and leaves its history as it is (a pair that touches again
+    /// starts from the default, in `evaluate`).
+    #[inline(always)]
+    fn separate<B: WorkBooks>(
+        &self,
+        chunk: &mut ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
+        k: usize,
+        ended: &mut Vec<EndedContact>,
+    ) {
+        if self.record {
+            let (i, j, _) = self.pair(chunk.base, k);
+            ended.push(EndedContact::of(
+                i as u32,
+                ContactPartner::Sphere(j as u32),
+                self.laws(i, j),
+                &chunk.history[k],
+            ));
+        }
+        chunk.active[k] = false;
+    }
+
+    /// Overlap and normal of the touching pairs `group` of the chunk starting at `base`.
+    #[inline(always)]
+    fn geometry(&self, base: usize, group: &[u16], out: &mut Vec<(f64, Vector3<f64>)>) {
+        let p = self.particles;
+        out.clear();
+        out.extend(group.iter().map(|&k| {
+            let (i, j, offset) = self.pair(base, k as usize);
+            let xj = p.position[j] + offset.position;
+            // Always `Some`: pass 1 made the same test (and a held pair's centres differ).
+            let contact = if self.adhesive {
+                sphere_sphere_signed(&p.position[i], p.radius[i], &xj, p.radius[j])
+            } else {
+                sphere_sphere(&p.position[i], p.radius[i], &xj, p.radius[j])
+            };
+            contact.map_or((0.0, Vector3::zeros()), |c| (c.overlap, c.normal))
+        }));
+    }
+
+    /// The law on the chunk's touching pair `k` with overlap and normal `contact`, its wrench
+    /// added to the window.
+    #[inline(always)]
+    fn evaluate<B: WorkBooks>(
+        &self,
+        chunk: &mut ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
+        k: usize,
+        &(overlap, normal): &(f64, Vector3<f64>),
+        window: &mut Window<'_>,
+    ) {
+        let p = self.particles;
+        let (i, j, offset) = self.pair(chunk.base, k);
+        if !chunk.active[k] {
+            // A contact begins: from the default history (an inactive pair's entry is stale,
+            // see `PairList::history`).
+            chunk.history[k] = Default::default();
+            chunk.active[k] = true;
+        }
+        let kinematics = ContactKinematics {
+            overlap,
+            normal,
+            arms: SphereArms {
+                lever1: p.radius[i] - 0.5 * overlap,
+                lever2: p.radius[j] - 0.5 * overlap,
+            },
+            linvel1: p.linvel[i],
+            angvel1: p.angvel[i],
+            linvel2: p.linvel[j] + offset.velocity,
+            angvel2: p.angvel[j],
+        };
+        let (law, rolling) = self.laws(i, j);
+        let w = evaluate_pair(law, rolling, &mut chunk.history[k], &kinematics, self.dt);
+        if let Some(wrench) = chunk.wrench.as_deref_mut() {
+            wrench[k] = w;
+        }
+        window.add(i, j, &w);
+    }
 }

@@ -23,6 +23,7 @@ where
         let species_changed = self.laws_species != ns;
         if species_changed {
             self.sphere_laws.clear();
+            let (mut neck, mut adhesive) = (0.0_f64, false);
             for a in table {
                 for b in table {
                     let (e, g) = self.moduli[a.material.0 as usize * nm + b.material.0 as usize];
@@ -33,11 +34,16 @@ where
                         a.radius * b.radius / (a.radius + b.radius),
                         a.mass * b.mass / (a.mass + b.mass),
                     )?;
-                    self.sphere_laws
-                        .push((self.model.bind(&pair)?, self.rolling.bind(&pair)?));
+                    let law = self.model.bind(&pair)?;
+                    let pull_off = law.normal.pull_off_force();
+                    adhesive |= pull_off > 0.0;
+                    neck = neck.max(neck_reach(pull_off, &pair));
+                    self.sphere_laws.push((law, self.rolling.bind(&pair)?));
                 }
             }
             self.laws_species = ns;
+            self.sphere_neck = if self.neck_rule { neck } else { 0.0 };
+            self.adhesive = adhesive;
         }
         // Surface laws again when a dynamic body's mass changed (or the species or surfaces).
         let masses: Vec<f64> = self
@@ -58,6 +64,7 @@ where
         }
         self.surface_masses = masses;
         self.surface_laws.clear();
+        let mut neck = 0.0_f64;
         for a in table {
             for (s, &m2) in self.surfaces.iter().zip(&self.surface_masses) {
                 let (e, g) = self.moduli[a.material.0 as usize * nm + s.material.0 as usize];
@@ -67,10 +74,12 @@ where
                     a.mass
                 };
                 let pair = ContactPair::new(e, g, a.radius, mass)?;
-                self.surface_laws
-                    .push((self.model.bind(&pair)?, self.rolling.bind(&pair)?));
+                let law = self.model.bind(&pair)?;
+                neck = neck.max(neck_reach(law.normal.pull_off_force(), &pair));
+                self.surface_laws.push((law, self.rolling.bind(&pair)?));
             }
         }
+        self.surface_neck = if self.neck_rule { neck } else { 0.0 };
         Ok(())
     }
 
@@ -121,8 +130,12 @@ where
     pub(super) fn rebuild(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet) -> Result<()> {
         let n = self.particles.len();
         let r_max = self.particles.radius.iter().cloned().fold(0.0, f64::max);
-        self.boundary.check_cutoff(2.0 * r_max + self.skin)?;
+        // The laws first: their necks widen the cut-off.
         self.bind_laws(bodies)?;
+        // A held pair is at most `neck` apart, and both particles moved less than half the
+        // skin since the last build: listing pairs within `skin + neck` keeps every held pair.
+        let reach = self.skin + self.sphere_neck;
+        self.boundary.check_cutoff(2.0 * r_max + reach)?;
         let p = &mut self.particles;
         for (x, v) in p.position.iter_mut().zip(p.linvel.iter_mut()) {
             self.boundary.wrap(x, v);
@@ -135,7 +148,7 @@ where
             &self.boundary,
             &p.position,
             &p.radius,
-            self.skin,
+            reach,
             &mut self.old_pairs,
             &mut self.pairs,
         );
@@ -148,7 +161,7 @@ where
                 s.pose_at_build = *co.position();
             }
         }
-        let skin = self.skin;
+        let skin = self.skin + self.surface_neck;
         // Each surface's world AABB once per build (not once per particle).
         let aabbs: Vec<_> = self
             .surfaces

@@ -129,7 +129,7 @@ where
         .map(|s| plain.insert_sphere(&mut plain_world, *s).unwrap().0)
         .collect();
 
-    // Fast path: spheres in the plugin's arrays, the same rapier colliders and lid.
+    // Neighbour-list path: spheres in the plugin's arrays, the same rapier colliders and lid.
     let mut fast_world = PhysicsWorld {
         gravity: Vector::new(0.0, 0.0, -1.0),
         ..PhysicsWorld::default()
@@ -224,14 +224,14 @@ fn assert_round_off(c: &Comparison) {
 }
 
 #[test]
-fn fast_path_reproduces_plain_path() {
+fn neighbour_list_path_reproduces_rapier_pipeline_path() {
     assert_round_off(&compare_paths(model(), NoRolling, 3000));
 }
 
 /// MDR normal law (plastic: the largest overlaps pass the yield overlap), Mindlin, Hertzian
 /// damping with a tangential dashpot, rolling resistance.
 #[test]
-fn fast_path_reproduces_plain_path_with_mdr_damping_and_rolling() {
+fn neighbour_list_path_reproduces_rapier_pipeline_path_with_mdr_damping_and_rolling() {
     let model = ContactModel::new(MdrElastoPlastic::new(10.0, 0.37).unwrap())
         .with_tangential(Mindlin::new(0.5).unwrap())
         .with_damping(
@@ -248,7 +248,7 @@ fn fast_path_reproduces_plain_path_with_mdr_damping_and_rolling() {
 /// Thornton's normal law (plastic) with the stiffness-proportional dashpot and a tangential
 /// dashpot.
 #[test]
-fn fast_path_reproduces_plain_path_with_thornton_and_stiffness_damping() {
+fn neighbour_list_path_reproduces_rapier_pipeline_path_with_thornton_and_stiffness_damping() {
     let model = ContactModel::new(Thornton::new(3000.0).unwrap())
         .with_tangential(Mindlin::new(0.3).unwrap())
         .with_damping(
@@ -264,7 +264,7 @@ fn fast_path_reproduces_plain_path_with_thornton_and_stiffness_damping() {
 
 /// Hertz without damping, with rolling resistance.
 #[test]
-fn fast_path_reproduces_plain_path_with_hertz_and_rolling() {
+fn neighbour_list_path_reproduces_rapier_pipeline_path_with_hertz_and_rolling() {
     let model = ContactModel::new(Hertz)
         .with_tangential(Mindlin::new(0.5).unwrap())
         .with_damping(NoDamping);
@@ -379,7 +379,7 @@ fn scrambled(bed: &Bed) -> Bed {
 /// and in a scrambled one (each particle's partners then spread over the whole list, and over
 /// the chunks of the parallel pair loop).
 #[test]
-fn fast_path_is_deterministic_for_one_and_two_threads() {
+fn neighbour_list_path_is_deterministic_for_one_and_two_threads() {
     let lattice = lattice_bed(&BedSpec {
         count: 3000,
         ..BedSpec::default()
