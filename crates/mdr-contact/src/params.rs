@@ -259,6 +259,7 @@ pub struct LawDeclaration {
     /// One line: what the law is and where it comes from.
     pub summary: &'static str,
     /// Parameters.
+    #[cfg_attr(feature = "serde", serde(rename = "parameters"))]
     pub params: &'static [Param],
 }
 

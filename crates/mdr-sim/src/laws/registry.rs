@@ -109,10 +109,16 @@ pub struct NormalEntry {
     /// Check the parameter values (declared ranges, then the law's own checks).
     check: fn(&[f64]) -> Result<()>,
     /// The neighbour-list stepper compiled for the law.
-    neighbour_list: fn(&[f64], SceneParts, Boundary) -> Result<Box<dyn NeighbourListScene>>,
+    neighbour_list: NeighbourListBuilder,
     /// The rapier pipeline stepper compiled for the law.
-    rapier_pipeline: fn(&[f64], SceneParts) -> Result<Box<dyn RapierPipelineScene>>,
+    rapier_pipeline: RapierPipelineBuilder,
 }
+
+/// Builds the neighbour-list stepper of one law from its parameter values.
+type NeighbourListBuilder = fn(&[f64], SceneParts, Boundary) -> Result<Box<dyn NeighbourListScene>>;
+
+/// Builds the rapier pipeline stepper of one law from its parameter values.
+type RapierPipelineBuilder = fn(&[f64], SceneParts) -> Result<Box<dyn RapierPipelineScene>>;
 
 impl NormalEntry {
     /// The entry of law `L`.

@@ -102,7 +102,8 @@ pub trait NeighbourListScene: Send + Sync {
     fn count_contacts(&self, counts: &mut [u32]);
     /// Each touching sphere–surface pair: `(particle, surface, overlap)`.
     fn for_each_surface_contact(&self, f: &mut dyn FnMut(usize, usize, f64));
-    /// The books of the live contacts ([`Books::live_neighbour_list`]).
+    /// The books of the live contacts, added to the totals when the books are read; with
+    /// `particle_plastic`, their plastic work per particle.
     fn live_works(&self, particle_plastic: Option<&mut [f64]>) -> ContactWorks;
     /// Add the live contacts' elastic energies to `row`, and count them.
     fn add_elastic_energies(&self, row: &mut EnergyRow);
@@ -330,7 +331,7 @@ pub trait RapierPipelineScene: Send + Sync {
     ) -> Result<(), SimError>;
     /// Forces at the current poses.
     fn compute_forces(&mut self, world: &PhysicsWorld, dt: f64) -> Result<(), SimError>;
-    /// Take the step's increments into `books` ([`Books::take`]).
+    /// Take the step's increments into the energy books.
     fn take_books(
         &self,
         books: &mut Books,
