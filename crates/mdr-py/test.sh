@@ -30,7 +30,7 @@ wheels="$(mktemp -d)"
 trap 'rm -rf "$wheels"' EXIT
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$repo/target}"
 (cd "$here" && "$venv/bin/maturin" build --quiet --locked --profile "$profile" --interpreter "$py" \
-  --out "$wheels")
+  --features demo-laws --out "$wheels")
 "$py" -m pip install --quiet --disable-pip-version-check --no-deps --force-reinstall \
   "$wheels"/*.whl
 

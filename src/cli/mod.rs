@@ -3,6 +3,7 @@
 pub mod bench;
 pub mod impact;
 pub mod sim;
+pub mod sim_laws;
 pub mod sim_ring;
 pub mod sim_run;
 pub mod verify;

@@ -28,6 +28,9 @@ pub enum SimCommand {
     /// A granular scene from a TOML file (scenes/*.toml): VTK frames, energy books, plots,
     /// checkpoints; `--resume CHECKPOINT` continues a run.
     Run(super::sim_run::RunArgs),
+    /// The normal laws a scene can name (`[contact] normal = "…"`), each with its parameters'
+    /// scene keys, units, allowed ranges and equations.
+    Laws(super::sim_laws::LawsArgs),
 }
 
 /// Dispatch a `sim` subcommand.
@@ -37,6 +40,7 @@ pub fn run(cmd: SimCommand) -> anyhow::Result<()> {
         SimCommand::Pair(args) => run_pair(&args),
         SimCommand::Ring(args) => super::sim_ring::run_ring(&args),
         SimCommand::Run(args) => super::sim_run::run(&args),
+        SimCommand::Laws(args) => super::sim_laws::run(&args),
     }
 }
 

@@ -34,6 +34,7 @@ pub mod error;
 pub mod material;
 pub mod model;
 pub mod normal;
+pub mod params;
 pub mod profile;
 mod quadrature;
 pub mod rolling;

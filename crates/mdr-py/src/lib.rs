@@ -31,6 +31,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(validator::fit, m)?)?;
     m.add_function(wrap_pyfunction!(validator::oblique, m)?)?;
     m.add_function(wrap_pyfunction!(scene::run_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::scene_laws, m)?)?;
     m.add_function(wrap_pyfunction!(bench::bench_bed, m)?)?;
     m.add("PAPER_SCALE", mdr_impact::PAPER_SCALE)?;
     Ok(())

@@ -10,6 +10,20 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 
+/// The normal laws a scene can name (`[contact] normal = "…"`), as the registry declares them:
+/// a list of dicts with `name`, `kind`, `summary` and `parameters` (each with its scene `key`,
+/// `symbol`, `unit`, `range`, `default`, `doc`, command-line `flag`, `python` keyword and
+/// `lammps` keyword).
+#[pyfunction]
+pub fn scene_laws(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    let laws: Vec<_> = mdr_sim::laws::registry::NORMAL_LAWS
+        .iter()
+        .map(|e| e.declaration)
+        .collect();
+    let value = serde_json::to_value(laws).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    json_to_py(py, &value)
+}
+
 /// A JSON value as the Python object `json.loads` would give.
 pub fn json_to_py<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
     use serde_json::Value;

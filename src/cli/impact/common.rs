@@ -4,7 +4,8 @@
 
 use anyhow::{anyhow, Context};
 use clap::{Args, ValueEnum};
-use mdr_contact::normal::{MdrElastoPlastic, NormalLaw, NormalModel, Thornton};
+use mdr_contact::normal::{AdhesiveMdr, MdrElastoPlastic, NormalLaw, NormalModel, Thornton};
+use mdr_contact::params::Declared;
 use mdr_contact::{ContactError, ContactPair, Material};
 use mdr_impact::output::{read_measurements, write_atomic, Measurement};
 use mdr_impact::plot::Figure;
@@ -92,10 +93,12 @@ pub struct CommonArgs {
     #[arg(long, allow_negative_numbers = true, value_name = "KG_PER_M3")]
     pub target_density: Option<f64>,
     /// Critical line load q_c (N/m), eq. (7) [default: 3.8e5].
-    #[arg(long, allow_negative_numbers = true, value_name = "N_PER_M")]
+    #[arg(long, allow_negative_numbers = true, value_name = "N_PER_M",
+        help = declared_help::<MdrElastoPlastic>(0, "3.8e5"))]
     pub qc: Option<f64>,
     /// Hardening ratio Θ/E*, eq. (12) [default: 0.37].
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true,
+        help = declared_help::<MdrElastoPlastic>(1, "0.37"))]
     pub theta_ratio: Option<f64>,
     /// No plasticity (every law becomes Hertz).
     #[arg(long)]
@@ -107,11 +110,14 @@ pub struct CommonArgs {
     pub law: Option<Vec<LawName>>,
     /// Thornton's limiting contact pressure (Pa) [default: the value whose yield speed equals the
     /// MDR law's].
-    #[arg(long, allow_negative_numbers = true, value_name = "PA")]
+    #[arg(long, allow_negative_numbers = true, value_name = "PA",
+        help = declared_help::<Thornton>(0, "the value whose yield speed equals the MDR law's"))]
     pub yield_stress: Option<f64>,
     /// Work of adhesion Δγ (J/m², ≥ 0): Heß's adhesion rule on the MDR springs; the contact
     /// holds past zero overlap until it lets go, and slow impacts stick (e_n = 0) [default: 0].
-    #[arg(long, allow_negative_numbers = true, value_name = "J_PER_M2")]
+    #[arg(long, allow_negative_numbers = true, value_name = "J_PER_M2",
+        help = format!("{}; the contact holds past zero overlap until it lets go, and slow \
+            impacts stick (e_n = 0)", declared_help::<AdhesiveMdr>(2, "0")))]
     pub work_of_adhesion: Option<f64>,
     /// Friction coefficient μ (oblique impacts) [default: 0.2].
     #[arg(long, allow_negative_numbers = true)]
@@ -217,6 +223,15 @@ fn flag_for(name: &str, target: bool) -> &'static str {
         ("n_springs" | "half_width" | "spacing", _) => "--springs",
         _ => "a material or law flag",
     }
+}
+
+/// The help of a law parameter's flag, as the law declares the parameter (symbol, unit,
+/// range, equation), with the flag's default.
+fn declared_help<L: Declared>(param: usize, default: &str) -> String {
+    format!(
+        "{} [default: {default}]",
+        L::DECLARATION.params[param].help()
+    )
 }
 
 pub(crate) fn contact_error(target: bool) -> impl Fn(ContactError) -> anyhow::Error {

@@ -3,11 +3,27 @@
 use super::{pow3_2, pow5_2, NormalLaw, NormalModel, NormalResponse};
 use crate::error::Result;
 use crate::material::ContactPair;
+use crate::params::{Declared, LawDeclaration, LawKind};
 
 /// The Hertz law as a model: no parameters beyond the pair's.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Hertz;
+
+/// Hertz has no parameters beyond the pair's.
+impl Declared for Hertz {
+    const DECLARATION: LawDeclaration = LawDeclaration {
+        name: "hertz",
+        kind: LawKind::Normal,
+        summary: "Hertz elastic sphere contact, F = (4/3) E* √R δ^{3/2}, eq. (5)",
+        params: &[],
+    };
+
+    fn from_values(values: &[f64]) -> Result<Self> {
+        crate::params::check_values::<Self>(values)?;
+        Ok(Hertz)
+    }
+}
 
 impl NormalModel for Hertz {
     type Law = HertzLaw;

@@ -11,6 +11,7 @@
 use super::{pow3_2, pow5_2, NormalLaw, NormalModel, NormalResponse};
 use crate::error::{finite, in_closed_range, non_negative, positive, ContactError, Result};
 use crate::material::ContactPair;
+use crate::params::{Declared, LawDeclaration, LawKind, Param, Range};
 use std::f64::consts::PI;
 
 /// How the hardening modulus `Θ` (eq. 12) is given.
@@ -39,6 +40,42 @@ pub enum Hardening {
 pub struct MdrElastoPlastic {
     critical_line_load: f64,
     hardening: Hardening,
+}
+
+/// The MDR law's parameters: `q_c` (eq. 7) and `Θ/E*` (eq. 12).
+impl Declared for MdrElastoPlastic {
+    const DECLARATION: LawDeclaration = LawDeclaration {
+        name: "mdr",
+        kind: LawKind::Normal,
+        summary: "MDR elasto-plastic with nonlocal plasticity and linear hardening (Lyashenko & Popov 2018), closed form",
+        params: &[
+            Param::new(
+                "critical_line_load_n_per_m",
+                "q_c",
+                "N/m",
+                Range::NON_NEGATIVE,
+                "critical line load: plasticity starts at u_c = π q_c / (2 E*), eqs. (7), (11)",
+            )
+            .flag("qc")
+            .python("qc")
+            .lammps("qc"),
+            Param::new(
+                "hardening_ratio",
+                "Θ/E*",
+                "1",
+                Range::UNIT_INTERVAL,
+                "hardening modulus over the pair's E*: 0 ideally plastic, 1 elastic, eq. (12)",
+            )
+            .flag("theta-ratio")
+            .python("theta_ratio")
+            .lammps("theta_ratio"),
+        ],
+    };
+
+    fn from_values(values: &[f64]) -> Result<Self> {
+        crate::params::check_values::<Self>(values)?;
+        Self::new(values[0], values[1])
+    }
 }
 
 impl MdrElastoPlastic {

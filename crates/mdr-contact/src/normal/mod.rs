@@ -10,6 +10,8 @@
 mod adhesive_mdr;
 mod adhesive_spring_bed;
 mod hertz;
+#[cfg(feature = "demo-laws")]
+mod linear_spring;
 mod mdr;
 mod spring_bed;
 mod thornton;
@@ -17,6 +19,8 @@ mod thornton;
 pub use adhesive_mdr::{AdhesiveMdr, AdhesiveMdrLaw, AdhesiveMdrState};
 pub use adhesive_spring_bed::{AdhesiveSpringBed, AdhesiveSpringBedState, SphereAdhesiveSpringBed};
 pub use hertz::{Hertz, HertzLaw};
+#[cfg(feature = "demo-laws")]
+pub use linear_spring::{LinearSpring, LinearSpringLaw};
 pub use mdr::{EnergyRouteImpact, Hardening, MdrElastoPlastic, MdrLaw, MdrState};
 pub use spring_bed::{SphereSpringBed, SpringBed, SpringBedState};
 pub use thornton::{
@@ -26,6 +30,37 @@ pub use thornton::{
 
 use crate::error::Result;
 use crate::material::ContactPair;
+use crate::params::{Declared, LawDeclaration, LawKind, Param, Range};
+
+/// The adhesive MDR law's parameters: the MDR law's, and the work of adhesion `Δγ` of Heß's
+/// rule. Declared here so that a layer can carry it by name; the rapier paths do not register it
+/// (they apply compressive forces only).
+impl Declared for AdhesiveMdr {
+    const DECLARATION: LawDeclaration = LawDeclaration {
+        name: "adhesive_mdr",
+        kind: LawKind::Normal,
+        summary: "MDR elasto-plastic with Heß's adhesion rule on the plastic springs (closed form)",
+        params: &[
+            MdrElastoPlastic::DECLARATION.params[0],
+            MdrElastoPlastic::DECLARATION.params[1],
+            Param::new(
+                "work_of_adhesion_j_per_m2",
+                "Δγ",
+                "J/m²",
+                Range::NON_NEGATIVE,
+                "work of adhesion: a spring lets go at its critical elongation √(2 π a Δγ / E*)",
+            )
+            .flag("work-of-adhesion")
+            .python("work_of_adhesion")
+            .lammps("work_of_adhesion"),
+        ],
+    };
+
+    fn from_values(values: &[f64]) -> Result<Self> {
+        crate::params::check_values::<Self>(values)?;
+        AdhesiveMdr::new(MdrElastoPlastic::new(values[0], values[1])?, values[2])
+    }
+}
 
 /// What a normal law returns for one overlap.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

@@ -12,6 +12,7 @@
 use super::{pow3_2, pow5_2, NormalLaw, NormalModel, NormalResponse};
 use crate::error::{non_negative, positive, Result};
 use crate::material::ContactPair;
+use crate::params::{Declared, LawDeclaration, LawKind, Param, Range};
 use std::f64::consts::PI;
 
 /// The unloading (and reloading) branch after yield. Loading is the same for both: Hertz up to
@@ -38,6 +39,31 @@ pub struct Thornton {
     yield_pressure: f64,
     #[cfg_attr(feature = "serde", serde(default))]
     unloading: ThorntonUnloading,
+}
+
+/// Thornton's parameter: the limiting contact pressure `p_y`.
+impl Declared for Thornton {
+    const DECLARATION: LawDeclaration = LawDeclaration {
+        name: "thornton",
+        kind: LawKind::Normal,
+        summary:
+            "Thornton (1997) elastic-perfectly plastic: Hertz until the mean pressure reaches p_y",
+        params: &[Param::new(
+            "yield_pressure_pa",
+            "p_y",
+            "Pa",
+            Range::POSITIVE,
+            "limiting contact pressure; the yield overlap is R (π p_y / (2 E*))²",
+        )
+        .flag("yield-stress")
+        .python("yield_stress")
+        .lammps("yield_stress")],
+    };
+
+    fn from_values(values: &[f64]) -> Result<Self> {
+        crate::params::check_values::<Self>(values)?;
+        Self::new(values[0])
+    }
 }
 
 impl Thornton {

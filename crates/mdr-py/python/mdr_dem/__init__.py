@@ -10,7 +10,8 @@ releases the GIL during long runs.
   and ``impact``; ``MdrState``: one contact's history.
 - ``curve``, ``fit``, ``oblique``: the single-impact validator (``mdr-dem impact ...``).
 - ``Ring``: a planetary-ring shearing box (``mdr-dem sim ring``).
-- ``run_scene``, ``bench_bed``: granular scenes from TOML files and the throughput bench.
+- ``run_scene``, ``bench_bed``: granular scenes from TOML files and the throughput bench;
+  ``scene_laws``: the normal laws a scene can name, with their declared parameters.
 
 See docs/python.md.
 """
@@ -27,6 +28,7 @@ from ._native import (
     fit,
     oblique,
     run_scene,
+    scene_laws,
 )
 
 __all__ = [
@@ -41,4 +43,5 @@ __all__ = [
     "fit",
     "oblique",
     "run_scene",
+    "scene_laws",
 ]

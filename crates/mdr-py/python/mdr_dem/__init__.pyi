@@ -353,6 +353,13 @@ class Ring:
         """Every sample so far as arrays (t_orbits, sigma_x, …, c, z_rms, collisions, wall_s)."""
     def __len__(self) -> int: ...
 
+def scene_laws() -> list[dict[str, Any]]:
+    """The normal laws a scene can name (``[contact] normal = "…"``), as the law registry
+    declares them: each a dict with ``name``, ``kind``, ``summary`` and ``parameters``, a list of
+    dicts with the scene ``key``, ``symbol``, ``unit``, allowed ``range``, ``default`` (None:
+    required), ``doc`` (what it is, with its equation), command-line ``flag``, ``python``
+    keyword and ``lammps`` keyword."""
+
 def run_scene(
     path: StrPath,
     out_dir: Optional[StrPath] = None,
@@ -428,7 +435,7 @@ def bench_bed(
     settle_steps: int = 40_000,
     seed: int = 1,
 ) -> BenchBedResult:
-    """Throughput of the fast force-mode path on a settled bed: the run of `mdr-dem bench bed`
+    """Throughput of the neighbour-list path on a settled bed: the run of `mdr-dem bench bed`
     (reduced units: sphere diameter 1, density 1, dt = 1e-4).
 
     data: LAMMPS data file of the bed (default: the repository's 10,000-sphere reference bed);

@@ -2,8 +2,9 @@
 //! energy route (`MdrLaw::impact`, docs/theory.md §4).
 
 use super::{up, HeadlineReport, HeadlineSample, HeadlineTracker, ParticleView};
-use crate::scene::{NormalSpec, Scene};
+use crate::scene::Scene;
 use mdr_contact::normal::{MdrElastoPlastic, MdrState, NormalModel};
+use mdr_contact::params::Declared;
 use mdr_contact::ContactPair;
 use serde::{Deserialize, Serialize};
 
@@ -65,20 +66,16 @@ impl HeadlineTracker for DropTracker {
             "drop: impact speed {before:.4} m/s, rebound {} m/s, e_n = {e:.5}",
             rebound.map_or("(none yet)".to_owned(), |v| format!("{v:.4}"))
         );
-        if let (
-            NormalSpec::Mdr {
-                critical_line_load,
-                hardening_ratio,
-            },
-            Some(wall),
-        ) = (scene.contact.normal, scene.walls.first())
-        {
+        let mdr = (scene.contact.normal.law == MdrElastoPlastic::DECLARATION.name)
+            .then(|| MdrElastoPlastic::from_values(&scene.contact.normal.values).ok())
+            .flatten();
+        if let (Some(model), Some(wall)) = (mdr, scene.walls.first()) {
             let p = &scene.particles[0];
             let m = scene.materials[p.material].1;
             let reference =
                 ContactPair::sphere_on_half_space(p.radius, &m, &scene.materials[wall.material].1)
                     .ok()
-                    .zip(MdrElastoPlastic::new(critical_line_load, hardening_ratio).ok())
+                    .zip(Some(model))
                     .and_then(|(pair, model)| model.bind(&pair).ok().map(|law| (pair, law)))
                     .and_then(|(pair, law)| {
                         law.impact(&MdrState::default(), pair.reduced_mass(), before)

@@ -1,7 +1,7 @@
 //! The energy books of a run: running totals of the dissipated work and of the work of moving
 //! walls.
 
-use super::build::{FastSceneStepper, SceneStepper};
+use super::coupling::{NeighbourListSceneStepper, RapierPipelineSceneStepper};
 use crate::laws::{SceneNormal, SceneRolling};
 use mdr_contact::model::WorkBooks;
 use mdr_contact::normal::NormalLaw;
@@ -22,7 +22,7 @@ use serde::{Deserialize, Serialize};
 /// springs' stiffness energy in its work books; plastic and rolling work in the laws' states),
 /// and the stepper hands over each contact whose history ends with what it booked
 /// ([`mdr_rapier::neighbour_list::EndedContact`]): the totals here then hold the contacts that ended, and
-/// the live contacts' books are added when the books are read ([`Books::live_fast`]), so a step
+/// the live contacts' books are added when the books are read ([`Books::live_neighbour_list`]), so a step
 /// costs nothing per contact.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Books {
@@ -85,9 +85,9 @@ impl Books {
     }
 
     /// Take the increments of the step whose forces were just computed (rapier path).
-    pub(crate) fn take(
+    pub(crate) fn take<N: SceneNormal>(
         &mut self,
-        stepper: &SceneStepper,
+        stepper: &RapierPipelineSceneStepper<N>,
         bodies: &RigidBodySet,
         particle_of_collider: &[usize],
         wall_of_collider: &[usize],
@@ -167,9 +167,9 @@ impl Books {
     /// The step whose forces were just computed, on the neighbour-list path: the contacts that
     /// ended (their whole books, once), and the work of kinematic walls (`F · v_wall dt` per
     /// touching sphere, in the stepper's surface-pair order).
-    pub(crate) fn take_fast<N: SceneNormal, R: SceneRolling>(
+    pub(crate) fn take_neighbour_list<N: SceneNormal, R: SceneRolling>(
         &mut self,
-        stepper: &mut FastSceneStepper<N, R>,
+        stepper: &mut NeighbourListSceneStepper<N, R>,
         bodies: &RigidBodySet,
         dt: f64,
     ) {
@@ -215,8 +215,8 @@ impl Books {
     /// ([`Books`]); with `particle_plastic`, their plastic work is added to it per particle
     /// (half to each sphere of a pair). Taken in parallel over fixed blocks of particles and
     /// joined in block order, so the sums do not depend on the number of threads.
-    pub(crate) fn live_fast<N: SceneNormal, R: SceneRolling>(
-        stepper: &FastSceneStepper<N, R>,
+    pub(crate) fn live_neighbour_list<N: SceneNormal, R: SceneRolling>(
+        stepper: &NeighbourListSceneStepper<N, R>,
         particle_plastic: Option<&mut [f64]>,
     ) -> ContactWorks {
         /// Particles per block.

@@ -18,6 +18,7 @@
 
 mod books;
 pub mod build;
+pub mod coupling;
 mod outputs;
 mod records;
 mod steps;
@@ -31,13 +32,12 @@ pub use sweep::{run_orifice_sweep, SweepSummary};
 use crate::checkpoint::{self, CheckpointError};
 use crate::error::{output, SimError};
 use crate::headline::{HeadlineReport, HeadlineSample, ParticleView, Tracker};
-use crate::laws::{SceneNormal, SceneRolling};
 use crate::output::energy::{self, BalanceDrift, EnergyRow};
 use crate::output::plot;
 use crate::output::vtk::{self, CollectionEntry, ContactFrame, ParticleFrame};
 use crate::scene::Scene;
 use books::Books;
-use build::{build, with_fast, Built, Coupling, FastSceneStepper};
+use build::{build, Built, Coupling};
 use indicatif::{ProgressBar, ProgressStyle};
 use mdr_contact::normal::NormalLaw;
 use mdr_contact::rolling::RollingLaw;
@@ -47,7 +47,6 @@ use mdr_rapier::kernel::ContactWorks;
 use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use records::{FastPairHistory, SceneLaw};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -293,7 +292,7 @@ impl<'a> Sim<'a> {
         // the same touching pairs). Restitution mode leaves detection to rapier's step: a
         // detection pass before the first step would consume the bodies' change flags before
         // the island manager activates them.
-        if let Coupling::Force(stepper) = &built.coupling {
+        if let Coupling::RapierPipeline(stepper) = &built.coupling {
             // The coupling's checks (configured world, registration groups, the scene's step
             // equal to rapier's) once: a scene changes none of them while it runs.
             let world = &built.world;
@@ -352,7 +351,7 @@ impl<'a> Sim<'a> {
         }
         let mut sim = Self::new(scene)?;
         let n_particles = match &sim.built.coupling {
-            Coupling::Fast(stepper) => stepper.particles().len(),
+            Coupling::NeighbourList(stepper) => stepper.particles().len(),
             _ => sim.built.particle_bodies.len(),
         };
         let n_bodies = n_particles + sim.built.wall_bodies.len();
@@ -367,8 +366,8 @@ impl<'a> Sim<'a> {
         }
         // Restitution mode: rapier's whole world (decoded and checked before anything is used).
         let world = match sim.built.coupling {
-            Coupling::Force(_) => None,
-            Coupling::Fast(_) | Coupling::Restitution(_) => {
+            Coupling::RapierPipeline(_) => None,
+            Coupling::NeighbourList(_) | Coupling::Restitution(_) => {
                 let world: rapier3d_f64::prelude::PhysicsWorld = postcard::from_bytes(&data.world)
                     .map_err(|e| CheckpointError::Decode {
                         path: path.to_path_buf(),
@@ -393,7 +392,7 @@ impl<'a> Sim<'a> {
             .chain(&sim.built.wall_bodies)
             .copied()
             .collect();
-        if let Coupling::Fast(stepper) = &mut sim.built.coupling {
+        if let Coupling::NeighbourList(stepper) = &mut sim.built.coupling {
             let p = stepper.particles_mut();
             for (i, record) in data.bodies.iter().take(n_particles).enumerate() {
                 record.apply_to_particle(p, i);
@@ -428,24 +427,14 @@ impl<'a> Sim<'a> {
         let dt = self.scene.dt;
         let world = &mut self.built.world;
         match &mut self.built.coupling {
-            Coupling::Force(stepper) => {
-                stepper.compute_forces(&world.bodies, &world.colliders, &world.narrow_phase, dt)?;
+            Coupling::RapierPipeline(stepper) => {
+                stepper.compute_forces(world, dt)?;
                 // Clears the plugin's force accumulators; the bodies keep no force of it.
-                stepper.apply_forces(&mut world.bodies);
-                stepper.give_back_user_forces(&mut world.bodies);
-                let records = &data.contacts;
-                for entry in stepper.contacts_mut().entries_mut() {
-                    match records.binary_search_by_key(&entry.key.0, |r| r.key) {
-                        Ok(i) => {
-                            entry.history.contact = records[i].contact.clone();
-                            entry.history.rolling = records[i].rolling;
-                        }
-                        Err(_) => entry.history = Default::default(),
-                    }
-                }
+                stepper.discard_forces(&mut world.bodies);
+                stepper.restore(&data.contacts);
             }
-            Coupling::Fast(stepper) => {
-                with_fast!(stepper, s => restore_fast_lists(s, world, data, path))?;
+            Coupling::NeighbourList(stepper) => {
+                stepper.restore(world, data.neighbour_list.as_ref(), path)?;
             }
             Coupling::Restitution(hooks) => {
                 let history = hooks.history();
@@ -568,7 +557,7 @@ impl<'a> Sim<'a> {
             energy: self.energy.clone(),
             headline,
             particles: match &self.built.coupling {
-                Coupling::Fast(stepper) => {
+                Coupling::NeighbourList(stepper) => {
                     let p = stepper.particles();
                     (0..p.len())
                         .map(|i| BodyRecord::of_particle(p, i))
@@ -603,7 +592,7 @@ impl<'a> Sim<'a> {
             &self.built.wall_bodies,
         );
         match &mut self.built.coupling {
-            Coupling::Fast(stepper) => {
+            Coupling::NeighbourList(stepper) => {
                 let mut jumped = false;
                 if let Some(sink) = &self.sink {
                     let p = stepper.particles_mut();
@@ -641,20 +630,19 @@ impl<'a> Sim<'a> {
         let dt = self.scene.dt;
         let world = &self.built.world;
         match &mut self.built.coupling {
-            Coupling::Force(stepper) => {
-                stepper.compute_forces(&world.bodies, &world.colliders, &world.narrow_phase, dt)?;
-                self.books.take(
-                    stepper,
+            Coupling::RapierPipeline(stepper) => {
+                stepper.compute_forces(world, dt)?;
+                stepper.take_books(
+                    &mut self.books,
                     &world.bodies,
                     &self.built.particle_of_collider,
                     &self.built.wall_of_collider,
                     dt,
                 );
             }
-            Coupling::Fast(stepper) => with_fast!(stepper, s => {
-                s.compute_forces(world, keep_wrenches)?;
-                self.books.take_fast(s, &world.bodies, dt);
-            }),
+            Coupling::NeighbourList(stepper) => {
+                stepper.compute_forces(world, keep_wrenches, &mut self.books, dt)?;
+            }
             Coupling::Restitution(_) => {}
         }
         Ok(())
@@ -663,14 +651,8 @@ impl<'a> Sim<'a> {
     fn advance(&mut self) -> Result<(), SimError> {
         let world = &mut self.built.world;
         match &mut self.built.coupling {
-            Coupling::Force(stepper) => {
-                stepper.apply_forces(&mut world.bodies);
-                world.step();
-                stepper.give_back_user_forces(&mut world.bodies);
-            }
-            Coupling::Fast(stepper) => {
-                with_fast!(stepper, s => s.advance(world))?;
-            }
+            Coupling::RapierPipeline(stepper) => stepper.advance(world),
+            Coupling::NeighbourList(stepper) => stepper.advance(world)?,
             Coupling::Restitution(hooks) => hooks.step(world)?,
         }
         self.step += 1;
@@ -685,7 +667,7 @@ impl<'a> Sim<'a> {
         v.velocity.clear();
         v.mass.clear();
         v.radius.clear();
-        if let Coupling::Fast(stepper) = &self.built.coupling {
+        if let Coupling::NeighbourList(stepper) = &self.built.coupling {
             let p = stepper.particles();
             v.position.extend_from_slice(&p.position);
             v.velocity.extend_from_slice(&p.linvel);
@@ -694,21 +676,7 @@ impl<'a> Sim<'a> {
                 .extend(p.species.iter().map(|&s| p.species_table[s as usize].mass));
             v.contacts.clear();
             v.contacts.resize(n, 0);
-            with_fast!(stepper, s => {
-                let pairs = s.pairs();
-                for q in 0..pairs.len() {
-                    if pairs.active[q] {
-                        v.contacts[pairs.i[q] as usize] += 1;
-                        v.contacts[pairs.j[q] as usize] += 1;
-                    }
-                }
-                let sp = s.surface_pairs();
-                for q in 0..sp.len() {
-                    if sp.active[q] {
-                        v.contacts[sp.particle[q] as usize] += 1;
-                    }
-                }
-            });
+            stepper.count_contacts(&mut v.contacts);
             return;
         }
         for (h, p) in self.built.particle_bodies.iter().zip(&self.scene.particles) {
@@ -720,8 +688,8 @@ impl<'a> Sim<'a> {
         }
         v.contacts.clear();
         v.contacts.resize(n, 0);
-        if let Coupling::Force(stepper) = &self.built.coupling {
-            for e in stepper.contacts().entries() {
+        if let Coupling::RapierPipeline(stepper) = &self.built.coupling {
+            stepper.for_each_contact(&mut |e| {
                 let count = |c: rapier3d_f64::prelude::ColliderHandle, v: &mut Vec<u32>| {
                     if let Some(&i) = self
                         .built
@@ -735,7 +703,7 @@ impl<'a> Sim<'a> {
                 };
                 count(e.collider1, &mut v.contacts);
                 count(e.collider2, &mut v.contacts);
-            }
+            });
         }
     }
 
@@ -780,29 +748,27 @@ impl<'a> Sim<'a> {
             }
         };
         match &self.built.coupling {
-            Coupling::Fast(stepper) => with_fast!(stepper, s => {
-                let sp = s.surface_pairs();
-                let radius = &s.particles().radius;
-                for q in (0..sp.len()).filter(|&q| sp.active[q]) {
-                    let i = sp.particle[q] as usize;
-                    if let Some(&wall) = self.built.wall_of_surface.get(sp.surface[q] as usize) {
-                        consider(i, wall, sp.contact[q].overlap, radius[i]);
+            Coupling::NeighbourList(stepper) => {
+                let radius = &stepper.particles().radius;
+                stepper.for_each_surface_contact(&mut |i, surface, overlap| {
+                    if let Some(&wall) = self.built.wall_of_surface.get(surface) {
+                        consider(i, wall, overlap, radius[i]);
                     }
-                }
-            }),
-            Coupling::Force(stepper) => {
+                });
+            }
+            Coupling::RapierPipeline(stepper) => {
                 let index = |map: &[usize], c: rapier3d_f64::prelude::ColliderHandle| {
                     map.get(c.into_raw_parts().0 as usize)
                         .copied()
                         .filter(|&i| i != usize::MAX)
                 };
-                for e in stepper.contacts().entries() {
+                stepper.for_each_contact(&mut |e| {
                     let particle = index(&self.built.particle_of_collider, e.collider1);
                     let wall = index(&self.built.wall_of_collider, e.collider2);
                     if let (Some(i), Some(wall)) = (particle, wall) {
                         consider(i, wall, e.contact.overlap, self.scene.particles[i].radius);
                     }
-                }
+                });
             }
             Coupling::Restitution(_) => {}
         }
@@ -900,25 +866,6 @@ fn progress_bar(quiet: bool, total: u64, start: u64) -> ProgressBar {
     );
     bar.set_position(start);
     bar
-}
-
-/// Put a checkpoint's neighbour lists and their histories into the neighbour-list stepper.
-fn restore_fast_lists<N: SceneNormal, R: SceneRolling>(
-    stepper: &mut FastSceneStepper<N, R>,
-    world: &rapier3d_f64::prelude::PhysicsWorld,
-    data: &CheckpointData,
-    path: &Path,
-) -> Result<(), SimError> {
-    let state = data
-        .fast
-        .as_ref()
-        .and_then(|f| f.to_state::<N, R>())
-        .ok_or_else(|| CheckpointError::Incompatible {
-            path: path.to_path_buf(),
-            reason: "it holds no valid neighbour-list state".to_owned(),
-        })?;
-    stepper.import_lists(world, state)?;
-    Ok(())
 }
 
 /// The work of lifting every particle of the scene by its own diameter against gravity (J):

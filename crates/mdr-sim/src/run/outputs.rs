@@ -1,7 +1,10 @@
 //! What a run writes: energy-book rows, VTK frames (spheres and the contact network), the
 //! CSV and plot series, and checkpoints.
 
+use super::coupling::NeighbourListSceneStepper;
+use super::records::{NeighbourListPairHistory, SceneLaw};
 use super::*;
+use crate::laws::{SceneNormal, SceneRolling};
 
 impl Sim<'_> {
     pub(super) fn energy_row(&self) -> EnergyRow {
@@ -17,7 +20,7 @@ impl Sim<'_> {
             row.kinetic_rotational_j += 0.5 * 0.4 * m * r * r * w.norm_squared();
             row.gravitational_j -= m * g.dot(x);
         };
-        if let Coupling::Fast(stepper) = &self.built.coupling {
+        if let Coupling::NeighbourList(stepper) = &self.built.coupling {
             let p = stepper.particles();
             for i in 0..p.len() {
                 let m = p.species_table[p.species[i] as usize].mass;
@@ -29,24 +32,15 @@ impl Sim<'_> {
             let (x, v, w) = (to_na(b.translation()), to_na(b.linvel()), to_na(b.angvel()));
             kinetic(b.mass(), p.radius, &x, &v, &w);
         }
-        if let Coupling::Force(stepper) = &self.built.coupling {
-            for e in stepper.contacts().entries() {
-                let report = e.law.report(&e.history.contact, e.contact.overlap);
-                row.elastic_normal_j += report.normal_elastic_energy;
-                let t = &e.history.contact.tangential;
-                row.elastic_tangential_j += 0.5
-                    * e.law.tangential.stiffness(t.contact_radius)
-                    * t.displacement.norm_squared();
-                row.elastic_rolling_j += e.rolling.elastic_energy(&e.history.rolling);
-            }
-            row.contacts = stepper.contacts().len() as u64;
+        if let Coupling::RapierPipeline(stepper) = &self.built.coupling {
+            stepper.add_elastic_energies(&mut row);
         }
-        if let Coupling::Fast(stepper) = &self.built.coupling {
-            with_fast!(stepper, s => live_elastic_energies(s, &mut row));
+        if let Coupling::NeighbourList(stepper) = &self.built.coupling {
+            stepper.add_elastic_energies(&mut row);
         }
         // The neighbour-list path's totals hold the contacts that ended; add the live ones.
         let live = match &self.built.coupling {
-            Coupling::Fast(stepper) => with_fast!(stepper, s => Books::live_fast(s, None)),
+            Coupling::NeighbourList(stepper) => stepper.live_works(None),
             _ => ContactWorks::default(),
         };
         row.plastic_j = self.books.plastic + live.plastic;
@@ -66,10 +60,10 @@ impl Sim<'_> {
         let name = PathBuf::from("frames").join(format!("{}_{index:06}.vtp", scene.name));
         let bodies = &self.built.world.bodies;
         let mut frame = ParticleFrame::default();
-        if let Coupling::Fast(stepper) = &self.built.coupling {
+        if let Coupling::NeighbourList(stepper) = &self.built.coupling {
             let p = stepper.particles();
             let mut plastic = self.books.particle_plastic.clone();
-            with_fast!(stepper, s => Books::live_fast(s, Some(&mut plastic)));
+            stepper.live_works(Some(&mut plastic));
             for (i, &plastic_work) in plastic.iter().enumerate().take(p.len()) {
                 frame.position.push(p.position[i].into());
                 frame.radius.push(p.radius[i]);
@@ -99,11 +93,13 @@ impl Sim<'_> {
         });
         if scene.contact_network {
             let mut net = ContactFrame::default();
-            if let Coupling::Fast(stepper) = &self.built.coupling {
-                with_fast!(stepper, s => live_contact_network(s, &mut net));
+            if let Coupling::NeighbourList(stepper) = &self.built.coupling {
+                stepper.add_contact_network(&mut net);
             }
-            if let Coupling::Force(stepper) = &self.built.coupling {
-                for e in stepper.contacts().entries() {
+            if let Coupling::RapierPipeline(stepper) = &self.built.coupling {
+                let residual = stepper.residual_overlaps();
+                let mut k = 0;
+                stepper.for_each_contact(&mut |e| {
                     let c1 = to_na(bodies[e.body1].translation());
                     let to = match self
                         .built
@@ -120,9 +116,9 @@ impl Sim<'_> {
                     net.force.push(e.wrench.force.into());
                     net.normal_force.push(e.wrench.force.dot(&e.contact.normal));
                     net.overlap.push(e.contact.overlap);
-                    net.plastic_indentation
-                        .push(e.law.normal.residual_overlap(&e.history.contact.normal));
-                }
+                    net.plastic_indentation.push(residual[k]);
+                    k += 1;
+                });
             }
             if !matches!(self.built.coupling, Coupling::Restitution(_)) {
                 let cname =
@@ -217,19 +213,20 @@ impl Sim<'_> {
 
 /// Add the elastic energies of the contacts alive on the neighbour-list path to `row`, and
 /// count them.
-fn live_elastic_energies<N: SceneNormal, R: SceneRolling>(
-    stepper: &FastSceneStepper<N, R>,
+pub(super) fn live_elastic_energies<N: SceneNormal, R: SceneRolling>(
+    stepper: &NeighbourListSceneStepper<N, R>,
     row: &mut EnergyRow,
 ) {
-    let mut add =
-        |(law, rolling): &(SceneLaw<N>, R::Law), h: &FastPairHistory<N, R>, overlap: f64| {
-            row.elastic_normal_j += law.normal.elastic_energy(&h.contact.normal, overlap);
-            let t = &h.contact.tangential;
-            row.elastic_tangential_j +=
-                0.5 * law.tangential.stiffness(t.contact_radius) * t.displacement.norm_squared();
-            row.elastic_rolling_j += rolling.elastic_energy(&h.rolling);
-            row.contacts += 1;
-        };
+    let mut add = |(law, rolling): &(SceneLaw<N>, R::Law),
+                   h: &NeighbourListPairHistory<N, R>,
+                   overlap: f64| {
+        row.elastic_normal_j += law.normal.elastic_energy(&h.contact.normal, overlap);
+        let t = &h.contact.tangential;
+        row.elastic_tangential_j +=
+            0.5 * law.tangential.stiffness(t.contact_radius) * t.displacement.norm_squared();
+        row.elastic_rolling_j += rolling.elastic_energy(&h.rolling);
+        row.contacts += 1;
+    };
     let p = stepper.particles();
     let sp = stepper.surface_pairs();
     for q in (0..sp.len()).filter(|&q| sp.active[q]) {
@@ -253,8 +250,8 @@ fn live_elastic_energies<N: SceneNormal, R: SceneRolling>(
 }
 
 /// Add the contacts alive on the neighbour-list path to a contact-network frame.
-fn live_contact_network<N: SceneNormal, R: SceneRolling>(
-    stepper: &FastSceneStepper<N, R>,
+pub(super) fn live_contact_network<N: SceneNormal, R: SceneRolling>(
+    stepper: &NeighbourListSceneStepper<N, R>,
     net: &mut ContactFrame,
 ) {
     let p = stepper.particles();

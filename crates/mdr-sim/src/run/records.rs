@@ -3,7 +3,8 @@
 //! tracker), and the scene keys a checkpoint must agree with.
 
 use super::books::Books;
-use super::build::{with_fast, Coupling, FastSceneStepper};
+use super::build::Coupling;
+use super::coupling::NeighbourListSceneStepper;
 use super::Sim;
 use crate::headline::{HeadlineSample, Tracker};
 use crate::laws::{AnyDamping, AnyNormalState, SceneNormal, SceneRolling};
@@ -11,7 +12,9 @@ use crate::output::energy::EnergyRow;
 use crate::output::vtk::CollectionEntry;
 use crate::scene::Scene;
 use mdr_contact::damping::DampingModel;
+use mdr_contact::model::Books as WorkBooksOfContact;
 use mdr_contact::model::{ContactLaw, ContactState};
+use mdr_contact::normal::NormalLaw;
 use mdr_contact::normal::NormalModel;
 use mdr_contact::rolling::EpsdRollingState;
 use mdr_contact::tangential::{Mindlin, MindlinState, TangentialModel};
@@ -100,10 +103,40 @@ pub struct ContactRecord {
     pub rolling: EpsdRollingState,
 }
 
+impl ContactRecord {
+    /// The record of a contact of normal model `N`.
+    pub(crate) fn of<N: SceneNormal>(
+        key: u64,
+        contact: &ContactState<<N::Law as NormalLaw>::State, MindlinState, WorkBooksOfContact>,
+        rolling: EpsdRollingState,
+    ) -> Self {
+        Self {
+            key,
+            contact: ContactState {
+                normal: N::record(&contact.normal),
+                tangential: contact.tangential,
+                books: contact.books,
+            },
+            rolling,
+        }
+    }
+
+    /// The normal, tangential and books history of a contact of normal model `N`.
+    pub(crate) fn contact_state<N: SceneNormal>(
+        &self,
+    ) -> ContactState<<N::Law as NormalLaw>::State, MindlinState, WorkBooksOfContact> {
+        ContactState {
+            normal: N::restore(&self.contact.normal),
+            tangential: self.contact.tangential,
+            books: self.contact.books,
+        }
+    }
+}
+
 /// The neighbour-list stepper's state between two steps ([`mdr_rapier::neighbour_list::NeighbourListState`]),
 /// with the histories of touching pairs only (the others are default).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct FastRecord {
+pub struct NeighbourListRecord {
     /// Positions at the last build.
     pub built_at: Vec<[f64; 3]>,
     /// Largest displacement since the last build (m).
@@ -124,29 +157,26 @@ pub struct FastRecord {
 
 /// The history of one pair on the neighbour-list path of a scene with normal model `N` and
 /// rolling model `R`.
-pub(crate) type FastPairHistory<N, R> =
+pub(crate) type NeighbourListPairHistory<N, R> =
     mdr_rapier::neighbour_list::NeighbourListHistory<N, Mindlin, R>;
 
-impl FastRecord {
-    pub(crate) fn of<N: SceneNormal, R: SceneRolling>(stepper: &FastSceneStepper<N, R>) -> Self {
+impl NeighbourListRecord {
+    pub(crate) fn of<N: SceneNormal, R: SceneRolling>(
+        stepper: &NeighbourListSceneStepper<N, R>,
+    ) -> Self {
         let state = stepper.export_lists();
-        let touching = |active: &[bool], history: &[FastPairHistory<N, R>]| -> Vec<ContactRecord> {
-            active
-                .iter()
-                .zip(history)
-                .enumerate()
-                .filter(|(_, (&a, _))| a)
-                .map(|(k, (_, h))| ContactRecord {
-                    key: k as u64,
-                    contact: ContactState {
-                        normal: N::record(&h.contact.normal),
-                        tangential: h.contact.tangential,
-                        books: h.contact.books,
-                    },
-                    rolling: R::record(&h.rolling),
-                })
-                .collect()
-        };
+        let touching =
+            |active: &[bool], history: &[NeighbourListPairHistory<N, R>]| -> Vec<ContactRecord> {
+                active
+                    .iter()
+                    .zip(history)
+                    .enumerate()
+                    .filter(|(_, (&a, _))| a)
+                    .map(|(k, (_, h))| {
+                        ContactRecord::of::<N>(k as u64, &h.contact, R::record(&h.rolling))
+                    })
+                    .collect()
+            };
         Self {
             built_at: state.built_at.iter().map(|x| (*x).into()).collect(),
             max_displacement: state.max_displacement,
@@ -169,19 +199,15 @@ impl FastRecord {
     /// The stepper's state; `None` if a history's index is out of range.
     pub(crate) fn to_state<N: SceneNormal, R: SceneRolling>(
         &self,
-    ) -> Option<NeighbourListState<FastPairHistory<N, R>>> {
+    ) -> Option<NeighbourListState<NeighbourListPairHistory<N, R>>> {
         let expand = |n: usize, records: &[ContactRecord]| {
             let mut active = vec![false; n];
-            let mut history = vec![FastPairHistory::<N, R>::default(); n];
+            let mut history = vec![NeighbourListPairHistory::<N, R>::default(); n];
             for r in records {
                 let k = usize::try_from(r.key).ok().filter(|&k| k < n)?;
                 active[k] = true;
-                history[k] = FastPairHistory::<N, R> {
-                    contact: ContactState {
-                        normal: N::restore(&r.contact.normal),
-                        tangential: r.contact.tangential,
-                        books: r.contact.books,
-                    },
+                history[k] = NeighbourListPairHistory::<N, R> {
+                    contact: r.contact_state::<N>(),
                     rolling: R::restore(&r.rolling),
                 };
             }
@@ -258,7 +284,8 @@ pub struct CheckpointData {
     pub contacts: Vec<ContactRecord>,
     /// Force mode on the neighbour-list path: its lists and histories (the particles are in
     /// `bodies`).
-    pub fast: Option<FastRecord>,
+    #[serde(rename = "fast")]
+    pub neighbour_list: Option<NeighbourListRecord>,
     /// Restitution mode: `(pair key, largest overlap)` of the impact history.
     pub impacts: Vec<(u64, f64)>,
     /// Restitution mode and the neighbour-list path (whose world holds the walls only):
@@ -292,7 +319,7 @@ impl CheckpointData {
     pub(crate) fn capture(sim: &Sim<'_>) -> Result<Self, String> {
         let bodies = &sim.built.world.bodies;
         let mut records: Vec<BodyRecord> = match &sim.built.coupling {
-            Coupling::Fast(stepper) => {
+            Coupling::NeighbourList(stepper) => {
                 let p = stepper.particles();
                 (0..p.len())
                     .map(|i| BodyRecord::of_particle(p, i))
@@ -307,25 +334,13 @@ impl CheckpointData {
                 .chain(&sim.built.wall_bodies)
                 .map(|h| BodyRecord::of(&bodies[*h])),
         );
-        let fast = match &sim.built.coupling {
-            Coupling::Fast(stepper) => Some(with_fast!(stepper, s => FastRecord::of(s))),
+        let neighbour_list = match &sim.built.coupling {
+            Coupling::NeighbourList(stepper) => Some(stepper.record()),
             _ => None,
         };
         let (contacts, impacts) = match &sim.built.coupling {
-            Coupling::Force(stepper) => (
-                stepper
-                    .contacts()
-                    .entries()
-                    .iter()
-                    .map(|e| ContactRecord {
-                        key: e.key.0,
-                        contact: e.history.contact.clone(),
-                        rolling: e.history.rolling,
-                    })
-                    .collect(),
-                Vec::new(),
-            ),
-            Coupling::Fast(_) => (Vec::new(), Vec::new()),
+            Coupling::RapierPipeline(stepper) => (stepper.records(), Vec::new()),
+            Coupling::NeighbourList(_) => (Vec::new(), Vec::new()),
             Coupling::Restitution(hooks) => {
                 let h = hooks.history();
                 let impacts = (0..h.allocated())
@@ -336,11 +351,11 @@ impl CheckpointData {
             }
         };
         let world = match &sim.built.coupling {
-            Coupling::Force(_) => Vec::new(),
+            Coupling::RapierPipeline(_) => Vec::new(),
             // The neighbour-list path's world holds the walls only (small): kept whole, so that
             // kinematic walls continue exactly (their derived state, e.g. the world centre of
             // mass, is not in a body record).
-            Coupling::Fast(_) | Coupling::Restitution(_) => {
+            Coupling::NeighbourList(_) | Coupling::Restitution(_) => {
                 postcard::to_stdvec(&sim.built.world)
                     .map_err(|e| format!("rapier's world does not encode: {e}"))?
             }
@@ -352,7 +367,7 @@ impl CheckpointData {
             step: sim.step,
             bodies: records,
             contacts,
-            fast,
+            neighbour_list,
             impacts,
             world,
             books: sim.books.clone(),
@@ -446,7 +461,7 @@ pub fn fingerprint(scene: &Scene) -> u32 {
 
 #[cfg(test)]
 mod tests {
-    use super::FastPairHistory;
+    use super::NeighbourListPairHistory;
     use mdr_contact::normal::{Hertz, MdrElastoPlastic, Thornton};
     use mdr_contact::rolling::{EpsdRolling, NoRolling};
     use std::mem::size_of;
@@ -457,13 +472,16 @@ mod tests {
     #[test]
     fn a_contact_carries_only_its_laws_history() {
         assert_eq!(
-            size_of::<FastPairHistory<MdrElastoPlastic, NoRolling>>(),
+            size_of::<NeighbourListPairHistory<MdrElastoPlastic, NoRolling>>(),
             72
         );
-        assert_eq!(size_of::<FastPairHistory<Hertz, NoRolling>>(), 72);
-        assert_eq!(size_of::<FastPairHistory<Thornton, NoRolling>>(), 88);
+        assert_eq!(size_of::<NeighbourListPairHistory<Hertz, NoRolling>>(), 72);
         assert_eq!(
-            size_of::<FastPairHistory<MdrElastoPlastic, EpsdRolling>>(),
+            size_of::<NeighbourListPairHistory<Thornton, NoRolling>>(),
+            88
+        );
+        assert_eq!(
+            size_of::<NeighbourListPairHistory<MdrElastoPlastic, EpsdRolling>>(),
             112
         );
     }

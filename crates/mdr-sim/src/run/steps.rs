@@ -54,7 +54,7 @@ impl<'a> SceneSteps<'a> {
     /// The largest sphere speed (m/s) now (neighbour-list path; `None` on the rapier pipeline paths).
     pub fn max_speed(&self) -> Option<f64> {
         match &self.sim.built.coupling {
-            Coupling::Fast(stepper) => Some(
+            Coupling::NeighbourList(stepper) => Some(
                 stepper
                     .particles()
                     .linvel
@@ -73,13 +73,13 @@ impl<'a> SceneSteps<'a> {
 
     /// Whether the scene runs on the neighbour-list path.
     pub fn neighbour_list(&self) -> bool {
-        matches!(self.sim.built.coupling, Coupling::Fast(_))
+        matches!(self.sim.built.coupling, Coupling::NeighbourList(_))
     }
 
     /// Time each part of the neighbour-list path's steps from now on (from zero), or stop
     /// (`false`); nothing on the rapier pipeline paths. The trajectory does not depend on it.
     pub fn time_steps(&mut self, on: bool) {
-        if let Coupling::Fast(stepper) = &mut self.sim.built.coupling {
+        if let Coupling::NeighbourList(stepper) = &mut self.sim.built.coupling {
             stepper.time_steps(on);
         }
     }
@@ -89,7 +89,7 @@ impl<'a> SceneSteps<'a> {
     /// parts (scene events, energy books, the headline tracker) is the rest of its wall time.
     pub fn step_timings(&self) -> Option<StepTimings> {
         match &self.sim.built.coupling {
-            Coupling::Fast(stepper) => stepper.step_timings(),
+            Coupling::NeighbourList(stepper) => stepper.step_timings(),
             _ => None,
         }
     }
@@ -97,7 +97,7 @@ impl<'a> SceneSteps<'a> {
     /// Neighbour-list builds so far (neighbour-list path only).
     pub fn rebuilds(&self) -> Option<u64> {
         match &self.sim.built.coupling {
-            Coupling::Fast(stepper) => Some(stepper.rebuilds()),
+            Coupling::NeighbourList(stepper) => Some(stepper.rebuilds()),
             _ => None,
         }
     }
@@ -106,7 +106,7 @@ impl<'a> SceneSteps<'a> {
     /// within the skin, each of which the pair loop tests every step.
     pub fn listed_pairs(&self) -> Option<usize> {
         match &self.sim.built.coupling {
-            Coupling::Fast(stepper) => Some(stepper.listed_pairs()),
+            Coupling::NeighbourList(stepper) => Some(stepper.listed_pairs()),
             _ => None,
         }
     }
@@ -114,14 +114,14 @@ impl<'a> SceneSteps<'a> {
     /// Touching pairs at the last force evaluation.
     pub fn contacts(&self) -> ContactCounts {
         match &self.sim.built.coupling {
-            Coupling::Fast(stepper) => {
+            Coupling::NeighbourList(stepper) => {
                 let report = stepper.last_report();
                 ContactCounts {
                     sphere: report.sphere_contacts,
                     wall: report.surface_contacts,
                 }
             }
-            Coupling::Force(stepper) => {
+            Coupling::RapierPipeline(stepper) => {
                 let mut counts = ContactCounts::default();
                 let particle = |c: rapier3d_f64::prelude::ColliderHandle| {
                     self.sim
@@ -130,13 +130,13 @@ impl<'a> SceneSteps<'a> {
                         .get(c.into_raw_parts().0 as usize)
                         .is_some_and(|&i| i != usize::MAX)
                 };
-                for e in stepper.contacts().entries() {
+                stepper.for_each_contact(&mut |e| {
                     if particle(e.collider1) && particle(e.collider2) {
                         counts.sphere += 1;
                     } else {
                         counts.wall += 1;
                     }
-                }
+                });
                 counts
             }
             Coupling::Restitution(_) => ContactCounts::default(),

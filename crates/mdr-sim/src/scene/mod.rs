@@ -15,23 +15,23 @@ pub use problems::{Problem, Problems, Severity};
 pub use schema::{CouplingMode, ForcePath, Headline, SceneFile};
 pub use validate::load_scene;
 
-/// The normal law of a scene with its parameters (checked by the law crate).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum NormalSpec {
-    /// MDR elasto-plastic: `q_c` (N/m) and `Θ/E*`.
-    Mdr {
-        /// Critical linear force density `q_c` (N/m, eq. 7).
-        critical_line_load: f64,
-        /// Hardening ratio `Θ/E*` (eq. 12).
-        hardening_ratio: f64,
-    },
-    /// Hertz.
-    Hertz,
-    /// Thornton with limiting pressure `p_y` (Pa).
-    Thornton {
-        /// `p_y` (Pa).
-        yield_pressure: f64,
-    },
+/// The normal law of a scene: a registered law's name ([`crate::laws::registry`]) and the
+/// values of its declared parameters, in declared order (checked by the law crate).
+#[derive(Debug, Clone, PartialEq)]
+pub struct NormalSpec {
+    /// The law's name (`normal = "…"`).
+    pub law: &'static str,
+    /// Its parameters' values, in the order of its declaration.
+    pub values: Vec<f64>,
+}
+
+impl NormalSpec {
+    /// The value of the parameter with scene key `key`, if the law declares it.
+    pub fn value(&self, key: &str) -> Option<f64> {
+        let entry = crate::laws::registry::normal_law(self.law)?;
+        let k = entry.declaration.params.iter().position(|p| p.key == key)?;
+        self.values.get(k).copied()
+    }
 }
 
 /// The damping law of a scene.
@@ -46,7 +46,7 @@ pub enum DampingSpec {
 }
 
 /// The contact model of a scene.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct ContactSpec {
     /// Normal law.
     pub normal: NormalSpec,

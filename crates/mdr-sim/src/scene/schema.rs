@@ -1,8 +1,10 @@
 //! The scene file as written by the user: plain serde structs, one per TOML table, every key
-//! carrying its unit in its name. Unknown keys are refused (`deny_unknown_fields`); the values
-//! are checked afterwards by [`super::validate`], which knows every key's allowed range.
+//! carrying its unit in its name. Unknown keys are refused (`deny_unknown_fields`; in
+//! `[contact]`, whose law parameters come from the laws' declarations, by the validation); the
+//! values are checked afterwards by [`super::validate`], which knows every key's allowed range.
 
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 
 /// A whole scene file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -178,18 +180,6 @@ pub struct MaterialSection {
     pub density_kg_per_m3: f64,
 }
 
-/// Normal law name.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum NormalLawName {
-    /// MDR elasto-plastic (Lyashenko & Popov 2018), closed form.
-    Mdr,
-    /// Hertz (elastic).
-    Hertz,
-    /// Thornton (1997) elastic–perfectly plastic.
-    Thornton,
-}
-
 /// Tangential law name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -213,21 +203,17 @@ pub enum DampingLawName {
     StiffnessViscous,
 }
 
-/// `[contact]`.
+/// `[contact]`. Besides the keys named here it holds the declared parameters of its normal law
+/// ([`mdr_contact::params`]; e.g. `critical_line_load_n_per_m` of `mdr`): the validation
+/// checks them against the law's declaration and refuses any key the law does not declare.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct ContactSection {
-    /// Normal law.
-    pub normal: NormalLawName,
-    /// MDR: critical linear force density `q_c` (N/m, eq. 7).
-    #[serde(default)]
-    pub critical_line_load_n_per_m: Option<f64>,
-    /// MDR: hardening ratio `Θ/E*` (eq. 12).
-    #[serde(default)]
-    pub hardening_ratio: Option<f64>,
-    /// Thornton: limiting contact pressure `p_y` (Pa).
-    #[serde(default)]
-    pub yield_pressure_pa: Option<f64>,
+    /// Normal law: the name of a registered law (`mdr`, `hertz`, `thornton`;
+    /// `crate::laws::registry`).
+    pub normal: String,
+    /// The other keys: the normal law's parameters by their declared keys (in key order).
+    #[serde(flatten)]
+    pub law_parameters: BTreeMap<String, ParamValue>,
     /// Tangential law (default `none`).
     #[serde(default)]
     pub tangential: Option<TangentialLawName>,
@@ -250,6 +236,17 @@ pub struct ContactSection {
     /// Rolling-resistance coefficient `μ_r` (dimensionless); off when absent or 0.
     #[serde(default)]
     pub rolling_friction: Option<f64>,
+}
+
+/// The value of a key of `[contact]` that is not one of its named keys: a number (a law's
+/// parameter) or anything else (refused by the validation, with the key's line).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum ParamValue {
+    /// A number (an integer is read as its `f64`).
+    Number(f64),
+    /// Any other value.
+    Other(toml::Value),
 }
 
 /// How particle radii are drawn.

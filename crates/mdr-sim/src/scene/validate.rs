@@ -9,10 +9,12 @@
 use super::problems::{KeyPath, Locator, Problem, Problems, Severity};
 use super::schema::*;
 use super::{ContactSpec, DampingSpec, NormalSpec, Scene};
+use crate::laws::registry;
 use crate::placement::{self, ParticleInit, RadiusLaw};
 use crate::walls::{self, Wall, WallPiece};
 use mdr_contact::damping::{HertzianViscous, StiffnessViscous};
-use mdr_contact::normal::{MdrElastoPlastic, Thornton};
+use mdr_contact::normal::MdrElastoPlastic;
+use mdr_contact::params::{Declared, ParamProblem};
 use mdr_contact::rolling::EpsdRolling;
 use mdr_contact::tangential::Mindlin;
 use mdr_contact::{ContactError, ContactPair, Material};
@@ -193,9 +195,6 @@ fn key_for(name: &str) -> &str {
         "youngs_modulus" => "youngs_pa",
         "poisson_ratio" => "poisson_ratio",
         "density" => "density_kg_per_m3",
-        "q_c" => "critical_line_load_n_per_m",
-        "theta_ratio" => "hardening_ratio",
-        "yield_stress" => "yield_pressure_pa",
         "mu" => "friction",
         "gamma_n" => "damping_gamma_n_per_m_s",
         "eta" => "damping_eta",
@@ -432,7 +431,7 @@ impl Checker<'_, '_> {
         };
         if r.coupling == CouplingMode::Restitution {
             let c = &file.contact;
-            if c.normal != NormalLawName::Mdr {
+            if c.normal != MdrElastoPlastic::DECLARATION.name {
                 self.error(
                     &root.key("contact").key("normal"),
                     "restitution coupling needs normal = \"mdr\" (its restitution comes from the MDR energy route)",

@@ -5,82 +5,7 @@ use super::*;
 impl Checker<'_, '_> {
     pub(super) fn contact(&mut self, c: &ContactSection) -> Option<ContactSpec> {
         let table = KeyPath::root().key("contact");
-        let why = |law: &str| format!("by normal = \"{law}\"");
-        let normal = match c.normal {
-            NormalLawName::Mdr => {
-                self.unused(
-                    &table,
-                    &[("yield_pressure_pa", c.yield_pressure_pa.is_some())],
-                    &why("mdr"),
-                );
-                let q = self.require(
-                    &table,
-                    "critical_line_load_n_per_m",
-                    c.critical_line_load_n_per_m,
-                    "required by normal = \"mdr\"",
-                );
-                let h = self.require(
-                    &table,
-                    "hardening_ratio",
-                    c.hardening_ratio,
-                    "required by normal = \"mdr\"",
-                );
-                match (q, h) {
-                    (Some(q), Some(h)) => match MdrElastoPlastic::new(q, h) {
-                        Ok(_) => Some(NormalSpec::Mdr {
-                            critical_line_load: q,
-                            hardening_ratio: h,
-                        }),
-                        Err(e) => {
-                            self.contact_error(&table, e);
-                            None
-                        }
-                    },
-                    _ => None,
-                }
-            }
-            NormalLawName::Hertz => {
-                self.unused(
-                    &table,
-                    &[
-                        (
-                            "critical_line_load_n_per_m",
-                            c.critical_line_load_n_per_m.is_some(),
-                        ),
-                        ("hardening_ratio", c.hardening_ratio.is_some()),
-                        ("yield_pressure_pa", c.yield_pressure_pa.is_some()),
-                    ],
-                    &why("hertz"),
-                );
-                Some(NormalSpec::Hertz)
-            }
-            NormalLawName::Thornton => {
-                self.unused(
-                    &table,
-                    &[
-                        (
-                            "critical_line_load_n_per_m",
-                            c.critical_line_load_n_per_m.is_some(),
-                        ),
-                        ("hardening_ratio", c.hardening_ratio.is_some()),
-                    ],
-                    &why("thornton"),
-                );
-                let p = self.require(
-                    &table,
-                    "yield_pressure_pa",
-                    c.yield_pressure_pa,
-                    "required by normal = \"thornton\"",
-                )?;
-                match Thornton::new(p) {
-                    Ok(_) => Some(NormalSpec::Thornton { yield_pressure: p }),
-                    Err(e) => {
-                        self.contact_error(&table, e);
-                        None
-                    }
-                }
-            }
-        };
+        let normal = self.normal_law(c, &table);
         let tangential = c.tangential.unwrap_or(TangentialLawName::None);
         let friction = match (tangential, c.friction) {
             (TangentialLawName::None, Some(mu)) if mu != 0.0 => {
@@ -201,6 +126,120 @@ impl Checker<'_, '_> {
             damping: damping?,
             tangential_damping_ratio: tangential_damping?,
             rolling_friction: rolling?,
+        })
+    }
+}
+
+/// The keys of `[contact]` besides the normal law's parameters.
+const CONTACT_KEYS: &[&str] = &[
+    "normal",
+    "tangential",
+    "friction",
+    "damping",
+    "damping_gamma_n_per_m_s",
+    "damping_eta",
+    "damping_tangential_ratio",
+    "rolling_friction",
+];
+
+impl Checker<'_, '_> {
+    /// `normal = "…"` and its parameters: a registered law's name, each of its declared
+    /// parameters given (a scene states all of its physics) and in its declared range, and no
+    /// parameter of another law.
+    fn normal_law(&mut self, c: &ContactSection, table: &KeyPath) -> Option<NormalSpec> {
+        let Some(entry) = registry::normal_law(&c.normal) else {
+            let names: Vec<String> = registry::normal_law_names()
+                .iter()
+                .map(|n| format!("`{n}`"))
+                .collect();
+            self.error(
+                &table.key("normal"),
+                with_suggestion(&format!(
+                    "unknown variant `{}`, expected one of {}",
+                    c.normal,
+                    names.join(", ")
+                )),
+            );
+            return None;
+        };
+        let law = entry.declaration;
+        let mut ok = true;
+        for (key, value) in &c.law_parameters {
+            if law.param(key).is_some() {
+                if let ParamValue::Other(v) = value {
+                    self.error(
+                        &table.key(key),
+                        format!("invalid type: {}, expected a number", v.type_str()),
+                    );
+                    ok = false;
+                }
+                continue;
+            }
+            ok = false;
+            let declared_by_another = registry::NORMAL_LAWS
+                .iter()
+                .any(|e| e.declaration.param(key).is_some());
+            if declared_by_another {
+                self.unused(
+                    table,
+                    &[(key, true)],
+                    &format!("by normal = \"{}\"", law.name),
+                );
+            } else {
+                let expected: Vec<String> = CONTACT_KEYS
+                    .iter()
+                    .copied()
+                    .chain(law.params.iter().map(|p| p.key))
+                    .map(|k| format!("`{k}`"))
+                    .collect();
+                self.error(
+                    &table.key(key),
+                    with_suggestion(&format!(
+                        "unknown field `{key}`, expected one of {}",
+                        expected.join(", ")
+                    )),
+                );
+            }
+        }
+        let values = law.values(|p| match c.law_parameters.get(p.key) {
+            Some(ParamValue::Number(v)) => Some(*v),
+            // Reported above as not a number.
+            Some(ParamValue::Other(_)) => Some(f64::NAN),
+            None => None,
+        });
+        let values = match values {
+            Ok(values) => values,
+            Err(problems) => {
+                for problem in problems {
+                    match problem {
+                        ParamProblem::Missing(p) => {
+                            self.require(
+                                table,
+                                p.key,
+                                None::<f64>,
+                                &format!("required by normal = \"{}\": {}", law.name, p.help()),
+                            );
+                        }
+                        ParamProblem::Invalid(p, _)
+                            if matches!(
+                                c.law_parameters.get(p.key),
+                                Some(ParamValue::Other(_))
+                            ) => {}
+                        ParamProblem::Invalid(p, e) => {
+                            self.error(&table.key(p.key), format!("{e}: {}", p.help()));
+                        }
+                    }
+                }
+                return None;
+            }
+        };
+        if let Err(e) = entry.check(&values) {
+            self.contact_error(table, e);
+            return None;
+        }
+        ok.then_some(NormalSpec {
+            law: law.name,
+            values,
         })
     }
 }

@@ -1,0 +1,68 @@
+"""The law registry from Python: the normal laws a scene can name, their declared parameters,
+and the demo linear-spring law (one file in mdr-contact and one registry line; the test script
+builds the wheel with its `demo-laws` feature) run by `run_scene` as its analytic solution."""
+
+import math
+from pathlib import Path
+
+import pytest
+
+import mdr_dem
+
+REPO = Path(__file__).resolve().parents[3]
+
+
+def test_scene_laws_are_the_registry_with_the_published_names():
+    laws = {law["name"]: law for law in mdr_dem.scene_laws()}
+    assert list(laws)[:3] == ["mdr", "hertz", "thornton"]
+    mdr = laws["mdr"]["parameters"]
+    assert [p["key"] for p in mdr] == ["critical_line_load_n_per_m", "hardening_ratio"]
+    # The published command-line flags and Python keywords of the same parameters.
+    assert [p["flag"] for p in mdr] == ["--qc", "--theta-ratio"]
+    assert [p["python"] for p in mdr] == ["qc", "theta_ratio"]
+    assert mdr[1]["range"] == "[0, 1]" and mdr[0]["unit"] == "N/m"
+    assert laws["hertz"]["parameters"] == []
+    assert [p["key"] for p in laws["thornton"]["parameters"]] == ["yield_pressure_pa"]
+
+
+def test_demo_law_runs_in_a_scene_as_its_analytic_solution(tmp_path):
+    laws = {law["name"]: law for law in mdr_dem.scene_laws()}
+    assert "linear_spring" in laws, "the wheel is built with the demo-laws feature"
+    k, r, rho, dt = 1.0e4, 0.005, 2500.0, 1.0e-6
+    text = (REPO / "scenes" / "drop.toml").read_text()
+    text = (
+        text.replace("duration_s = 0.2", "duration_s = 0.03")
+        .replace('dt_s = "auto"', f"dt_s = {dt}")
+        .replace("max_speed_m_per_s = 1.0", "max_speed_m_per_s = 0.5")
+        .replace("checkpoint_interval_s = 0.1", "")
+        .replace("energy_interval_s = 0.0005", "energy_interval_s = 1.0e-5")
+        .replace(
+            'normal = "mdr"\ncritical_line_load_n_per_m = 3.8e5   # q_c, eq. (7)\n'
+            "hardening_ratio = 0.37               # Θ/E*, eq. (12)",
+            f'normal = "linear_spring"\nnormal_stiffness_n_per_m = {k}',
+        )
+        .replace("youngs_pa = 2.0e11", "youngs_pa = 1.0e9")
+        .replace("density_kg_per_m3 = 7800.0", f"density_kg_per_m3 = {rho}")
+        .replace("radius_m = 0.00635", f"radius_m = {r}")
+        .replace("region_min_m = [-0.00635, -0.00635, 0.05]", f"region_min_m = [-{r}, -{r}, 0.001]")
+        .replace("region_max_m = [0.00636, 0.00636, 0.0628]", "region_max_m = [0.00501, 0.00501, 0.01101]")
+    )
+    assert "linear_spring" in text and "0.001]" in text
+    scene = tmp_path / "spring.toml"
+    scene.write_text(text)
+    headline = mdr_dem.run_scene(scene, tmp_path / "out", no_frames=True)
+    # A linear spring without damping returns all its energy: e_n = 1 to O(dt).
+    assert headline["restitution"] == pytest.approx(1.0, abs=2e-3)
+    speed = headline["impact_speed_m_per_s"]
+    assert speed == pytest.approx(math.sqrt(2 * 9.81 * 0.001), rel=0.01)
+    # No MDR reference for another law.
+    assert "law_energy_route_restitution" not in headline
+
+
+def test_a_declared_range_error_names_the_scene_key(tmp_path):
+    scene = tmp_path / "bad.toml"
+    scene.write_text(
+        (REPO / "scenes" / "drop.toml").read_text().replace("hardening_ratio = 0.37", "hardening_ratio = 1.5")
+    )
+    with pytest.raises(ValueError, match=r"hardening_ratio.*\[0, 1\]"):
+        mdr_dem.run_scene(scene, tmp_path / "out")

@@ -1,0 +1,187 @@
+//! The normal laws a scene can name, one line each ([`NORMAL_LAWS`]). An entry holds the law's
+//! declaration ([`mdr_contact::params::LawDeclaration`]: name, parameters with units, ranges and
+//! equations) and the steppers of both force paths compiled for it: a scene names the law
+//! (`normal = "…"`), its `[contact]` keys are the declared parameters' keys, their range
+//! errors come from the declaration, and the run is dispatched once, when it is built, to the
+//! stepper compiled for that law. The pair loop is monomorphised per law; nothing is looked up
+//! per contact.
+//!
+//! Adding a normal law: write its file in `mdr-contact` (a [`NormalModel`] with a
+//! [`Declared`] declaration and a state with a checkpoint record,
+//! [`super::NormalHistoryRecord`]) and add `NormalEntry::of::<TheLaw>()` below
+//! (docs/architecture.md, "Adding a law").
+
+use super::{AnyDamping, AnyRolling, SceneNormal};
+use crate::error::SimError;
+use crate::run::coupling::{
+    neighbour_list_stepper, rapier_pipeline_stepper, NeighbourListScene, RapierPipelineScene,
+};
+use crate::scene::{ContactSpec, DampingSpec};
+use mdr_contact::damping::{HertzianViscous, NoDamping, StiffnessViscous};
+use mdr_contact::model::ContactModel;
+use mdr_contact::normal::{Hertz, MdrElastoPlastic, NormalModel, Thornton};
+use mdr_contact::params::{Declared, LawDeclaration};
+use mdr_contact::rolling::EpsdRolling;
+use mdr_contact::tangential::Mindlin;
+use mdr_contact::Result;
+use mdr_rapier::neighbour_list::Boundary;
+
+/// The normal laws of scenes, by name. The adhesive MDR law is declared
+/// ([`mdr_contact::normal::AdhesiveMdr`]) but not listed: the rapier paths apply compressive
+/// contact forces only.
+pub static NORMAL_LAWS: &[NormalEntry] = &[
+    NormalEntry::of::<MdrElastoPlastic>(),
+    NormalEntry::of::<Hertz>(),
+    NormalEntry::of::<Thornton>(),
+    #[cfg(feature = "demo-laws")]
+    NormalEntry::of::<mdr_contact::normal::LinearSpring>(),
+];
+
+/// The registered normal law named `name`.
+pub fn normal_law(name: &str) -> Option<&'static NormalEntry> {
+    NORMAL_LAWS.iter().find(|e| e.declaration.name == name)
+}
+
+/// The names of the registered normal laws, in registry order.
+pub fn normal_law_names() -> Vec<&'static str> {
+    NORMAL_LAWS.iter().map(|e| e.declaration.name).collect()
+}
+
+/// The sub-models of a scene other than the normal law, as its steppers take them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SceneParts {
+    /// Mindlin with the scene's `μ` (0: frictionless).
+    pub tangential: Mindlin,
+    /// Damping.
+    pub damping: AnyDamping,
+    /// Rolling resistance, off or on.
+    pub rolling: AnyRolling,
+}
+
+impl SceneParts {
+    /// The parts of `spec`.
+    pub fn of(spec: &ContactSpec) -> Result<Self> {
+        let damping = match spec.damping {
+            DampingSpec::None => AnyDamping::None(NoDamping),
+            DampingSpec::HertzianViscous(g) => AnyDamping::HertzianViscous(
+                HertzianViscous::new(g)?.with_tangential_ratio(spec.tangential_damping_ratio)?,
+            ),
+            DampingSpec::StiffnessViscous(e) => AnyDamping::StiffnessViscous(
+                StiffnessViscous::new(e)?.with_tangential_ratio(spec.tangential_damping_ratio)?,
+            ),
+        };
+        let rolling = if spec.rolling_friction > 0.0 {
+            AnyRolling(Some(EpsdRolling::new(spec.rolling_friction)?))
+        } else {
+            AnyRolling(None)
+        };
+        Ok(Self {
+            tangential: Mindlin::new(spec.friction)?,
+            damping,
+            rolling,
+        })
+    }
+
+    /// The composed model with normal model `normal`.
+    fn model<N: NormalModel>(&self, normal: N) -> ContactModel<N, Mindlin, AnyDamping> {
+        ContactModel::new(normal)
+            .with_tangential(self.tangential)
+            .with_damping(self.damping)
+    }
+}
+
+/// The registered normal law of `spec` and the scene's other sub-models.
+pub fn scene_law(spec: &ContactSpec) -> Result<(&'static NormalEntry, SceneParts), SimError> {
+    let entry = normal_law(spec.normal.law).ok_or_else(|| {
+        SimError::Build(format!(
+            "no registered normal law is named `{}` (registered: {})",
+            spec.normal.law,
+            normal_law_names().join(", ")
+        ))
+    })?;
+    Ok((entry, SceneParts::of(spec)?))
+}
+
+/// One registered normal law: its declaration and its steppers.
+pub struct NormalEntry {
+    /// Name, parameters, ranges, equations.
+    pub declaration: LawDeclaration,
+    /// Check the parameter values (declared ranges, then the law's own checks).
+    check: fn(&[f64]) -> Result<()>,
+    /// The neighbour-list stepper compiled for the law.
+    neighbour_list: NeighbourListBuilder,
+    /// The rapier pipeline stepper compiled for the law.
+    rapier_pipeline: RapierPipelineBuilder,
+}
+
+/// Builds the neighbour-list stepper of one law from its parameter values.
+type NeighbourListBuilder = fn(&[f64], SceneParts, Boundary) -> Result<Box<dyn NeighbourListScene>>;
+
+/// Builds the rapier pipeline stepper of one law from its parameter values.
+type RapierPipelineBuilder = fn(&[f64], SceneParts) -> Result<Box<dyn RapierPipelineScene>>;
+
+impl NormalEntry {
+    /// The entry of law `L`.
+    pub const fn of<L: SceneNormal + Declared>() -> Self {
+        Self {
+            declaration: L::DECLARATION,
+            check: check::<L>,
+            neighbour_list: neighbour_list::<L>,
+            rapier_pipeline: rapier_pipeline::<L>,
+        }
+    }
+
+    /// Check parameter values given in declared order: the declared ranges, then whatever the
+    /// law's constructor checks beyond them.
+    pub fn check(&self, values: &[f64]) -> Result<()> {
+        (self.check)(values)
+    }
+
+    /// The neighbour-list stepper for the law with parameter `values`.
+    pub fn neighbour_list(
+        &self,
+        values: &[f64],
+        parts: SceneParts,
+        boundary: Boundary,
+    ) -> Result<Box<dyn NeighbourListScene>> {
+        (self.neighbour_list)(values, parts, boundary)
+    }
+
+    /// The rapier pipeline stepper for the law with parameter `values`.
+    pub fn rapier_pipeline(
+        &self,
+        values: &[f64],
+        parts: SceneParts,
+    ) -> Result<Box<dyn RapierPipelineScene>> {
+        (self.rapier_pipeline)(values, parts)
+    }
+}
+
+impl std::fmt::Debug for NormalEntry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("NormalEntry")
+            .field("declaration", &self.declaration)
+            .finish_non_exhaustive()
+    }
+}
+
+fn check<L: Declared>(values: &[f64]) -> Result<()> {
+    L::from_values(values).map(|_| ())
+}
+
+fn neighbour_list<L: SceneNormal + Declared>(
+    values: &[f64],
+    parts: SceneParts,
+    boundary: Boundary,
+) -> Result<Box<dyn NeighbourListScene>> {
+    let model = parts.model(L::from_values(values)?);
+    Ok(neighbour_list_stepper(model, parts.rolling, boundary))
+}
+
+fn rapier_pipeline<L: SceneNormal + Declared>(
+    values: &[f64],
+    parts: SceneParts,
+) -> Result<Box<dyn RapierPipelineScene>> {
+    let model = parts.model(L::from_values(values)?);
+    Ok(rapier_pipeline_stepper(model, parts.rolling))
+}
