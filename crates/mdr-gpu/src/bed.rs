@@ -291,7 +291,11 @@ impl GpuBed {
         // neighbouring cells neighbours).
         let cells_x = ((len[0] / cutoff).floor() as u64).max(1);
         let cells_y = ((len[1] / cutoff).floor() as u64).max(1);
-        let z_min = bed.position.iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
+        let z_min = bed
+            .position
+            .iter()
+            .map(|p| p.z)
+            .fold(f64::INFINITY, f64::min);
         let z_max = bed
             .position
             .iter()
@@ -433,7 +437,8 @@ impl GpuBed {
                 mapped_at_creation: false,
             })
         };
-        let flat = |v: &[Vector3<f64>]| -> Vec<f64> { v.iter().flat_map(|p| [p.x, p.y, p.z]).collect() };
+        let flat =
+            |v: &[Vector3<f64>]| -> Vec<f64> { v.iter().flat_map(|p| [p.x, p.y, p.z]).collect() };
         let identity: Vec<f64> = (0..n).flat_map(|_| [0.0, 0.0, 0.0, 1.0]).collect();
         let mut status = [0u32; 4];
         status[0] = 1; // the first step builds the lists
@@ -443,12 +448,20 @@ impl GpuBed {
                 contents: bytemuck::bytes_of(&params),
                 usage: wgpu::BufferUsages::UNIFORM,
             }),
-            pos: init("position", bytemuck::cast_slice(&flat(&bed.position)), wgpu::BufferUsages::empty()),
+            pos: init(
+                "position",
+                bytemuck::cast_slice(&flat(&bed.position)),
+                wgpu::BufferUsages::empty(),
+            ),
             vel: zeroed("velocity", n64 * 24),
             angvel: zeroed("angular velocity", n64 * 24),
             built: zeroed("positions at the build", n64 * 24),
             wrench: zeroed("wrench", n64 * 48),
-            rotation: init("rotation", bytemuck::cast_slice(&identity), wgpu::BufferUsages::empty()),
+            rotation: init(
+                "rotation",
+                bytemuck::cast_slice(&identity),
+                wgpu::BufferUsages::empty(),
+            ),
             floor: zeroed("floor history", n64 * 48),
             counts: zeroed("neighbour counts", n64 * 4),
             keys: zeroed("neighbour keys", n64 * slots * 4),
@@ -457,8 +470,16 @@ impl GpuBed {
             h_radius: zeroed("contact radii", n64 * slots * 8),
             cell_count: zeroed("cell counts", ncells * 4),
             cell_items: zeroed("cell items", ncells * cap * 4),
-            status: init("status", bytemuck::cast_slice(&status), wgpu::BufferUsages::empty()),
-            indirect: init("indirect", bytemuck::cast_slice(&[0u32; 8]), wgpu::BufferUsages::INDIRECT),
+            status: init(
+                "status",
+                bytemuck::cast_slice(&status),
+                wgpu::BufferUsages::empty(),
+            ),
+            indirect: init(
+                "indirect",
+                bytemuck::cast_slice(&[0u32; 8]),
+                wgpu::BufferUsages::INDIRECT,
+            ),
         };
 
         let source = include_str!("bed.wgsl")
@@ -585,7 +606,9 @@ impl GpuBed {
             let scopes = ErrorScopes::push(&self.device);
             let mut encoder = self
                 .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("steps") });
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("steps"),
+                });
             {
                 let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                     label: Some("steps"),
@@ -642,7 +665,11 @@ impl GpuBed {
     }
 
     /// Copy `bytes` of `buffer` back to the host.
-    fn read<T: bytemuck::Pod>(&self, buffer: &wgpu::Buffer, bytes: u64) -> Result<Vec<T>, GpuError> {
+    fn read<T: bytemuck::Pod>(
+        &self,
+        buffer: &wgpu::Buffer,
+        bytes: u64,
+    ) -> Result<Vec<T>, GpuError> {
         let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("read-back"),
             size: bytes,
@@ -651,7 +678,9 @@ impl GpuBed {
         });
         let mut encoder = self
             .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("read-back") });
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("read-back"),
+            });
         encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, bytes);
         self.queue.submit([encoder.finish()]);
         let slice = staging.slice(..);
@@ -732,8 +761,8 @@ impl GpuBed {
         };
         let mut pairs = Vec::new();
         let mut mirrored = Vec::new();
-        for i in 0..n {
-            for s in 0..counts[i] as usize {
+        for (i, &count) in counts.iter().enumerate() {
+            for s in 0..count as usize {
                 let e = entry(i, s);
                 if e.i == i as u32 {
                     pairs.push(e);
@@ -766,9 +795,7 @@ impl GpuBed {
         };
         let floor = floor_flat
             .chunks_exact(6)
-            .map(|h| {
-                (h[0] != 0.0).then(|| (h[1], Vector3::new(h[2], h[3], h[4]), h[5]))
-            })
+            .map(|h| (h[0] != 0.0).then(|| (h[1], Vector3::new(h[2], h[3], h[4]), h[5])))
             .collect();
         Ok(GpuState {
             position,

@@ -274,9 +274,9 @@ pub fn differences(gpu: &GpuState, cpu: &CpuState) -> Differences {
         .zip(&cpu.position)
         .map(|(a, b)| {
             let mut d = a - b;
-            for k in 0..2 {
-                if lengths[k].is_finite() {
-                    d[k] -= (d[k] / lengths[k]).round() * lengths[k];
+            for (k, &length) in lengths.iter().enumerate() {
+                if length.is_finite() {
+                    d[k] -= (d[k] / length).round() * length;
                 }
             }
             d.norm()

@@ -25,8 +25,7 @@ mod law;
 
 pub use bed::{GpuBed, GpuOptions, GpuPair, GpuState};
 pub use bench::{
-    bench_bed_gpu, cpu_reference_run, differences, CpuPair, CpuState, Differences,
-    GpuBenchFigures,
+    bench_bed_gpu, cpu_reference_run, differences, CpuPair, CpuState, Differences, GpuBenchFigures,
 };
 pub use device::{GpuContext, GpuError};
 pub use law::BENCH_THETA_RATIO;

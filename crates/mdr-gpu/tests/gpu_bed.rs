@@ -53,22 +53,30 @@ fn gpu_run(ctx: &GpuContext, bed: &Bed, s: &BenchSettings) -> mdr_gpu::GpuState 
 fn compare(ctx: &GpuContext, bed: &Bed, gpu: &BenchSettings, cpu: &BenchSettings) -> Differences {
     let g = gpu_run(ctx, bed, gpu);
     let c = cpu_reference_run(bed, cpu, STEPS).unwrap();
-    assert_eq!(g.asymmetric_pairs, 0, "both sides of every pair agree bit for bit");
+    assert_eq!(
+        g.asymmetric_pairs, 0,
+        "both sides of every pair agree bit for bit"
+    );
     differences(&g, &c)
 }
 
-/// Round-off growth over 400 steps: positions within 1e-12 diameters, velocities within
-/// 1e-9 (the bed moves at up to about 0.02), histories within 1e-9 relative; the same
-/// touching pairs.
+/// Round-off growth over 400 steps. Measured on lavapipe (llvmpipe, Mesa): positions 2.2e-16
+/// (Hertz) and 9.2e-16 (MDR) diameters, velocities 6.1e-15 and 1.8e-14, angular velocities
+/// 8.8e-15 and 4.9e-14, largest overlaps equal, tangential displacements 4.2e-14 and 9.5e-13 of
+/// the largest; the tolerances are a few times those. The same touching pairs.
 fn assert_close(d: &Differences, what: &str) {
     eprintln!("{what}: {d:?}");
-    assert!(d.pairs > 500, "{what}: a bed with contacts ({} pairs)", d.pairs);
+    assert!(
+        d.pairs > 900,
+        "{what}: a bed with contacts ({} pairs)",
+        d.pairs
+    );
     assert_eq!(d.unmatched_pairs, 0, "{what}: the same touching pairs");
-    assert!(d.position_diameters < 1e-12, "{what}: {d:?}");
-    assert!(d.velocity < 1e-9, "{what}: {d:?}");
-    assert!(d.angular_velocity < 1e-8, "{what}: {d:?}");
-    assert!(d.max_overlap_relative < 1e-9, "{what}: {d:?}");
-    assert!(d.displacement_relative < 1e-8, "{what}: {d:?}");
+    assert!(d.position_diameters < 5e-15, "{what}: {d:?}");
+    assert!(d.velocity < 1e-13, "{what}: {d:?}");
+    assert!(d.angular_velocity < 3e-13, "{what}: {d:?}");
+    assert!(d.max_overlap_relative < 1e-13, "{what}: {d:?}");
+    assert!(d.displacement_relative < 5e-12, "{what}: {d:?}");
 }
 
 /// Hertz + Mindlin + damping with the floor and the periodic box: the GPU equals the CPU path
@@ -89,7 +97,7 @@ fn mdr_bed_matches_the_cpu_path() {
 }
 
 /// Negative control: the GPU with `q_c = 10.5` against the CPU with `q_c = 10` lies far outside
-/// the tolerances of the comparison (which therefore sees the law's parameters).
+/// the tolerances of the comparison, which therefore sees a 5 % change of a law parameter.
 #[test]
 fn a_perturbed_law_parameter_fails_the_comparison() {
     let ctx = context();
@@ -100,8 +108,9 @@ fn a_perturbed_law_parameter_fails_the_comparison() {
         &settings(BenchLaw::Mdr { qc: 10.0 }),
     );
     eprintln!("perturbed: {d:?}");
-    assert!(d.max_overlap_relative > 1e-6, "{d:?}");
-    assert!(d.position_diameters > 1e-10, "{d:?}");
+    // Measured: positions 2.8e-5 diameters apart, largest overlaps 9 % apart.
+    assert!(d.max_overlap_relative > 1e-3, "{d:?}");
+    assert!(d.position_diameters > 1e-6, "{d:?}");
 }
 
 /// Two runs give the same state bit for bit (no atomics on floats, a sorted list).
@@ -140,7 +149,16 @@ fn too_few_neighbour_slots_are_a_typed_error() {
     };
     let mut system = GpuBed::new(&ctx, &small_bed(), &settings(BenchLaw::Hertz), &options).unwrap();
     let err = system.step(1).unwrap_err();
-    assert!(matches!(err, GpuError::NeighbourOverflow { max_neighbours: 2, .. }), "{err}");
+    assert!(
+        matches!(
+            err,
+            GpuError::NeighbourOverflow {
+                max_neighbours: 2,
+                ..
+            }
+        ),
+        "{err}"
+    );
     assert!(err.to_string().contains("max_neighbours"), "{err}");
     let bad = GpuOptions {
         max_neighbours: 0,
@@ -148,4 +166,21 @@ fn too_few_neighbour_slots_are_a_typed_error() {
     };
     let err = GpuBed::new(&ctx, &small_bed(), &settings(BenchLaw::Hertz), &bad).unwrap_err();
     assert!(err.to_string().contains("max_neighbours"), "{err}");
+}
+
+/// The error of a machine without a device tells a Linux user how to get one.
+#[test]
+fn the_missing_device_errors_name_what_is_missing() {
+    let none = GpuError::NoAdapter.to_string();
+    assert!(none.contains("no Vulkan, Metal or DX12 adapter"), "{none}");
+    assert!(none.contains("mesa-vulkan-drivers"), "{none}");
+    let no_f64 = GpuError::NoF64 {
+        adapters: "card (Vulkan)".to_owned(),
+    }
+    .to_string();
+    assert!(
+        no_f64.contains("64-bit floats") && no_f64.contains("card (Vulkan)"),
+        "{no_f64}"
+    );
+    assert!(no_f64.contains("mesa-vulkan-drivers"), "{no_f64}");
 }
