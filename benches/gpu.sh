@@ -42,7 +42,14 @@ else
   cases=("3 2000 200 200 20" "10 1000 100 40 10" "20 400 50 10 5")
 fi
 
-field() { sed -E "s/.*\"$1\":\"?([^,\"}]*)\"?.*/\1/" <<< "$2"; }
+# A field of a JSON line: a quoted string whole, or a number.
+field() {
+  if grep -q "\"$1\":\"" <<< "$2"; then
+    sed -E "s/.*\"$1\":\"([^\"]*)\".*/\1/" <<< "$2"
+  else
+    sed -E "s/.*\"$1\":([^,}]*).*/\1/" <<< "$2"
+  fi
+}
 
 echo "machine: $(nproc) cores; binary $bin; $(date -u +%Y-%m-%dT%H:%MZ)"
 printf '%-6s %-4s %10s %7s %16s %10s %14s %s\n' device law spheres steps "M part-steps/s" ms/step "bytes/sphere" note
