@@ -59,6 +59,16 @@ pub enum LawArg {
     Mdr,
 }
 
+/// Where `bench bed` steps the bed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum DeviceArg {
+    /// The neighbour-list stepper on `--threads` CPU threads.
+    Cpu,
+    /// wgpu compute shaders in f64 (a Vulkan, Metal or DX12 device with 64-bit floats; on
+    /// Linux without a GPU, Mesa's lavapipe: docs/gpu.md).
+    Gpu,
+}
+
 /// Flags of `bench bed`.
 #[derive(Debug, Args)]
 pub struct BedArgs {
@@ -97,6 +107,18 @@ pub struct BedArgs {
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Where the steps run (`gpu`: docs/gpu.md).
+    #[arg(long, value_enum, default_value_t = DeviceArg::Cpu)]
+    pub device: DeviceArg,
+    /// With `--device gpu`: also run the CPU path (on `--threads` threads) on the same bed for
+    /// the same steps, and report the largest position difference after the run
+    /// (`max_position_difference_diameters`).
+    #[arg(long)]
+    pub compare_cpu: bool,
+    /// With `--device gpu`: neighbour slots per particle (1 to 64; the reference bed has at
+    /// most 11 neighbours within the cutoff).
+    #[arg(long, default_value_t = 16)]
+    pub max_neighbours: u32,
 }
 
 /// Flags of `bench make-bed`.
@@ -161,9 +183,16 @@ fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
     };
     settings.validate()?;
     let bed = Bed::read_lammps(&path).with_context(|| format!("reading {}", path.display()))?;
+    if args.device == DeviceArg::Gpu {
+        return run_bed_gpu(args, &bed, &settings);
+    }
+    if args.compare_cpu {
+        bail!("--compare-cpu compares the GPU path with the CPU path: it needs --device gpu");
+    }
     let figures = bench_bed(&bed, &settings)?;
     if args.json {
-        println!("{}", serde_json::to_string(&BedJson(&figures))?);
+        let device = [("device", BenchValue::Text("cpu"))];
+        println!("{}", serde_json::to_string(&BedJson(&figures, &device))?);
     } else {
         println!(
             "bench bed: {} spheres, law {}, {} threads, {} timed steps after {} warm-up steps{}",
@@ -208,16 +237,85 @@ fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// `bench bed --device gpu`: the bed on the device, optionally compared with the CPU path.
+fn run_bed_gpu(args: &BedArgs, bed: &Bed, settings: &BenchSettings) -> anyhow::Result<()> {
+    let ctx = mdr_gpu::GpuContext::new()?;
+    let options = mdr_gpu::GpuOptions {
+        max_neighbours: args.max_neighbours,
+        ..mdr_gpu::GpuOptions::default()
+    };
+    let (gpu, state) = mdr_gpu::bench_bed_gpu(&ctx, bed, settings, &options)?;
+    let difference = if args.compare_cpu {
+        let cpu = mdr_gpu::cpu_reference_run(bed, settings, settings.warmup + settings.steps)?;
+        Some(mdr_gpu::differences(&state, &cpu))
+    } else {
+        None
+    };
+    let figures = &gpu.figures;
+    if args.json {
+        let mut extra = vec![("device", BenchValue::Text("gpu"))];
+        extra.extend(gpu.fields());
+        if let Some(d) = &difference {
+            extra.push((
+                "max_position_difference_diameters",
+                BenchValue::Real(d.position_diameters),
+            ));
+            extra.push(("max_velocity_difference", BenchValue::Real(d.velocity)));
+        }
+        println!("{}", serde_json::to_string(&BedJson(figures, &extra))?);
+        return Ok(());
+    }
+    println!(
+        "bench bed --device gpu: {} spheres, law {}, {} timed steps after {} warm-up steps on {}{}",
+        figures.particles,
+        figures.law,
+        figures.steps,
+        args.warmup,
+        gpu.adapter,
+        if gpu.cpu_device {
+            " (a CPU device: correct, but no measure of a GPU's speed)"
+        } else {
+            ""
+        }
+    );
+    println!(
+        "  {:.3} M particle-steps/s, {:.3} ms/step",
+        figures.particle_steps_per_s / 1e6,
+        figures.ms_per_step
+    );
+    println!(
+        "  {:.3} contacts per particle, {} floor contacts; {} neighbour-list builds",
+        figures.contacts_per_particle, figures.floor_contacts, figures.rebuilds
+    );
+    println!(
+        "  device memory {:.0} bytes per sphere ({} neighbour slots per sphere)",
+        gpu.device_bytes_per_particle, gpu.max_neighbours
+    );
+    println!("  final state checksum {}", figures.state_checksum);
+    if let Some(d) = &difference {
+        println!(
+            "  against the CPU path after {} steps: largest position difference {:.3e} diameters, \
+             velocity {:.3e}, {} touching pairs ({} unmatched)",
+            settings.warmup + settings.steps,
+            d.position_diameters,
+            d.velocity,
+            d.pairs,
+            d.unmatched_pairs
+        );
+    }
+    Ok(())
+}
+
 /// `bench bed --json`: the figures as one object, with the keys and in the order of
-/// [`BenchFigures::fields`].
-struct BedJson<'a>(&'a BenchFigures);
+/// [`BenchFigures::fields`], then the extra fields (`device`, the GPU's).
+struct BedJson<'a>(&'a BenchFigures, &'a [(&'static str, BenchValue<'a>)]);
 
 impl serde::Serialize for BedJson<'_> {
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         use serde::ser::SerializeMap;
         let fields = self.0.fields();
-        let mut map = serializer.serialize_map(Some(fields.len()))?;
-        for (key, value) in fields {
+        let mut map = serializer.serialize_map(Some(fields.len() + self.1.len()))?;
+        for (key, value) in fields.into_iter().chain(self.1.iter().cloned()) {
             match value {
                 BenchValue::Real(x) => map.serialize_entry(key, &x)?,
                 BenchValue::Count(n) => map.serialize_entry(key, &n)?,

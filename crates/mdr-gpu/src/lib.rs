@@ -1,0 +1,31 @@
+//! The neighbour-list path of mdr-dem on the GPU: wgpu compute shaders in f64 (Vulkan, Metal or
+//! DX12 with `SHADER_F64`) running the settled-bed system of `mdr-dem bench bed` with the CPU
+//! path's arithmetic: the same law formulas (Hertz or MDR normal, Mindlin tangential, Hertzian
+//! viscous damping), the same integrator order, the same list and history semantics.
+//! The design, its determinism and its cost are described in `docs/gpu.md`.
+//!
+//! ```no_run
+//! use mdr_gpu::{bench_bed_gpu, GpuContext, GpuOptions};
+//! use mdr_rapier::neighbour_list::bed::{Bed, BenchSettings};
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let ctx = GpuContext::new()?; // names what is missing: an adapter, or f64 in shaders
+//! let bed = Bed::read_lammps(std::path::Path::new("benches/lammps/settled.data"))?;
+//! let settings = BenchSettings { steps: 100, warmup: 10, ..BenchSettings::default() };
+//! let (figures, _state) = bench_bed_gpu(&ctx, &bed, &settings, &GpuOptions::default())?;
+//! println!("{} particle-steps/s", figures.figures.particle_steps_per_s);
+//! # Ok(())
+//! # }
+//! ```
+#![warn(missing_docs)]
+
+mod bed;
+mod bench;
+mod device;
+mod law;
+
+pub use bed::{GpuBed, GpuOptions, GpuPair, GpuState};
+pub use bench::{
+    bench_bed_gpu, cpu_reference_run, differences, CpuPair, CpuState, Differences, GpuBenchFigures,
+};
+pub use device::{GpuContext, GpuError};
+pub use law::BENCH_THETA_RATIO;
