@@ -14,7 +14,7 @@
 //! let d = MdrElastoPlastic::DECLARATION;
 //! assert_eq!(d.name, "mdr");
 //! assert_eq!(d.params[0].key, "critical_line_load_n_per_m");
-//! assert_eq!(d.params[0].flag(), "qc");
+//! assert_eq!(d.params[0].flag_name(), "qc");
 //! // A value outside the declared range is refused with the parameter's key and its range.
 //! let err = MdrElastoPlastic::from_values(&[380e3, 1.5]).unwrap_err();
 //! assert!(err.to_string().contains("`hardening_ratio` = 1.5"));
