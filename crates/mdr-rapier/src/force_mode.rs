@@ -582,7 +582,7 @@ where
         }
         let t1 = Instant::now();
         self.candidates.par_iter_mut().for_each(|c| {
-            c.contact = candidate_geometry(particles, colliders, c.sphere, c.other);
+            c.contact = pair_geometry(particles, colliders, (c.sphere, c.other), Reach::Touching);
         });
         self.candidates.par_sort_unstable_by_key(|c| c.key);
         keep_held_contacts(&self.store, particles, colliders, &mut self.candidates);
@@ -924,12 +924,21 @@ fn accumulate(
     wrenches[index].1 += torque;
 }
 
-/// Exact contact of a candidate pair at the current poses.
-fn candidate_geometry(
+/// How far apart a pair's geometry is computed.
+#[derive(Clone, Copy)]
+enum Reach {
+    /// Only while the bodies overlap (a candidate pair).
+    Touching,
+    /// At any distance, with a negative overlap while apart (a pair whose contact still holds).
+    AnyDistance,
+}
+
+/// Exact contact of a pair at the current poses.
+fn pair_geometry(
     particles: &ParticleSet,
     colliders: &ColliderSet,
-    sphere: ColliderHandle,
-    other: ColliderHandle,
+    (sphere, other): (ColliderHandle, ColliderHandle),
+    reach: Reach,
 ) -> Option<SurfaceContact> {
     let p1 = particles.get(sphere)?;
     let p2 = particles.get(other)?;
@@ -937,9 +946,12 @@ fn candidate_geometry(
     let co2 = colliders.get(other)?;
     let c1 = to_na(co1.position().translation);
     let r1 = p1.radius()?;
-    match p2.radius() {
-        Some(r2) => sphere_sphere(&c1, r1, &to_na(co2.position().translation), r2),
-        None => sphere_shape(&c1, r1, co2.shape(), co2.position()),
+    let c2 = to_na(co2.position().translation);
+    match (p2.radius(), reach) {
+        (Some(r2), Reach::Touching) => sphere_sphere(&c1, r1, &c2, r2),
+        (Some(r2), Reach::AnyDistance) => sphere_sphere_signed(&c1, r1, &c2, r2),
+        (None, Reach::Touching) => sphere_shape(&c1, r1, co2.shape(), co2.position()),
+        (None, Reach::AnyDistance) => sphere_shape_signed(&c1, r1, co2.shape(), co2.position()),
     }
 }
 
@@ -964,7 +976,12 @@ fn keep_held_contacts<NL, TL, DL, RL>(
         if !entry.law.normal.holds(&entry.history.contact.normal) {
             continue;
         }
-        let geometry = held_geometry(particles, colliders, entry.collider1, entry.collider2);
+        let geometry = pair_geometry(
+            particles,
+            colliders,
+            (entry.collider1, entry.collider2),
+            Reach::AnyDistance,
+        );
         match candidates.binary_search_by_key(&entry.key, |c| c.key) {
             Ok(k) => {
                 if candidates[k].contact.is_none() {
@@ -984,25 +1001,6 @@ fn keep_held_contacts<NL, TL, DL, RL>(
     }
     if added {
         candidates.sort_unstable_by_key(|c| c.key);
-    }
-}
-
-/// The geometry of a held pair at any distance (negative overlap while apart).
-fn held_geometry(
-    particles: &ParticleSet,
-    colliders: &ColliderSet,
-    sphere: ColliderHandle,
-    other: ColliderHandle,
-) -> Option<SurfaceContact> {
-    let p1 = particles.get(sphere)?;
-    let p2 = particles.get(other)?;
-    let co1 = colliders.get(sphere)?;
-    let co2 = colliders.get(other)?;
-    let c1 = to_na(co1.position().translation);
-    let r1 = p1.radius()?;
-    match p2.radius() {
-        Some(r2) => sphere_sphere_signed(&c1, r1, &to_na(co2.position().translation), r2),
-        None => sphere_shape_signed(&c1, r1, co2.shape(), co2.position()),
     }
 }
 

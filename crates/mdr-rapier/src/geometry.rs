@@ -153,24 +153,30 @@ pub fn sphere_convex_signed(
     let local = to_na(pose.inverse_transform_point(to_glam(c1)));
     match faces.project(&local, f64::INFINITY) {
         ConvexProjection::Nearest(q) => {
-            let p = to_na(pose.transform_point(to_glam(&q)));
-            let d = c1 - p;
-            let dist = d.norm();
-            if dist == 0.0 {
-                return None;
-            }
-            let overlap = r1 - dist;
-            let normal = d / dist;
-            Some(SurfaceContact {
-                overlap,
-                normal,
-                point: p - normal * (0.5 * overlap),
-            })
+            sphere_point_signed(c1, r1, &to_na(pose.transform_point(to_glam(&q))))
         }
         ConvexProjection::Inside | ConvexProjection::Beyond => {
             sphere_shape_signed(c1, r1, shape, pose)
         }
     }
+}
+
+/// Sphere 1 (centre `c1`, radius `r1`) against the nearest point `p` of a surface that lies
+/// outside the sphere's centre, at any distance; `None` only when the centre is on the surface.
+#[inline]
+fn sphere_point_signed(c1: &Vector3<f64>, r1: f64, p: &Vector3<f64>) -> Option<SurfaceContact> {
+    let d = c1 - p;
+    let dist = d.norm();
+    if dist == 0.0 {
+        return None;
+    }
+    let overlap = r1 - dist;
+    let normal = d / dist;
+    Some(SurfaceContact {
+        overlap,
+        normal,
+        point: p - normal * (0.5 * overlap),
+    })
 }
 
 /// Sphere 1 (centre `c1`, radius `r1`) against any shape at `pose`, through the projection of the
@@ -181,29 +187,7 @@ pub fn sphere_shape(
     shape: &dyn Shape,
     pose: &Pose,
 ) -> Option<SurfaceContact> {
-    let c1 = c1.na();
-    let projection = shape.project_point(pose, to_glam(&c1), false);
-    let p = to_na(projection.point);
-    let d = c1 - p;
-    let dist = d.norm();
-    if dist == 0.0 {
-        return None;
-    }
-    // Signed distance of the centre from the surface (negative inside the shape).
-    let (signed, normal) = if projection.is_inside {
-        (-dist, -d / dist)
-    } else {
-        (dist, d / dist)
-    };
-    let overlap = r1 - signed;
-    if overlap <= 0.0 {
-        return None;
-    }
-    Some(SurfaceContact {
-        overlap,
-        normal,
-        point: p - normal * (0.5 * overlap),
-    })
+    sphere_shape_signed(c1, r1, shape, pose).filter(|contact| contact.overlap > 0.0)
 }
 
 /// Sphere 1 (centre `c1`, radius `r1`) against a half-space whose boundary plane has the outward
@@ -404,19 +388,8 @@ pub fn sphere_convex(
         ConvexProjection::Beyond => None,
         ConvexProjection::Inside => sphere_shape(c1, r1, shape, pose),
         ConvexProjection::Nearest(q) => {
-            let p = to_na(pose.transform_point(to_glam(&q)));
-            let d = c1 - p;
-            let dist = d.norm();
-            let overlap = r1 - dist;
-            if overlap <= 0.0 || dist == 0.0 {
-                return None;
-            }
-            let normal = d / dist;
-            Some(SurfaceContact {
-                overlap,
-                normal,
-                point: p - normal * (0.5 * overlap),
-            })
+            sphere_point_signed(c1, r1, &to_na(pose.transform_point(to_glam(&q))))
+                .filter(|contact| contact.overlap > 0.0)
         }
     }
 }
