@@ -72,7 +72,7 @@ fn out_of_range(keyword: &str, value: f64) -> PluginError {
 impl CoeffLine {
     /// Parse the keyword-value words after `pair_coeff I J`.
     pub fn parse<S: AsRef<str>>(words: &[S]) -> Result<Self, PluginError> {
-        if words.len() % 2 != 0 {
+        if !words.len().is_multiple_of(2) {
             return Err(PluginError::MissingValue(
                 words
                     .last()

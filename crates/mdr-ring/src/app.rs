@@ -213,11 +213,11 @@ fn run_with<L: RestitutionLaw>(options: &RunOptions, law: L) -> Result<RunReport
         index += 1;
         let last = sample.t_orbits >= orbits - 1e-9;
         let second_half = sample.t_orbits >= 0.5 * orbits - 1e-9;
-        if second_half && (index % samples_per_orbit == 0 || last) {
+        if second_half && (index.is_multiple_of(samples_per_orbit) || last) {
             let grid = SurfaceDensity::of(&domain, particles, sample.t_orbits * period, cell);
             correlations.push(grid.autocorrelation());
         }
-        if progress && index % 10 == 0 {
+        if progress && index.is_multiple_of(10) {
             eprintln!(
                 "orbit {:6.1}  c {:.3} mm/s  z_rms {:.2} m  FF0 {:.3}  collisions {}  wall {:.1} s",
                 sample.t_orbits,
@@ -229,7 +229,7 @@ fn run_with<L: RestitutionLaw>(options: &RunOptions, law: L) -> Result<RunReport
             );
         }
         if let (Some(dir), Some(every)) = (&frames_dir, frame_every) {
-            if index % every == 0 && frame_error.is_none() {
+            if index.is_multiple_of(every) && frame_error.is_none() {
                 let path = dir.join(format!("ring_{:04}.vtk", index / every));
                 let title = format!("ring t = {:.2} orbits", sample.t_orbits);
                 let grid = SurfaceDensity::of(&domain, particles, sample.t_orbits * period, cell);

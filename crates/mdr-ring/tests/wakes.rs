@@ -162,7 +162,7 @@ fn wake_anisotropy(
     let result = ring
         .run(orbits, |s, p| {
             let k = (s.t_orbits * 10.0).round() as u64;
-            if s.t_orbits >= 0.5 * orbits && k % 5 == 0 {
+            if s.t_orbits >= 0.5 * orbits && k.is_multiple_of(5) {
                 acfs.push(
                     SurfaceDensity::of(&domain, p, s.t_orbits * period, cell).autocorrelation(),
                 );

@@ -477,7 +477,7 @@ impl<'a> Sim<'a> {
                 .as_ref()
                 .is_some_and(|f| f.load(Ordering::SeqCst));
             let stop_here = options.stop_at_step == Some(k) && k < total;
-            let due = checkpoint_every.is_some_and(|c| k % c == 0) && k != start_step;
+            let due = checkpoint_every.is_some_and(|c| k.is_multiple_of(c)) && k != start_step;
             if (due && k < total) || interrupted || stop_here {
                 self.write_checkpoint(out)?;
             }
@@ -487,23 +487,23 @@ impl<'a> Sim<'a> {
             }
             self.scene_events();
             let last = k >= total;
-            let frame_due = k % frame_every == 0 || last;
+            let frame_due = k.is_multiple_of(frame_every) || last;
             self.compute_forces(frame_due && scene.contact_network && !options.no_frames)?;
             if let Some(reason) = self.wall_guard() {
                 return Err(self.stop(out, last, reason));
             }
-            let sampling = k % energy_every == 0 || k % frame_every == 0 || last;
+            let sampling = k.is_multiple_of(energy_every) || k.is_multiple_of(frame_every) || last;
             if sampling || self.tracker.needs_every_step() {
                 self.track_step();
             }
-            if k % energy_every == 0 || last {
+            if k.is_multiple_of(energy_every) || last {
                 let row = self.energy_row();
                 self.energy.push(row);
                 if let Some(reason) = self.energy_guard() {
                     return Err(self.stop(out, last, reason));
                 }
             }
-            if k % frame_every == 0 || last {
+            if k.is_multiple_of(frame_every) || last {
                 self.check_state()?;
                 let sample = self.tracker.sample(scene, self.time(), &self.view_ref());
                 self.samples.push(sample);
