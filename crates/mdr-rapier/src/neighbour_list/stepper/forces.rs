@@ -412,9 +412,9 @@ where
         ended: &mut Vec<EndedContact>,
     ) -> usize {
         let touching = if self.adhesive {
-            self.touching_or_held(&mut chunk, ended)
+            self.touching::<true, B>(&mut chunk, ended)
         } else {
-            self.touching(&mut chunk, ended)
+            self.touching::<false, B>(&mut chunk, ended)
         };
         // Per group of touching pairs: first the geometry (a square root and a division per
         // pair, independent of each other, so they overlap instead of heading each pair's
@@ -449,9 +449,12 @@ where
     /// Pass 1, the overlap test alone (the exact test `sphere_sphere` makes): collect the
     /// touching pairs of the chunk without a data-dependent branch, and forget the pairs that
     /// separated. Pass 2 runs the law on the touching ones only, so the unpredictable
-    /// touch/apart branch of a mixed list is not taken per pair.
+    /// touch/apart branch of a mixed list is not taken per pair. With `HOLDS` (adhesive laws)
+    /// a live pair whose contact still holds ([`mdr_contact::normal::NormalLaw::holds`]) counts
+    /// as touching and is evaluated at its negative overlap until its law lets go; without it
+    /// the hold test is compiled away.
     #[inline(always)]
-    fn touching<B: WorkBooks>(
+    fn touching<const HOLDS: bool, B: WorkBooks>(
         &self,
         chunk: &mut ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
         ended: &mut Vec<EndedContact>,
@@ -467,36 +470,8 @@ where
             let dist2 = (p.position[i] - xj).norm_squared();
             let reach = p.radius[i] + p.radius[j];
             let touch = !(dist2 >= reach * reach || dist2 == 0.0);
-            touching.pairs[touching.len] = k as u16;
-            touching.len += usize::from(touch);
-            if chunk.active[k] & !touch {
-                self.separate(chunk, k, ended);
-            }
-        }
-        touching
-    }
-
-    /// [`PairPass::touching`] with adhesive laws: a live pair whose contact still holds
-    /// ([`mdr_contact::normal::NormalLaw::holds`]) is evaluated like a touching one, at its
-    /// negative overlap, until its law lets go.
-    #[inline(always)]
-    fn touching_or_held<B: WorkBooks>(
-        &self,
-        chunk: &mut ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
-        ended: &mut Vec<EndedContact>,
-    ) -> Touching {
-        let p = self.particles;
-        let mut touching = Touching {
-            pairs: [0u16; CHUNK],
-            len: 0,
-        };
-        for k in 0..chunk.history.len() {
-            let (i, j, offset) = self.pair(chunk.base, k);
-            let xj = p.position[j] + offset.position;
-            let dist2 = (p.position[i] - xj).norm_squared();
-            let reach = p.radius[i] + p.radius[j];
-            let touch = !(dist2 >= reach * reach || dist2 == 0.0);
-            let held = chunk.active[k]
+            let held = HOLDS
+                && chunk.active[k]
                 && dist2 != 0.0
                 && self
                     .laws(i, j)
