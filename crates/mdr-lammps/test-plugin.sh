@@ -10,6 +10,11 @@
 #      follows the one-rank trajectory to 1e-10 (newton on and off); the same run with its
 #      histories dropped at every exchange must NOT (so the comparison can fail);
 #   3. bad pair_coeff lines end LAMMPS with an error naming the keyword, never a crash;
+#   3a. adhesion: adhesive impacts stick at 0.1 m/s and rebound at 0.3 and 1 m/s with the
+#      validator's e_n, pair and wall; the same e_n with no neighbour skin; a restart while the
+#      neck holds at a separation (with its negative control); cross-code with LAMMPS's
+#      pair granular jkr (largest tension, let-go separations, the shared unloading branch);
+#      bad adhesion values name the keyword;
 #   4. the settled 10,000-sphere bed after BED_STEPS (default 1000) steps, to 1e-8 of a diameter:
 #      1 rank and 2 ranks agree; a run split in two (run N/2, write_restart, run N/2) and a run
 #      continued from that restart file in a new process both follow the uninterrupted run, as
@@ -235,6 +240,129 @@ $good zplane 0 NULL wiggle z 0.1 0|wiggle period
 $good zplane 0 NULL shear z 1|shear
 $good zplane 0 NULL spin 3|spin
 LINES
+
+echo "== adhesion (Heß's rule on the MDR springs, pair_coeff and fix wall/mdrdem keyword adhesion)"
+# Spheres of radius 10 µm (E = 1 GPa, ν = 0.3, q_c = 20 N/m, Θ/E* = 0.1, Δγ = 0.1 J/m²;
+# in.adhesive-impact). Reference e_n: the single-impact validator's time integration
+# (examples/impact_reference.rs adhesive). LAMMPS resolves the let-go to one step of 1e-11 s
+# (about 22,000 per contact): e_n within 1.1e-5 of the reference, 3.7e-6 at half the step
+# (docs/lammps.md), so the tolerance is 5e-5.
+material="0.1 1e9 0.3 1000 20 0.1 1e-5"
+adhesive=(-in "$inputs/in.adhesive-impact" -var plugin "$plugin")
+adhesive_restarted=(-in "$inputs/in.adhesive-impact-restarted" -var plugin "$plugin")
+for target in pair wall; do
+  ref_args=($material 0.1 0.3 1)
+  [ "$target" = wall ] && ref_args=(wall "${ref_args[@]}")
+  cargo run -q --release --locked -p mdr-lammps --example impact_reference --manifest-path "$root/Cargo.toml" \
+    -- adhesive "${ref_args[@]}" > "adhesive-$target.txt"
+  while read -r speed reference stuck _; do
+    out=$("${lmp[@]}" "${adhesive[@]}" -var speed "$speed" -var target "$target")
+    e=$(sed -n 's/^EN //p' <<<"$out"); gap=$(sed -n 's/^GAP //p' <<<"$out")
+    printf '%s, %s m/s: e_n %s, validator %s (stuck %s); gap at the end %s\n' "$target" "$speed" "$e" "$reference" "$stuck" "$gap"
+    if [ "$stuck" = 1 ]; then
+      # stuck: after 1 µs (3 contact times) the spheres are still held (the gap below the
+      # neck's reach, 8.8 nm for the pair, 11.1 nm on the wall); without adhesion they rebound
+      free=$("${lmp[@]}" "${adhesive[@]}" -var speed "$speed" -var target "$target" -var adhesion 0 | sed -n 's/^GAP //p')
+      check 'v[0] < 1.2e-8 and v[1] > 4e-8' "adhesion-$target-$speed-m-s-sticks" "$gap" "$free"
+    else
+      check 'abs(v[0]-v[1]) <= 5e-5*v[1] and v[1] < 0.99' "adhesion-$target-$speed-m-s-e_n" "$e" "$reference"
+    fi
+  done < "adhesive-$target.txt"
+  # With no neighbour skin the list must still hold the pair while its neck does (the cut-off
+  # covers the neck's reach): the same e_n as with a skin. A list cut at contact loses the
+  # contact at the first positive gap (e_n 0.838 instead of 0.704 for the pair).
+  e_skin=$("${lmp[@]}" "${adhesive[@]}" -var speed 0.3 -var target "$target" | sed -n 's/^EN //p')
+  e_noskin=$("${lmp[@]}" "${adhesive[@]}" -var speed 0.3 -var target "$target" -var skin 0.0 | sed -n 's/^EN //p')
+  echo "$target, 0.3 m/s: e_n with skin 1 µm $e_skin, without skin $e_noskin"
+  check 'v[0] == v[1]' "adhesion-$target-no-skin" "$e_skin" "$e_noskin"
+  # A restart file written while the neck holds at a separation (step 31,000 at 0.3 m/s:
+  # gap 4 nm, tensile) and continued in a new process gives the uninterrupted run's e_n; the
+  # same continuation with its histories dropped must NOT.
+  split=(-var speed 0.3 -var target "$target" -var split 31000)
+  e_split=$("${lmp[@]}" "${adhesive[@]}" "${split[@]}" | sed -n 's/^EN //p')
+  "${lmp[@]}" "${adhesive[@]}" "${split[@]}" -var restart yes -var restart_file "adhesive-$target.restart" > /dev/null
+  e_cont=$("${lmp[@]}" "${adhesive_restarted[@]}" "${split[@]}" -var restart_file "adhesive-$target.restart" | sed -n 's/^EN //p')
+  e_forgot=$("${lmp[@]}" "${adhesive_restarted[@]}" "${split[@]}" -var restart_file "adhesive-$target.restart" -var forget yes | sed -n 's/^EN //p')
+  echo "$target, 0.3 m/s: e_n uninterrupted $e_split, restarted while held $e_cont, restarted without histories $e_forgot"
+  check 'v[0] == v[1]' "adhesion-$target-restart-while-held" "$e_split" "$e_cont"
+  check 'abs(v[0]-v[1]) > 1e-3' "adhesion-$target-restart-check-detects-lost-history" "$e_split" "$e_forgot"
+done
+
+# Cross-code: an elastic adhesive pair under displacement control (in.jkr), pair_style mdrdem
+# (theta 1) against LAMMPS's own pair_style granular jkr with the same E*, R and Δγ (its
+# cohesion is Δγ/2). Both reach the largest tension (3/2) π Δγ R; they part at different
+# separations by design: jkr lets go where that tension is reached (4.25 nm here), Heß's rule
+# at JKR's displacement-controlled snap-off (eq. A11: 8.83 nm), with the JKR force -(5/9) F_c
+# there. Between them, on the unloading branch they share, the forces agree to 1e-9. Their
+# loading branches differ: jkr jumps in to -(8/9) F_c at first contact, Heß's springs attach
+# with zero elongation (Hertz; docs/lammps.md gives the figures).
+for style in mdrdem jkr; do
+  "${lmp[@]}" -in "$inputs/in.jkr" -var plugin "$plugin" -var style "$style" -log "jkr-$style.log" > /dev/null
+done
+jkr=$(python3 - jkr-mdrdem.log jkr-jkr.log <<'PY'
+import math, sys
+def rows(p):
+    out = []
+    for l in open(p):
+        w = l.split()
+        if len(w) == 3:
+            try:
+                out.append([float(x) for x in w])
+            except ValueError:
+                pass
+    return out
+mdr, jkr = rows(sys.argv[1]), rows(sys.argv[2])
+assert len(mdr) == len(jkr) == 12202
+deepest = min(range(len(mdr)), key=lambda k: mdr[k][1])
+def report(r):
+    first = next(x for x in r if x[1] < 0)  # the first step in contact
+    held = max((x for x in r[deepest:] if x[2] != 0), key=lambda x: x[1])  # last held gap
+    return [first[2], min(x[2] for x in r), held[1]]
+shared = max(abs(a[2] - b[2]) / abs(b[2]) for a, b in zip(mdr[deepest:], jkr[deepest:])
+             if -2.0e-8 < a[1] < 4.2e-9 and b[2] != 0)
+print(*report(mdr), *report(jkr), mdr[deepest][2], jkr[deepest][2], shared)
+PY
+)
+read -r m_first m_tension m_gap j_first j_tension j_gap m_peak j_peak shared <<<"$jkr"
+fc=$(python3 -c "import math; print(1.5*math.pi*0.1*5e-6)")
+echo "largest tension: mdrdem $m_tension, jkr $j_tension, (3/2) pi dgamma R = $fc N"
+echo "let go at gap: mdrdem $m_gap, jkr $j_gap m; first contact: mdrdem $m_first, jkr $j_first N; at 50 nm: mdrdem $m_peak, jkr $j_peak N; shared branch: $shared"
+check 'abs(-v[0]-v[2]) <= 1e-6*v[2] and abs(-v[1]-v[2]) <= 1e-6*v[2]' "adhesion-jkr-largest-tension" "$m_tension" "$j_tension" "$fc"
+# one step (1e-11 m) resolves the let-go separation
+check 'abs(v[0]-8.8348e-9) <= 2e-11 and abs(v[1]-4.2475e-9) <= 2e-11' "adhesion-jkr-let-go-separations" "$m_gap" "$j_gap"
+check 'v[0] <= 1e-9' "adhesion-jkr-shared-unloading-branch" "$shared"
+check 'abs(v[0]) < 1e-9 and abs(v[1]+8/9*v[2]) <= 1e-3*v[2]' "adhesion-jkr-loading-branches-differ" "$m_first" "$j_first" "$fc"
+
+echo "== bad adhesion values"
+for value in -0.1 nan inf ""; do
+  for where in pair wall; do
+    line="$good adhesion $value"
+    cat > in.bad <<IN
+units si
+atom_style sphere
+boundary p p f
+region box block 0 1 0 1 0 1
+create_box 1 box
+plugin load $plugin
+pair_style mdrdem
+IN
+    if [ "$where" = pair ]; then
+      echo "pair_coeff * * $line" >> in.bad
+    else
+      echo "pair_coeff * * $good" >> in.bad
+      echo "fix w all wall/mdrdem $line zplane 0 NULL" >> in.bad
+    fi
+    set +e
+    out=$("${lmp[@]}" -in in.bad 2>&1)
+    rc=$?
+    set -e
+    if [ "$rc" -ne 0 ] && [ "$rc" -lt 128 ] && grep -q "ERROR.*adhesion" <<<"$out"; then
+      echo "ok   bad-adhesion-$where '${value:-missing}' (exit $rc)"
+    else
+      echo "FAIL bad-adhesion-$where '${value:-missing}' (exit $rc): $out" | tail -3; fail=1
+    fi
+  done
+done
 
 echo "== settled bed: 1 rank, 2 ranks, restart ($bed_steps steps)"
 data=$root/benches/lammps/settled.data

@@ -7,11 +7,58 @@
 //! docs/lammps.md).
 //! Usage: `impact_reference [wall | cylinder R_C] RADIUS SPEED...` (m, m/s); prints `speed e_n`
 //! lines.
+//!
+//! With `adhesive [wall] W E NU DENSITY QC THETA RADIUS SPEED...` first (J/m², Pa, -, kg/m³,
+//! N/m, -, m, m/s): adhesive impacts of two equal spheres (or of a sphere on a half-space of its
+//! own material) with Heß's rule on the MDR springs, from the single-impact validator's time
+//! integration (`mdr_impact::Impact`, 200,000 steps per Hertz contact time: its time-step error
+//! is far below LAMMPS's); prints `speed e_n stuck pull_off_force release_overlap` lines.
 use mdr_contact::material::{ContactPair, Material};
 use mdr_contact::normal::{MdrElastoPlastic, MdrState, NormalModel};
+use mdr_impact::{Impact, NormalSpec};
+
+/// `adhesive [wall] W E NU DENSITY QC THETA RADIUS SPEED...`.
+fn adhesive(mut words: Vec<String>) -> Result<(), Box<dyn std::error::Error>> {
+    let wall = words.first().is_some_and(|w| w == "wall");
+    if wall {
+        words.remove(0);
+    }
+    let args: Vec<f64> = words
+        .iter()
+        .map(|a| a.parse::<f64>())
+        .collect::<Result<_, _>>()?;
+    let [work, youngs, poisson, density, qc, theta, radius, speeds @ ..] = args.as_slice() else {
+        return Err(
+            "usage: impact_reference adhesive [wall] W E NU DENSITY QC THETA RADIUS SPEED..."
+                .into(),
+        );
+    };
+    let material = Material::new(*youngs, *poisson, *density)?;
+    let pair = if wall {
+        ContactPair::sphere_on_half_space(*radius, &material, &material)?
+    } else {
+        ContactPair::sphere_on_sphere(*radius, &material, *radius, &material)?
+    };
+    let params = MdrElastoPlastic::new(*qc, *theta)?;
+    for v in speeds {
+        let o = Impact::new(pair, NormalSpec::Mdr(params), *v)
+            .work_of_adhesion(*work)
+            .steps_per_contact(200_000)
+            .run()?;
+        println!(
+            "{v} {:.12} {} {:.12e} {:.12e}",
+            o.normal_restitution, o.stuck as i32, o.pull_off_force, o.release_overlap
+        );
+    }
+    Ok(())
+}
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut words: Vec<String> = std::env::args().skip(1).collect();
+    if words.first().is_some_and(|w| w == "adhesive") {
+        words.remove(0);
+        return adhesive(words);
+    }
     let wall = words.first().is_some_and(|w| w == "wall");
     if wall {
         words.remove(0);

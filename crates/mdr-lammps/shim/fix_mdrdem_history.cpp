@@ -42,8 +42,8 @@ FixMdrdemHistory::FixMdrdemHistory(LAMMPS *lmp, int narg, char **arg) :
 {
   if (narg != 4) error->all(FLERR, "Illegal fix MDRDEM/HISTORY command: ID group MDRDEM/HISTORY dnum");
   dnum = utils::inumeric(FLERR, arg[3], false, lmp);
-  if (dnum < 1 || dnum > 10) error->all(FLERR, "fix MDRDEM/HISTORY: dnum must be in 1..10");
-  mdrdem_partner_signs(signs);
+  if (mdrdem_partner_signs(dnum, signs) != 0)
+    error->all(FLERR, "fix MDRDEM/HISTORY: dnum must be 5, 6, 10 or 11 (got {})", dnum);
   width = dnum;
 
   restart_peratom = 1;

@@ -76,7 +76,7 @@ class FixMdrdemHistory : public Fix {
   bool record_written() const;
 
   int newton_pair;
-  double signs[10];
+  double signs[11];
   int *npartner;        // per-atom number of partners
   int64_t *poffset;     // per-atom first entry in partner_tag / partner_values
   std::vector<tagint> partner_tag;

@@ -188,6 +188,8 @@ void FixWallMdrdem::init()
   if (mdrdem_wall_init(wall, pair->table(), err, sizeof(err)) != 0)
     error->all(FLERR, "fix wall/mdrdem: {}", err);
   history = dynamic_cast<FixMdrdemHistory *>(modify->get_fix_by_id("MDRDEM_HISTORY"));
+  neck_coefficient.assign(atom->ntypes + 1, 0.0);
+  for (int t = 1; t <= atom->ntypes; t++) neck_coefficient[t] = mdrdem_wall_neck_coefficient(wall, t);
   if (wallstyle == REGION) {
     region = domain->get_region_by_id(idregion);
     if (region == nullptr) error->all(FLERR, "fix wall/mdrdem: region {} does not exist", idregion);
@@ -208,7 +210,13 @@ void FixWallMdrdem::candidates(int i, double wlo, double whi, const double *vwal
 {
   out.clear();
   double *x = atom->x[i];
-  const double reach = atom->radius[i] + neighbor->skin;
+  // An adhesive neck holds up to c R^(1/3) beyond contact (docs/theory.md eq. A11), R the
+  // effective radius: the sphere's on a plane; on a curved wall the bound R = 100 r covers every
+  // wall whose concave radius exceeds the sphere's by more than 1 %.
+  const double r = atom->radius[i];
+  const double c_neck = neck_coefficient[atom->type[i]];
+  const double neck = c_neck > 0.0 ? c_neck * std::cbrt(wallstyle <= ZPLANE ? r : 100.0 * r) : 0.0;
+  const double reach = r + neighbor->skin + neck;
   Candidate c;
   if (wallstyle <= ZPLANE) {
     const int a = wallstyle;
@@ -428,7 +436,7 @@ void FixWallMdrdem::restart(char *buf)
   before_step = (bigint) state[1];
   if ((int) state[2] != dnum)
     error->all(FLERR, "fix {}: the restart file holds {} history values per wall contact, the "
-               "fix line needs {} (rolling switched on or off)", id, (int) state[2], dnum);
+               "fix line needs {} (rolling or adhesion switched on or off)", id, (int) state[2], dnum);
   if (region) {
     int n = (int) sizeof(state);
     if (!region->restart(buf, n)) {

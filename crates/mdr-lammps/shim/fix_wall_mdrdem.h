@@ -70,6 +70,7 @@ class FixWallMdrdem : public Fix {
   double total_local[3], total_all[3];
   int total_flag;
 
+  std::vector<double> neck_coefficient;    // per type: c of the adhesive reach c R^(1/3)
   std::vector<Candidate> found;
   std::vector<double> kept;
   std::vector<int> c_atom;

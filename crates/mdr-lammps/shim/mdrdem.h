@@ -56,7 +56,9 @@ int mdrdem_coeff(void *handle, int ilo, int ihi, int jlo, int jhi, int nwords,
 int mdrdem_init_one(void *handle, int i, int j, char *err, size_t errlen);
 int mdrdem_is_set(const void *handle, int i, int j);
 int mdrdem_history_size(const void *handle);
-void mdrdem_partner_signs(double *out /* 10 values */);
+int mdrdem_adhesive(const void *handle);
+int mdrdem_partner_signs(int dnum, double *out /* dnum values */);
+double mdrdem_neck_reach(const void *handle, int i, int j, double ri, double rj);
 int mdrdem_compute(const void *handle, const MdrdemAtoms *atoms, const MdrdemNeighbours *list,
                    const MdrdemTally *tally, double dt, char *err, size_t errlen);
 int mdrdem_single(const void *handle, int itype, int jtype, const double *radius_mass /* ri rj mi mj */,
@@ -68,6 +70,7 @@ void *mdrdem_wall_new(int nwords, const char *const *words, char *err, size_t er
 void mdrdem_wall_free(void *wall);
 int mdrdem_wall_init(void *wall, const void *pair_table, char *err, size_t errlen);
 int mdrdem_wall_history_size(const void *wall);
+double mdrdem_wall_neck_coefficient(const void *wall, int type);
 int mdrdem_wall_compute(const void *wall, const MdrdemAtoms *atoms,
                         const MdrdemWallContacts *contacts, double dt, double *total_force /* 3 */,
                         char *err, size_t errlen);

@@ -97,7 +97,6 @@ void PairMdrdem::init_style()
     error->all(FLERR, "pair_style mdrdem requires atom_style sphere (radius, rmass, omega, torque)");
   if (comm->ghost_velocity == 0)
     error->all(FLERR, "pair_style mdrdem requires ghost atoms store velocity (comm_modify vel yes)");
-  neighbor->add_request(this, NeighConst::REQ_SIZE);
 
   // Every type pair's model now (mixing errors name the types), so that the history size is
   // known before the history fix is made.
@@ -121,7 +120,8 @@ void PairMdrdem::init_style()
   if (history == nullptr) error->all(FLERR, "fix {} is not the mdrdem history fix", HISTORY_ID);
   if (history->dnum != dnum)
     error->all(FLERR, "pair_style mdrdem: the history holds {} values per contact, the coefficients "
-               "need {} (rolling switched on or off after contacts were made)", history->dnum, dnum);
+               "need {} (rolling or adhesion switched on or off after contacts were made)",
+               history->dnum, dnum);
   history->pair = this;
 
   // cutoff of each type: its largest radius, including particles fix pour/deposit will insert
@@ -138,6 +138,19 @@ void PairMdrdem::init_style()
   for (int i = 0; i < atom->nlocal; i++)
     local[atom->type[i]] = std::max(local[atom->type[i]], atom->radius[i]);
   MPI_Allreduce(&local[1], &maxrad[1], n, MPI_DOUBLE, MPI_MAX, world);
+
+  // LAMMPS's size lists keep a pair while its distance is below the radii sum plus the skin. An
+  // adhesive neck holds beyond contact (up to the reach of docs/theory.md eq. A11): with a skin
+  // below the largest reach the list is cut by type instead, at init_one's cut-off (the largest
+  // radii of the two types plus their reach) plus the skin, so a held pair stays listed.
+  double reach = 0.0;
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++)
+      reach = std::max(reach, mdrdem_neck_reach(handle, i, j, maxrad[i], maxrad[j]));
+  if (neighbor->skin < reach)
+    neighbor->add_request(this);
+  else
+    neighbor->add_request(this, NeighConst::REQ_SIZE);
 }
 
 double PairMdrdem::init_one(int i, int j)
@@ -145,7 +158,9 @@ double PairMdrdem::init_one(int i, int j)
   char err[512];
   if (mdrdem_init_one(handle, i, j, err, sizeof(err)) != 0)
     error->all(FLERR, "pair_style mdrdem: {}", err);
-  return maxrad[i] + maxrad[j];
+  // an adhesive neck holds beyond contact: the cut-off covers its reach for the largest
+  // spheres of the two types (the reach grows with the effective radius)
+  return maxrad[i] + maxrad[j] + mdrdem_neck_reach(handle, i, j, maxrad[i], maxrad[j]);
 }
 
 void PairMdrdem::compute(int eflag, int vflag)
@@ -215,7 +230,8 @@ double PairMdrdem::single(int i, int j, int itype, int jtype, double rsq, double
   fforce = 0.0;
   double *radius = atom->radius;
   const double radsum = radius[i] + radius[j];
-  if (rsq >= radsum * radsum) return 0.0;
+  // apart: no force, unless an adhesive neck still holds (the Rust library decides from the history)
+  if (rsq >= radsum * radsum && !mdrdem_adhesive(handle)) return 0.0;
 
   // The history of pair (i, j) as i sees it: in i's neighbours, or in j's (then seen from j).
   int a = i, b = j, ta = itype, tb = jtype;

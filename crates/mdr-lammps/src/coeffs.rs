@@ -1,12 +1,12 @@
 //! `pair_coeff` keywords of `pair_style mdrdem`: parsing with range checks that name the keyword,
 //! and the per-type-pair models (materials mixed as mdr-contact mixes them: `E*` eq. 3, `G*`
-//! docs/theory.md §5).
+//! docs/theory.md §5; the work of adhesion by the geometric mean, [`mixed_work_of_adhesion`]).
 
 use crate::error::PluginError;
 use mdr_contact::damping::HertzianViscous;
 use mdr_contact::material::{effective_modulus, effective_shear_modulus, Material};
 use mdr_contact::model::ContactModel;
-use mdr_contact::normal::MdrElastoPlastic;
+use mdr_contact::normal::{AdhesiveMdr, MdrElastoPlastic};
 use mdr_contact::rolling::EpsdRolling;
 use mdr_contact::tangential::Mindlin;
 
@@ -33,6 +33,9 @@ pub struct CoeffLine {
     pub tangential_damping: f64,
     /// `rolling`: EPSD rolling-resistance coefficient `μ_r` (≥ 0; default 0 = none).
     pub rolling: f64,
+    /// `adhesion`: work of adhesion `Δγ` of Heß's rule (energy/area, J/m² in SI, ≥ 0; default
+    /// 0 = none), docs/theory.md §9.
+    pub adhesion: f64,
     /// `estar`: `E*` of the pair given directly (pressure, > 0), instead of eq. (3).
     pub estar: Option<f64>,
     /// `gstar`: `G*` of the pair given directly (pressure, > 0), instead of docs/theory.md §5.
@@ -49,6 +52,10 @@ pub const KEYWORDS: &[(&str, &str)] = &[
     ("damping", ">= 0 (1/(time length^1/2)), default 0"),
     ("tangential_damping", ">= 0 (ratio), default 0"),
     ("rolling", ">= 0 (EPSD coefficient), default 0"),
+    (
+        "adhesion",
+        ">= 0 (work of adhesion, energy/area), default 0",
+    ),
     ("estar", "> 0 (pressure), optional override of E*"),
     ("gstar", "> 0 (pressure), optional override of G*"),
 ];
@@ -112,6 +119,7 @@ impl CoeffLine {
             damping: get("damping").unwrap_or(0.0),
             tangential_damping: get("tangential_damping").unwrap_or(0.0),
             rolling: get("rolling").unwrap_or(0.0),
+            adhesion: get("adhesion").unwrap_or(0.0),
             estar: get("estar"),
             gstar: get("gstar"),
         };
@@ -122,7 +130,7 @@ impl CoeffLine {
     /// Range checks, each naming its keyword; then the mdr-contact constructors (which check
     /// the same ranges again) so that nothing reaches the law that the law would refuse.
     fn check(&self) -> Result<(), PluginError> {
-        let checks: [(&str, f64, bool); 8] = [
+        let checks: [(&str, f64, bool); 9] = [
             ("youngs", self.youngs, self.youngs > 0.0),
             (
                 "poisson",
@@ -139,6 +147,7 @@ impl CoeffLine {
                 self.tangential_damping >= 0.0,
             ),
             ("rolling", self.rolling, self.rolling >= 0.0),
+            ("adhesion", self.adhesion, self.adhesion >= 0.0),
         ];
         for (keyword, value, ok) in checks {
             if !ok {
@@ -155,6 +164,8 @@ impl CoeffLine {
         self.material()?;
         self.model()?;
         self.rolling_model()?;
+        AdhesiveMdr::new(MdrElastoPlastic::elastic(), self.adhesion)
+            .map_err(|e| PluginError::law("adhesion", e))?;
         Ok(())
     }
 
@@ -182,7 +193,8 @@ impl CoeffLine {
         EpsdRolling::new(self.rolling).map_err(|e| PluginError::law("rolling", e))
     }
 
-    /// The law parameters (everything except the material), for the mixing rule.
+    /// The law parameters that must agree between two types to mix them (everything except the
+    /// material and the work of adhesion, which are mixed).
     fn law_parameters(&self) -> [(&'static str, f64); 6] {
         [
             ("qc", self.qc),
@@ -195,13 +207,24 @@ impl CoeffLine {
     }
 }
 
+/// The work of adhesion between two materials from their own, `Δγ_ij = √(Δγ_ii Δγ_jj)`: the
+/// geometric-mean combining rule of surface energies (Girifalco & Good, J. Phys. Chem. 61, 904,
+/// 1957, with their interaction parameter 1), the rule LAMMPS's `pair granular` applies to the
+/// cohesion of its `jkr` and `dmt` models (`mix_geom` in `GranSubModNormalJKR::mix_coeffs`).
+pub fn mixed_work_of_adhesion(a: f64, b: f64) -> f64 {
+    (a * b).sqrt()
+}
+
 /// What every contact between two given atom types uses: the model and the pair moduli.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PairModel {
-    /// Normal + tangential + damping sub-models.
+    /// Normal + tangential + damping sub-models (the normal law without adhesion).
     pub model: PluginModel,
     /// Rolling resistance (a coefficient of 0 gives no torque).
     pub rolling: EpsdRolling,
+    /// Work of adhesion `Δγ` of the pair (energy/area; 0: no adhesion): Heß's rule on the MDR
+    /// springs (`mdr_contact::normal::AdhesiveMdrLaw`).
+    pub adhesion: f64,
     /// `E*` of the pair (pressure).
     pub effective_modulus: f64,
     /// `G*` of the pair (pressure).
@@ -215,6 +238,7 @@ impl PairModel {
         Ok(Self {
             model: line.model()?,
             rolling: line.rolling_model()?,
+            adhesion: line.adhesion,
             effective_modulus: line.estar.unwrap_or_else(|| effective_modulus(&m, &m)),
             effective_shear_modulus: line
                 .gstar
@@ -223,8 +247,9 @@ impl PairModel {
     }
 
     /// Mix the lines of types I (`pair_coeff I I`) and J (`pair_coeff J J`): `E*` by eq. (3),
-    /// `G*` by docs/theory.md §5 from the two materials; the law parameters must agree (mdr-dem uses
-    /// one model for every pair of a simulation and mixes only materials).
+    /// `G*` by docs/theory.md §5 from the two materials, the work of adhesion by
+    /// [`mixed_work_of_adhesion`]; the other law parameters must agree (mdr-dem uses one model for
+    /// every pair of a simulation and mixes only materials).
     pub fn mixed(i: usize, a: &CoeffLine, j: usize, b: &CoeffLine) -> Result<Self, PluginError> {
         for ((keyword, va), (_, vb)) in a.law_parameters().iter().zip(b.law_parameters()) {
             if *va != vb {
@@ -239,6 +264,7 @@ impl PairModel {
         Ok(Self {
             model: a.model()?,
             rolling: a.rolling_model()?,
+            adhesion: mixed_work_of_adhesion(a.adhesion, b.adhesion),
             effective_modulus: effective_modulus(&ma, &mb),
             effective_shear_modulus: effective_shear_modulus(&ma, &mb),
         })
@@ -247,6 +273,24 @@ impl PairModel {
     /// Whether this pair has rolling resistance.
     pub fn has_rolling(&self) -> bool {
         self.rolling.coefficient() > 0.0
+    }
+
+    /// Whether this pair's contacts are adhesive.
+    pub fn has_adhesion(&self) -> bool {
+        self.adhesion > 0.0
+    }
+
+    /// The largest separation (length, ≥ 0) at which a contact of this pair with effective radius
+    /// `effective_radius` can still hold: the elastic JKR snap-off distance
+    /// `(3/4) (π² Δγ² R / E*²)^{1/3}`, a bound over every load history of the adhesive MDR law
+    /// (docs/theory.md §9.2, eq. A11). It grows with `R`, so the largest spheres of two types
+    /// bound every pair of them. Zero without adhesion.
+    pub fn neck_reach(&self, effective_radius: f64) -> f64 {
+        if !self.has_adhesion() || effective_radius.is_nan() || effective_radius <= 0.0 {
+            return 0.0;
+        }
+        let ratio = std::f64::consts::PI * self.adhesion / self.effective_modulus;
+        0.75 * (ratio * ratio * effective_radius).cbrt()
     }
 }
 
@@ -336,5 +380,10 @@ impl CoeffTable {
     /// Whether any initialised pair has rolling resistance.
     pub fn has_rolling(&self) -> bool {
         self.models.iter().flatten().any(PairModel::has_rolling)
+    }
+
+    /// Whether any initialised pair is adhesive.
+    pub fn has_adhesion(&self) -> bool {
+        self.models.iter().flatten().any(PairModel::has_adhesion)
     }
 }

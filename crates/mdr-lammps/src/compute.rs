@@ -11,13 +11,11 @@
 
 use crate::coeffs::{CoeffTable, PairModel};
 use crate::error::PluginError;
-use crate::history::{load, store, HistoryLayout};
-use mdr_contact::damping::HertzianViscousLaw;
+use crate::history::{load, store, HistoryLayout, PairLaw, PluginNormalLaw};
 use mdr_contact::material::ContactPair;
-use mdr_contact::model::{ContactInput, ContactLaw};
-use mdr_contact::normal::{MdrLaw, NormalLaw};
+use mdr_contact::model::ContactInput;
+use mdr_contact::normal::{AdhesiveMdrLaw, MdrLaw};
 use mdr_contact::rolling::{EpsdRollingLaw, RollingInput, RollingLaw, RollingModel};
-use mdr_contact::tangential::MindlinLaw;
 use nalgebra::Vector3;
 
 /// Per-atom arrays of LAMMPS (`atom->x[0]` etc.: `3 × nall` contiguous doubles).
@@ -95,23 +93,21 @@ pub struct MdrdemTally {
     pub vatom: *mut f64,
 }
 
-type Law = ContactLaw<MdrLaw, MindlinLaw, HertzianViscousLaw>;
-
 /// The law of the last bound pair and what it was bound to (types, radii, masses, bitwise).
-struct BoundCache {
+struct BoundCache<N> {
     key: [u64; 6],
-    law: Law,
+    law: PairLaw<N>,
     rolling: EpsdRollingLaw,
 }
 
 #[inline(always)]
-fn bind(
+fn bind<N: PluginNormalLaw>(
     model: &PairModel,
     ri: f64,
     rj: f64,
     mi: f64,
     mj: f64,
-) -> Result<(Law, EpsdRollingLaw), mdr_contact::ContactError> {
+) -> Result<(PairLaw<N>, EpsdRollingLaw), mdr_contact::ContactError> {
     // Effective radius and reduced mass of two spheres, as ContactPair::sphere_on_sphere.
     let pair = ContactPair::new(
         model.effective_modulus,
@@ -119,7 +115,7 @@ fn bind(
         ri * rj / (ri + rj),
         mi * mj / (mi + mj),
     )?;
-    Ok((model.model.bind(&pair)?, model.rolling.bind(&pair)?))
+    Ok((N::bind(model, &pair)?, model.rolling.bind(&pair)?))
 }
 
 #[inline(always)]
@@ -165,16 +161,34 @@ pub unsafe fn compute(
     if list.dnum as usize != layout.size() {
         return Err(PluginError::Abi("dnum differs from the history layout"));
     }
-    match (layout.rolling, list.history_update != 0) {
-        (true, true) => compute_with::<true, true>(table, atoms, list, tally, dt),
-        (false, true) => compute_with::<false, true>(table, atoms, list, tally, dt),
-        (true, false) => compute_with::<true, false>(table, atoms, list, tally, dt),
-        (false, false) => compute_with::<false, false>(table, atoms, list, tally, dt),
+    if layout.adhesion {
+        compute_law::<AdhesiveMdrLaw>(table, atoms, list, tally, dt, layout.rolling)
+    } else {
+        compute_law::<MdrLaw>(table, atoms, list, tally, dt, layout.rolling)
     }
 }
 
-/// The loop; `UPDATE = false` writes neither `touch` nor `history`.
-unsafe fn compute_with<const ROLLING: bool, const UPDATE: bool>(
+unsafe fn compute_law<N: PluginNormalLaw>(
+    table: &CoeffTable,
+    atoms: &MdrdemAtoms,
+    list: &MdrdemNeighbours,
+    tally: &MdrdemTally,
+    dt: f64,
+    rolling: bool,
+) -> Result<(), PluginError> {
+    match (rolling, list.history_update != 0) {
+        (true, true) => compute_with::<N, true, true>(table, atoms, list, tally, dt),
+        (false, true) => compute_with::<N, false, true>(table, atoms, list, tally, dt),
+        (true, false) => compute_with::<N, true, false>(table, atoms, list, tally, dt),
+        (false, false) => compute_with::<N, false, false>(table, atoms, list, tally, dt),
+    }
+}
+
+/// The loop; `UPDATE = false` writes neither `touch` nor `history`. A contact is evaluated while
+/// the spheres overlap and, for an adhesive law, while its neck holds at a separation
+/// ([`NormalLaw::holds`](mdr_contact::normal::NormalLaw::holds)); the neighbour cut-off covers the neck's reach
+/// ([`PairModel::neck_reach`]).
+unsafe fn compute_with<N: PluginNormalLaw, const ROLLING: bool, const UPDATE: bool>(
     table: &CoeffTable,
     atoms: &MdrdemAtoms,
     list: &MdrdemNeighbours,
@@ -187,7 +201,7 @@ unsafe fn compute_with<const ROLLING: bool, const UPDATE: bool>(
     let mask = list.neighmask;
     let eflag = tally.eflag_global != 0 || !tally.eatom.is_null();
     let vflag = tally.vflag_global != 0 || !tally.vatom.is_null();
-    let mut cache: Option<BoundCache> = None;
+    let mut cache: Option<BoundCache<N>> = None;
     let mut energy = 0.0;
     let mut virial = [0.0; 6];
     for ii in 0..list.inum as usize {
@@ -207,9 +221,8 @@ unsafe fn compute_with<const ROLLING: bool, const UPDATE: bool>(
             let radsum = ri + rj;
             let touching = rsq < radsum * radsum;
             let touched = *list.touch.add(k) != 0;
-            if !touching && (!touched || !UPDATE) {
-                // Apart and without a history; or apart in a setup call, which has no force to
-                // add and no history to write.
+            if !touching && !touched {
+                // Apart and without a history.
                 continue;
             }
             let jtype = *atoms.atom_type.add(j);
@@ -231,17 +244,21 @@ unsafe fn compute_with<const ROLLING: bool, const UPDATE: bool>(
                             i: itype as usize,
                             j: jtype as usize,
                         })?;
-                let (law, rolling) = bind(model, ri, rj, mi, mj)
+                let (law, rolling) = bind::<N>(model, ri, rj, mi, mj)
                     .map_err(|source| PluginError::Contact { i, j, source })?;
                 cache = Some(BoundCache { key, law, rolling });
             }
             let bound = cache.as_ref().expect("bound above");
             let values = list.history.add(k * dnum);
             let (mut state, mut roll_state) =
-                load::<ROLLING>(std::slice::from_raw_parts(values, dnum));
+                load::<N, ROLLING>(std::slice::from_raw_parts(values, dnum));
             let r = rsq.sqrt();
             let overlap = radsum - r;
-            if !touching {
+            if !touching && !bound.law.normal.holds(&state.normal) {
+                if !UPDATE {
+                    // A setup call has no force to add and no history to write.
+                    continue;
+                }
                 // Apart after a contact: the law sees the separation (MDR keeps d_max for a
                 // re-touch, Mindlin and rolling springs are released); no force.
                 bound.law.update(
@@ -264,7 +281,7 @@ unsafe fn compute_with<const ROLLING: bool, const UPDATE: bool>(
                         },
                     );
                 }
-                store::<ROLLING>(
+                store::<N, ROLLING>(
                     std::slice::from_raw_parts_mut(values, dnum),
                     &state,
                     &roll_state,
@@ -308,7 +325,7 @@ unsafe fn compute_with<const ROLLING: bool, const UPDATE: bool>(
                 torque_j -= roll.torque;
             }
             if UPDATE {
-                store::<ROLLING>(
+                store::<N, ROLLING>(
                     std::slice::from_raw_parts_mut(values, dnum),
                     &state,
                     &roll_state,
@@ -373,33 +390,55 @@ unsafe fn compute_with<const ROLLING: bool, const UPDATE: bool>(
 /// `single()`, i.e. `compute pair/local`): the law sees `dt = 0` on a copy of the state (no
 /// tangential displacement increment), as LAMMPS's `pair granular` `single()` sets
 /// `history_update = 0` and `pair gran/hooke/history` reads the stored shear without adding to it.
-/// Returns `(force on i, normal force, overlap)`.
+/// Returns `(force on i, normal force, overlap)`; `values` has the `layout`'s size.
 pub fn evaluate_one(
     model: &PairModel,
     sphere_i: (f64, f64),
     sphere_j: (f64, f64),
     kinematics: (&Vector3<f64>, &Vector3<f64>, &Vector3<f64>, &Vector3<f64>),
     values: &[f64],
-    rolling: bool,
+    layout: HistoryLayout,
+) -> Result<(Vector3<f64>, f64, f64), PluginError> {
+    if values.len() != layout.size() {
+        return Err(PluginError::Abi("history size differs from the layout"));
+    }
+    match (layout.adhesion, layout.rolling) {
+        (true, true) => {
+            evaluate_with::<AdhesiveMdrLaw, true>(model, sphere_i, sphere_j, kinematics, values)
+        }
+        (true, false) => {
+            evaluate_with::<AdhesiveMdrLaw, false>(model, sphere_i, sphere_j, kinematics, values)
+        }
+        (false, true) => {
+            evaluate_with::<MdrLaw, true>(model, sphere_i, sphere_j, kinematics, values)
+        }
+        (false, false) => {
+            evaluate_with::<MdrLaw, false>(model, sphere_i, sphere_j, kinematics, values)
+        }
+    }
+}
+
+fn evaluate_with<N: PluginNormalLaw, const ROLLING: bool>(
+    model: &PairModel,
+    sphere_i: (f64, f64),
+    sphere_j: (f64, f64),
+    kinematics: (&Vector3<f64>, &Vector3<f64>, &Vector3<f64>, &Vector3<f64>),
+    values: &[f64],
 ) -> Result<(Vector3<f64>, f64, f64), PluginError> {
     let (ri, mi) = sphere_i;
     let (rj, mj) = sphere_j;
     let (delta, vrel_linear, wi, wj) = kinematics;
-    let (law, _) = bind(model, ri, rj, mi, mj).map_err(|source| PluginError::Contact {
+    let (law, _) = bind::<N>(model, ri, rj, mi, mj).map_err(|source| PluginError::Contact {
         i: 0,
         j: 1,
         source,
     })?;
     let r = delta.norm();
     let overlap = ri + rj - r;
-    if overlap <= 0.0 {
+    let (mut state, _) = load::<N, ROLLING>(values);
+    if overlap <= 0.0 && !law.normal.holds(&state.normal) {
         return Ok((Vector3::zeros(), 0.0, overlap));
     }
-    let (mut state, _) = if rolling {
-        load::<true>(values)
-    } else {
-        load::<false>(values)
-    };
     let normal = delta / r;
     let relative_velocity =
         vrel_linear - (wi * (ri - 0.5 * overlap) + wj * (rj - 0.5 * overlap)).cross(&normal);

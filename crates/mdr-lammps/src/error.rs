@@ -6,7 +6,7 @@ use mdr_contact::ContactError;
 #[derive(Debug, thiserror::Error)]
 pub enum PluginError {
     /// A keyword `pair_style mdrdem` does not know.
-    #[error("unknown keyword `{0}` (known: youngs poisson qc theta friction damping tangential_damping rolling estar gstar)")]
+    #[error("unknown keyword `{0}` (known: youngs poisson qc theta friction damping tangential_damping rolling adhesion estar gstar)")]
     UnknownKeyword(String),
     /// A keyword without its value.
     #[error("keyword `{0}` needs a value")]

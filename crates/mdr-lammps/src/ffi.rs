@@ -5,7 +5,7 @@
 use crate::coeffs::{CoeffLine, CoeffTable};
 use crate::compute::{compute, evaluate_one, MdrdemAtoms, MdrdemNeighbours, MdrdemTally};
 use crate::error::PluginError;
-use crate::history::{HistoryLayout, PARTNER_SIGNS, ROLLING_SIZE};
+use crate::history::HistoryLayout;
 use crate::wall::{compute_wall, MdrdemWallContacts, WallTable};
 use nalgebra::Vector3;
 use std::ffi::{c_char, c_int, c_void, CStr};
@@ -155,7 +155,8 @@ pub extern "C" fn mdrdem_is_set(handle: *const c_void, i: c_int, j: c_int) -> c_
     }
 }
 
-/// Values per contact in the history (after every `init_one`): 5, or 10 with rolling.
+/// Values per contact in the history (after every `init_one`): 5, 10 with rolling, one more
+/// with adhesion.
 #[no_mangle]
 pub extern "C" fn mdrdem_history_size(handle: *const c_void) -> c_int {
     match table(handle) {
@@ -164,14 +165,48 @@ pub extern "C" fn mdrdem_history_size(handle: *const c_void) -> c_int {
     }
 }
 
-/// Write the sign of each history slot as seen from the partner atom (`out` holds 10 values).
+/// Whether any type pair is adhesive (1) or none (0), after every `init_one`.
+#[no_mangle]
+pub extern "C" fn mdrdem_adhesive(handle: *const c_void) -> c_int {
+    match table(handle) {
+        Ok(t) => t.has_adhesion() as c_int,
+        Err(_) => 0,
+    }
+}
+
+/// Write the sign of each history slot as seen from the partner atom for histories of `dnum`
+/// values (`out` holds `dnum` values); 0, or −1 when no layout has `dnum` values.
 ///
 /// # Safety
-/// `out` must have room for 10 doubles.
+/// `out` must have room for `dnum` doubles.
 #[no_mangle]
-pub unsafe extern "C" fn mdrdem_partner_signs(out: *mut f64) {
-    if !out.is_null() {
-        std::ptr::copy_nonoverlapping(PARTNER_SIGNS.as_ptr(), out, ROLLING_SIZE);
+pub unsafe extern "C" fn mdrdem_partner_signs(dnum: c_int, out: *mut f64) -> c_int {
+    let Ok(layout) = HistoryLayout::of_size(dnum.max(0) as usize) else {
+        return -1;
+    };
+    if out.is_null() {
+        return -1;
+    }
+    let signs = layout.partner_signs();
+    std::ptr::copy_nonoverlapping(signs.as_ptr(), out, signs.len());
+    0
+}
+
+/// The largest separation at which a contact between spheres of radii `ri` (type `i`) and `rj`
+/// (type `j`) can still hold adhesively (after `init_one`; 0 without adhesion): the extra
+/// neighbour cut-off (docs/theory.md eq. A11, [`crate::PairModel::neck_reach`]).
+#[no_mangle]
+pub extern "C" fn mdrdem_neck_reach(
+    handle: *const c_void,
+    i: c_int,
+    j: c_int,
+    ri: f64,
+    rj: f64,
+) -> f64 {
+    let Ok(t) = table(handle) else { return 0.0 };
+    match t.model(i.max(0) as usize, j.max(0) as usize) {
+        Some(m) if ri > 0.0 && rj > 0.0 => m.neck_reach(ri * rj / (ri + rj)),
+        _ => 0.0,
     }
 }
 
@@ -242,7 +277,7 @@ pub unsafe extern "C" fn mdrdem_single(
                 &v3(omega_j),
             ),
             values,
-            layout.rolling,
+            layout,
         )?;
         let o = std::slice::from_raw_parts_mut(out, 5);
         o.copy_from_slice(&[force.x, force.y, force.z, fn_, overlap]);
@@ -313,12 +348,23 @@ pub unsafe extern "C" fn mdrdem_wall_init(
     })
 }
 
-/// History values per wall contact: 5, or 10 with `rolling`.
+/// History values per wall contact: 5, 10 with `rolling`, one more with `adhesion`.
 #[no_mangle]
 pub extern "C" fn mdrdem_wall_history_size(handle: *const c_void) -> c_int {
     match wall(handle) {
         Ok(w) => w.layout().size() as c_int,
         Err(_) => 0,
+    }
+}
+
+/// `c` of the reach `c R^{1/3}` beyond contact of an adhesive contact between the wall and a
+/// sphere of type `t` with effective radius `R` (after [`mdrdem_wall_init`]; 0 without adhesion),
+/// see [`WallTable::neck_coefficient`].
+#[no_mangle]
+pub extern "C" fn mdrdem_wall_neck_coefficient(handle: *const c_void, t: c_int) -> f64 {
+    match wall(handle) {
+        Ok(w) => w.neck_coefficient(t.max(0) as usize),
+        Err(_) => 0.0,
     }
 }
 

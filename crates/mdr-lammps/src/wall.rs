@@ -21,13 +21,11 @@
 use crate::coeffs::{CoeffLine, CoeffTable, PairModel};
 use crate::compute::MdrdemAtoms;
 use crate::error::PluginError;
-use crate::history::{load, store, HistoryLayout};
-use mdr_contact::damping::HertzianViscousLaw;
+use crate::history::{load, store, HistoryLayout, PairLaw, PluginNormalLaw};
 use mdr_contact::material::{effective_modulus, effective_shear_modulus, ContactPair};
-use mdr_contact::model::{ContactInput, ContactLaw};
-use mdr_contact::normal::MdrLaw;
+use mdr_contact::model::ContactInput;
+use mdr_contact::normal::{AdhesiveMdrLaw, MdrLaw};
 use mdr_contact::rolling::{EpsdRollingLaw, RollingInput, RollingLaw, RollingModel};
-use mdr_contact::tangential::MindlinLaw;
 use nalgebra::Vector3;
 
 /// One wall: its line and, per sphere type, the model of a contact with it.
@@ -65,6 +63,7 @@ impl WallTable {
                 *slot = Some(PairModel {
                     model,
                     rolling,
+                    adhesion: self.line.adhesion,
                     effective_modulus: self
                         .line
                         .estar
@@ -85,11 +84,20 @@ impl WallTable {
         self.models.get(t).and_then(|m| m.as_ref())
     }
 
-    /// The history layout of the wall's contacts: rolling slots when the wall has `rolling`.
+    /// The history layout of the wall's contacts: rolling slots when the wall has `rolling`, the
+    /// adhesive slot when it has `adhesion`.
     pub fn layout(&self) -> HistoryLayout {
         HistoryLayout {
             rolling: self.line.rolling > 0.0,
+            adhesion: self.line.adhesion > 0.0,
         }
+    }
+
+    /// `c` of the neck reach `c R^{1/3}` of a contact with a sphere of type `t` (effective radius
+    /// `R`): `c = (3/4) (π Δγ / E*)^{2/3}`, docs/theory.md eq. (A11) ([`PairModel::neck_reach`]).
+    /// Zero without adhesion or for a type the wall has no model for.
+    pub fn neck_coefficient(&self, t: usize) -> f64 {
+        self.model(t).map_or(0.0, |m| m.neck_reach(1.0))
     }
 }
 
@@ -147,8 +155,6 @@ pub struct MdrdemWallContacts {
     pub replay_velocity: *const f64,
 }
 
-type Law = ContactLaw<MdrLaw, MindlinLaw, HertzianViscousLaw>;
-
 /// Forces and torques of one wall on the spheres of `contacts`, added to `atoms.f` and
 /// `atoms.torque`; returns the sum of the forces on the spheres.
 ///
@@ -167,11 +173,25 @@ pub unsafe fn compute_wall(
     if dnum != layout.size() {
         return Err(PluginError::Abi("dnum differs from the wall's layout"));
     }
-    match (layout.rolling, contacts.history_update != 0) {
-        (true, true) => wall_with::<true, true>(wall, atoms, contacts, dt),
-        (false, true) => wall_with::<false, true>(wall, atoms, contacts, dt),
-        (true, false) => wall_with::<true, false>(wall, atoms, contacts, dt),
-        (false, false) => wall_with::<false, false>(wall, atoms, contacts, dt),
+    if layout.adhesion {
+        wall_law::<AdhesiveMdrLaw>(wall, atoms, contacts, dt, layout.rolling)
+    } else {
+        wall_law::<MdrLaw>(wall, atoms, contacts, dt, layout.rolling)
+    }
+}
+
+unsafe fn wall_law<N: PluginNormalLaw>(
+    wall: &WallTable,
+    atoms: &MdrdemAtoms,
+    contacts: &MdrdemWallContacts,
+    dt: f64,
+    rolling: bool,
+) -> Result<Vector3<f64>, PluginError> {
+    match (rolling, contacts.history_update != 0) {
+        (true, true) => wall_with::<N, true, true>(wall, atoms, contacts, dt),
+        (false, true) => wall_with::<N, false, true>(wall, atoms, contacts, dt),
+        (true, false) => wall_with::<N, true, false>(wall, atoms, contacts, dt),
+        (false, false) => wall_with::<N, false, false>(wall, atoms, contacts, dt),
     }
 }
 
@@ -187,8 +207,9 @@ unsafe fn add3(p: *mut f64, i: usize, v: &Vector3<f64>) {
     *p.add(3 * i + 2) += v.z;
 }
 
-/// The loop; `UPDATE = false` writes no state.
-unsafe fn wall_with<const ROLLING: bool, const UPDATE: bool>(
+/// The loop; `UPDATE = false` writes no state. A contact is evaluated while the sphere overlaps
+/// the wall and, for an adhesive law, while its neck holds at a separation.
+unsafe fn wall_with<N: PluginNormalLaw, const ROLLING: bool, const UPDATE: bool>(
     wall: &WallTable,
     atoms: &MdrdemAtoms,
     contacts: &MdrdemWallContacts,
@@ -196,7 +217,7 @@ unsafe fn wall_with<const ROLLING: bool, const UPDATE: bool>(
 ) -> Result<Vector3<f64>, PluginError> {
     let dnum = contacts.dnum as usize;
     let replay = !UPDATE && contacts.replay != 0 && !contacts.replay_velocity.is_null();
-    let mut cache: Option<([u64; 5], Law, EpsdRollingLaw)> = None;
+    let mut cache: Option<([u64; 5], PairLaw<N>, EpsdRollingLaw)> = None;
     let mut total = Vector3::zeros();
     for c in 0..contacts.n.max(0) as usize {
         let i = *contacts.atom.add(c) as usize;
@@ -206,7 +227,7 @@ unsafe fn wall_with<const ROLLING: bool, const UPDATE: bool>(
         let radius = *atoms.radius.add(i);
         let overlap = radius - distance;
         let touched = *row != 0.0;
-        if overlap <= 0.0 && (!UPDATE || !touched) {
+        if overlap <= 0.0 && !touched {
             continue;
         }
         let values = std::slice::from_raw_parts_mut(row.add(1), dnum);
@@ -235,7 +256,7 @@ unsafe fn wall_with<const ROLLING: bool, const UPDATE: bool>(
                 mass,
             )
             .map_err(contact)?;
-            let law = model.model.bind(&pair).map_err(contact)?;
+            let law = N::bind(model, &pair).map_err(contact)?;
             let rolling = model.rolling.bind(&pair).map_err(contact)?;
             cache = Some((key, law, rolling));
         }
@@ -245,8 +266,11 @@ unsafe fn wall_with<const ROLLING: bool, const UPDATE: bool>(
         } else {
             values
         };
-        let (mut state, mut roll_state) = load::<ROLLING>(source);
-        if overlap <= 0.0 {
+        let (mut state, mut roll_state) = load::<N, ROLLING>(source);
+        if overlap <= 0.0 && !law.normal.holds(&state.normal) {
+            if !UPDATE {
+                continue;
+            }
             // Separated, near the wall: the law sees the gap (MDR keeps d_max for a re-touch,
             // the Mindlin and rolling springs are released); no force.
             law.update(
@@ -269,7 +293,7 @@ unsafe fn wall_with<const ROLLING: bool, const UPDATE: bool>(
                     },
                 );
             }
-            store::<ROLLING>(values, &state, &roll_state);
+            store::<N, ROLLING>(values, &state, &roll_state);
             continue;
         }
         let (v, w) = if replay {
@@ -308,7 +332,7 @@ unsafe fn wall_with<const ROLLING: bool, const UPDATE: bool>(
         }
         if UPDATE {
             *row = 1.0;
-            store::<ROLLING>(values, &state, &roll_state);
+            store::<N, ROLLING>(values, &state, &roll_state);
         }
         add3(atoms.f, i, &out.force);
         add3(atoms.torque, i, &torque);

@@ -351,8 +351,8 @@ fn the_partner_sees_the_opposite_force_with_the_partner_signs() {
     let n = Vector3::new(0.36, 0.48, 0.8);
     let dist = 2.0 * r - 7e-6;
     let history = [8e-6, 3e-8, -1e-8, 2e-8, 1.2e-4];
-    let mut signs = [0.0; 10];
-    unsafe { mdrdem_partner_signs(signs.as_mut_ptr()) };
+    let mut signs = [0.0; 5];
+    assert_eq!(unsafe { mdrdem_partner_signs(5, signs.as_mut_ptr()) }, 0);
     let forward = TwoSpheres {
         x: [n.x * dist, n.y * dist, n.z * dist, 0.0, 0.0, 0.0],
         v: [0.1, -0.2, 0.05, 0.0, 0.0, 0.0],
