@@ -25,7 +25,8 @@
 #      command between runs) on the bed split unevenly at the start: each follows its unbalanced
 #      run to 1e-11 diameters; the same runs with histories dropped on migration must NOT;
 #   6. fix wall/mdrdem: the paper's Fig. 2 (e_n on a steel zplane at 0.3, 1, 3 m/s against the
-#      closed form, also continued from a restart file mid-contact), a sliding plastic wall
+#      closed form, also continued from a restart file mid-contact), region walls (a plane, the
+#      inside of a region sphere with side in, the outside of one with side out), a sliding plastic wall
 #      contact across the rank boundary and across a restart (with negative controls), bad lines;
 #   7. LAMMPS's granular examples with the plugin (examples/lammps/in.drum, in.flatwall,
 #      in.chute, shortened), 1 and 2 ranks, with and without fix balance;
@@ -176,6 +177,18 @@ e_cylinder=$("${lmp[@]}" -in "$inputs/in.wall-impact" -var plugin "$plugin" -var
 echo "1 m/s: region plane e_n $e_region (zplane $e_zplane); zcylinder e_n $e_cylinder, closed form $cylinder_reference (a plane's $e_plane)"
 check 'abs(v[0]-v[1]) <= 1e-12*v[1]' "wall-region-plane-equals-zplane" "$e_region" "$e_zplane"
 check 'abs(v[0]-v[1]) <= 5e-7*v[1] and abs(v[1]-v[2]) > 1e-3' "wall-zcylinder-impact" "$e_cylinder" "$cylinder_reference" "$e_plane"
+# Region walls seen from the side the region keeps the spheres on: a sphere inside a region
+# sphere of radius 2.4 cm (side in, concave) and one outside a region sphere of radius 1 cm
+# (side out, convex), both at 1 m/s, rebound (e_n > 0 along the way back) with the closed form
+# for the Hertz radius 1/(1/r -+ 1/R_S) (both principal directions curved alike).
+for shape in "shell -0.024" "ball 0.01"; do
+  set -- $shape
+  region_reference=$(cargo run -q --release --locked -p mdr-lammps --example impact_reference --manifest-path "$root/Cargo.toml" \
+    -- sphere "$2" 0.635e-2 1 | cut -d' ' -f2)
+  e_region_sphere=$("${lmp[@]}" -in "$inputs/in.wall-impact" -var plugin "$plugin" -var speed 1 -var wall "$1" | sed -n 's/^EN //p')
+  echo "1 m/s, region sphere $1 (R_S = $2): e_n $e_region_sphere, closed form $region_reference (a plane's $e_plane)"
+  check 'abs(v[0]-v[1]) <= 5e-7*v[1] and abs(v[1]-v[2]) > 1e-3' "wall-region-sphere-$1-impact" "$e_region_sphere" "$region_reference" "$e_plane"
+done
 
 echo "== fix wall/mdrdem: history across the rank boundary and across a restart"
 slide=(-in "$inputs/in.wall-slide" -var plugin "$plugin")

@@ -4,9 +4,11 @@
 //! with `wall` first, of a steel sphere on a steel half-space (the paper's Fig. 2 itself:
 //! `R = r`, `m = m₁`); with `cylinder R_C` first, of a steel sphere on the inside of a steel
 //! cylinder of radius `R_C` (the Hertz equivalent radius `R = √(r R″)`, `1/R″ = 1/r − 1/R_C`,
-//! docs/lammps.md).
-//! Usage: `impact_reference [wall | cylinder R_C] RADIUS SPEED...` (m, m/s); prints `speed e_n`
-//! lines.
+//! docs/lammps.md); with `sphere R_S` first, of a steel sphere on a steel sphere of radius `R_S`
+//! that does not move (`R_S > 0`: from outside, `R = 1/(1/r + 1/R_S)`; `R_S < 0`: inside a
+//! spherical shell of radius `|R_S|`, `R = 1/(1/r − 1/|R_S|)`).
+//! Usage: `impact_reference [wall | cylinder R_C | sphere R_S] RADIUS SPEED...` (m, m/s); prints
+//! `speed e_n` lines.
 //!
 //! With `adhesive [wall] W E NU DENSITY QC THETA RADIUS SPEED...` first (J/m², Pa, -, kg/m³,
 //! N/m, -, m, m/s): adhesive impacts of two equal spheres (or of a sphere on a half-space of its
@@ -69,6 +71,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     } else {
         None
     };
+    let sphere = if words.first().is_some_and(|w| w == "sphere") {
+        words.remove(0);
+        Some(words.remove(0).parse::<f64>()?)
+    } else {
+        None
+    };
     let args: Vec<f64> = words
         .iter()
         .map(|a| a.parse::<f64>())
@@ -84,6 +92,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             flat.effective_modulus(),
             flat.effective_shear_modulus(),
             (radius * around).sqrt(),
+            flat.reduced_mass(),
+        )?
+    } else if let Some(rs) = sphere {
+        // both principal directions curved alike: R' = R'' (Johnson §4.2)
+        let flat = ContactPair::sphere_on_half_space(*radius, &steel, &steel)?;
+        ContactPair::new(
+            flat.effective_modulus(),
+            flat.effective_shear_modulus(),
+            1.0 / (1.0 / radius + 1.0 / rs),
             flat.reduced_mass(),
         )?
     } else if wall {

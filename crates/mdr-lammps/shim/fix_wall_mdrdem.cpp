@@ -265,9 +265,11 @@ void FixWallMdrdem::candidates(int i, double wlo, double whi, const double *vwal
       c.branch[2] = rc.delz;
       c.vwall[0] = c.vwall[1] = c.vwall[2] = 0.0;
       if (region->dynamic_check()) region->velocity_contact(c.vwall, x, ic);
-      // LAMMPS's regions report a curved surface's diameter, negative where it is concave
-      c.radii[0] = 0.5 * rc.radius;
-      c.radii[1] = sphere ? 0.5 * rc.radius : 0.0;
+      // LAMMPS's regions report a curved surface's size, negative where it is concave: the
+      // sphere its radius (RegSphere::surface_interior/exterior), the cylinder and the cone
+      // twice the radius (RegCylinder, RegCone)
+      c.radii[0] = sphere ? rc.radius : 0.5 * rc.radius;
+      c.radii[1] = sphere ? rc.radius : 0.0;
       out.push_back(c);
     }
   }
