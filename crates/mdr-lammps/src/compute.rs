@@ -93,9 +93,19 @@ pub struct MdrdemTally {
     pub vatom: *mut f64,
 }
 
-/// The law of the last bound pair and what it was bound to (types, radii, masses, bitwise).
+/// What a pair's law is bound to: types, radii and masses (bitwise).
+type BindKey = [u64; 6];
+
+/// Whether two keys are equal, without branches or a call: a `[u64; 6]` comparison compiles to a
+/// `memcmp` call, once per contact.
+#[inline(always)]
+fn same_key(a: &BindKey, b: &BindKey) -> bool {
+    a.iter().zip(b).fold(0, |acc, (x, y)| acc | (x ^ y)) == 0
+}
+
+/// The law of the last bound pair and what it was bound to.
 struct BoundCache<N> {
-    key: [u64; 6],
+    key: BindKey,
     law: PairLaw<N>,
     rolling: EpsdRollingLaw,
 }
@@ -236,7 +246,7 @@ unsafe fn compute_with<N: PluginNormalLaw, const ROLLING: bool, const UPDATE: bo
                 mi.to_bits(),
                 mj.to_bits(),
             ];
-            if cache.as_ref().is_none_or(|c| c.key != key) {
+            if cache.as_ref().is_none_or(|c| !same_key(&c.key, &key)) {
                 let model =
                     table
                         .model(itype as usize, jtype as usize)

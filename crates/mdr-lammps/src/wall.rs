@@ -207,6 +207,12 @@ unsafe fn add3(p: *mut f64, i: usize, v: &Vector3<f64>) {
     *p.add(3 * i + 2) += v.z;
 }
 
+/// Whether two keys are equal, without a call (a `[u64; 5]` comparison compiles to `memcmp`).
+#[inline(always)]
+fn same_key(a: &[u64; 5], b: &[u64; 5]) -> bool {
+    a.iter().zip(b).fold(0, |acc, (x, y)| acc | (x ^ y)) == 0
+}
+
 /// The loop; `UPDATE = false` writes no state. A contact is evaluated while the sphere overlaps
 /// the wall and, for an adhesive law, while its neck holds at a separation.
 unsafe fn wall_with<N: PluginNormalLaw, const ROLLING: bool, const UPDATE: bool>(
@@ -244,7 +250,7 @@ unsafe fn wall_with<N: PluginNormalLaw, const ROLLING: bool, const UPDATE: bool>
             wall_radii[0].to_bits(),
             wall_radii[1].to_bits(),
         ];
-        if cache.as_ref().is_none_or(|(k, _, _)| *k != key) {
+        if cache.as_ref().is_none_or(|(k, _, _)| !same_key(k, &key)) {
             let model = wall
                 .model(itype)
                 .ok_or(PluginError::WallTypeNotSet(itype))?;
