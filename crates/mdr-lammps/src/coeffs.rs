@@ -3,6 +3,7 @@
 //! docs/theory.md §5; the work of adhesion by the geometric mean, [`mixed_work_of_adhesion`]).
 
 use crate::error::PluginError;
+use crate::keywords;
 use mdr_contact::damping::HertzianViscous;
 use mdr_contact::material::{effective_modulus, effective_shear_modulus, Material};
 use mdr_contact::model::ContactModel;
@@ -42,86 +43,24 @@ pub struct CoeffLine {
     pub gstar: Option<f64>,
 }
 
-/// Every keyword, with its unit and allowed range (for error messages and docs).
-pub const KEYWORDS: &[(&str, &str)] = &[
-    ("youngs", "> 0 (pressure), required"),
-    ("poisson", "(-1, 0.5], required"),
-    ("qc", ">= 0 (force/length), required"),
-    ("theta", "[0, 1] (ratio Theta/E*), required"),
-    ("friction", ">= 0, default 0"),
-    ("damping", ">= 0 (1/(time length^1/2)), default 0"),
-    ("tangential_damping", ">= 0 (ratio), default 0"),
-    ("rolling", ">= 0 (EPSD coefficient), default 0"),
-    (
-        "adhesion",
-        ">= 0 (work of adhesion, energy/area), default 0",
-    ),
-    ("estar", "> 0 (pressure), optional override of E*"),
-    ("gstar", "> 0 (pressure), optional override of G*"),
-];
-
-fn range_of(keyword: &str) -> &'static str {
-    KEYWORDS
-        .iter()
-        .find(|(k, _)| *k == keyword)
-        .map(|(_, r)| *r)
-        .unwrap_or("")
-}
-
-fn out_of_range(keyword: &str, value: f64) -> PluginError {
-    PluginError::OutOfRange {
-        keyword: keyword.to_string(),
-        value,
-        range: range_of(keyword),
-    }
-}
-
 impl CoeffLine {
-    /// Parse the keyword-value words after `pair_coeff I J`.
+    /// Parse the keyword-value words after `pair_coeff I J` ([`crate::keywords::KEYWORDS`]).
     pub fn parse<S: AsRef<str>>(words: &[S]) -> Result<Self, PluginError> {
-        if !words.len().is_multiple_of(2) {
-            return Err(PluginError::MissingValue(
-                words
-                    .last()
-                    .map(|w| w.as_ref().to_string())
-                    .unwrap_or_default(),
-            ));
-        }
-        let mut values: Vec<(&'static str, f64)> = Vec::new();
-        for pair in words.chunks(2) {
-            let keyword = pair[0].as_ref();
-            let known = KEYWORDS
-                .iter()
-                .find(|(k, _)| *k == keyword)
-                .map(|(k, _)| *k)
-                .ok_or_else(|| PluginError::UnknownKeyword(keyword.to_string()))?;
-            if values.iter().any(|(k, _)| *k == known) {
-                return Err(PluginError::Duplicate(known.to_string()));
-            }
-            let text = pair[1].as_ref();
-            let value: f64 = text.parse().map_err(|_| PluginError::NotANumber {
-                keyword: known.to_string(),
-                text: text.to_string(),
-            })?;
-            if !value.is_finite() {
-                return Err(out_of_range(known, value));
-            }
-            values.push((known, value));
-        }
-        let get = |k: &str| values.iter().find(|(n, _)| *n == k).map(|(_, v)| *v);
-        let required = |k: &'static str| get(k).ok_or(PluginError::Missing(k));
+        let values = keywords::parse(words)?;
+        let get = |k: &'static str| keywords::value(&values, k);
+        let required = |k: &'static str| get(k).map(|v| v.unwrap_or_default());
         let line = CoeffLine {
             youngs: required("youngs")?,
             poisson: required("poisson")?,
             qc: required("qc")?,
             theta: required("theta")?,
-            friction: get("friction").unwrap_or(0.0),
-            damping: get("damping").unwrap_or(0.0),
-            tangential_damping: get("tangential_damping").unwrap_or(0.0),
-            rolling: get("rolling").unwrap_or(0.0),
-            adhesion: get("adhesion").unwrap_or(0.0),
-            estar: get("estar"),
-            gstar: get("gstar"),
+            friction: required("friction")?,
+            damping: required("damping")?,
+            tangential_damping: required("tangential_damping")?,
+            rolling: required("rolling")?,
+            adhesion: required("adhesion")?,
+            estar: get("estar")?,
+            gstar: get("gstar")?,
         };
         line.check()?;
         Ok(line)
@@ -130,35 +69,22 @@ impl CoeffLine {
     /// Range checks, each naming its keyword; then the mdr-contact constructors (which check
     /// the same ranges again) so that nothing reaches the law that the law would refuse.
     fn check(&self) -> Result<(), PluginError> {
-        let checks: [(&str, f64, bool); 9] = [
-            ("youngs", self.youngs, self.youngs > 0.0),
-            (
-                "poisson",
-                self.poisson,
-                self.poisson > -1.0 && self.poisson <= 0.5,
-            ),
-            ("qc", self.qc, self.qc >= 0.0),
-            ("theta", self.theta, (0.0..=1.0).contains(&self.theta)),
-            ("friction", self.friction, self.friction >= 0.0),
-            ("damping", self.damping, self.damping >= 0.0),
-            (
-                "tangential_damping",
-                self.tangential_damping,
-                self.tangential_damping >= 0.0,
-            ),
-            ("rolling", self.rolling, self.rolling >= 0.0),
-            ("adhesion", self.adhesion, self.adhesion >= 0.0),
+        let given = [
+            ("youngs", Some(self.youngs)),
+            ("poisson", Some(self.poisson)),
+            ("qc", Some(self.qc)),
+            ("theta", Some(self.theta)),
+            ("friction", Some(self.friction)),
+            ("damping", Some(self.damping)),
+            ("tangential_damping", Some(self.tangential_damping)),
+            ("rolling", Some(self.rolling)),
+            ("adhesion", Some(self.adhesion)),
+            ("estar", self.estar),
+            ("gstar", self.gstar),
         ];
-        for (keyword, value, ok) in checks {
-            if !ok {
-                return Err(out_of_range(keyword, value));
-            }
-        }
-        for (keyword, value) in [("estar", self.estar), ("gstar", self.gstar)] {
+        for (keyword, value) in given {
             if let Some(v) = value {
-                if v <= 0.0 {
-                    return Err(out_of_range(keyword, v));
-                }
+                keywords::checked(keyword, v)?;
             }
         }
         self.material()?;

@@ -5,9 +5,9 @@ use mdr_contact::ContactError;
 /// Why a `pair_coeff` line, a type pair or a force computation was refused.
 #[derive(Debug, thiserror::Error)]
 pub enum PluginError {
-    /// A keyword `pair_style mdrdem` does not know.
-    #[error("unknown keyword `{0}` (known: youngs poisson qc theta friction damping tangential_damping rolling adhesion estar gstar)")]
-    UnknownKeyword(String),
+    /// A keyword `pair_style mdrdem` does not know, and the known ones (space-separated).
+    #[error("unknown keyword `{0}` (known: {1})")]
+    UnknownKeyword(String, String),
     /// A keyword without its value.
     #[error("keyword `{0}` needs a value")]
     MissingValue(String),

@@ -14,6 +14,7 @@ pub mod compute;
 pub mod error;
 pub mod ffi;
 pub mod history;
+pub mod keywords;
 pub mod wall;
 
 pub use coeffs::{CoeffLine, CoeffTable, PairModel};
