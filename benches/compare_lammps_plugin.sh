@@ -9,7 +9,10 @@
 # nve/sphere, gravity and the floor, so plugin against plugin-wall compares the two floors.
 # Usage: benches/compare_lammps_plugin.sh [nbench] [drum]  (timed steps after 2,000 warm-up steps;
 # default 10000; drum: yes (default) or no). Prints one table of particle-steps per second
-# (LAMMPS's Matom-step/s) and the drum's loop times.
+# (LAMMPS's Matom-step/s) and the drum's loop times, then the ratios the targets are stated in:
+# the plugin's pair per core against gran/hertz/history, the wall/mdrdem floor's fix time
+# against wall/gran hertz/history's, 2 ranks against 1, and the drum with fix balance against
+# without.
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 nbench=${1:-10000}
@@ -42,6 +45,7 @@ for model in hertzhist mdr plugin pluginwall; do
     "$venv/bin/mpirun" -np $np "$venv/bin/lmp" -in in.plugin -var model $model -var nbench "$nbench" \
       -log log.$model.$np -screen none
     r=$(rate log.$model.$np)
+    declare "rate_${model}_$np=$r" "modify_${model}_$np=$(modify_time log.$model.$np)"
     printf '%-28s %6d %14s %14s %12s\n' "lammps-$model" $np "$r" "$(python3 -c "print(f'{$r/$np:.3f}')")" \
       "$(modify_time log.$model.$np)"
   done
@@ -57,7 +61,16 @@ if [ "$drum" = yes ]; then
   for balance in no yes; do
     "$venv/bin/mpirun" -np 2 "$venv/bin/lmp" -in "$repo/examples/lammps/in.drum" -var plugin "$plugin" \
       -var balance $balance -log log.drum.$balance -screen none
+    loop=$(awk '/^Loop time/{s+=$4} END{print s}' log.drum.$balance)
+    declare "drum_$balance=$loop"
     printf 'drum (examples/lammps/in.drum), 2 ranks, fix balance %-3s: loop time %s s (fill + turn)\n' "$balance" \
-      "$(awk '/^Loop time/{s+=$4} END{print s}' log.drum.$balance)"
+      "$loop"
   done
+fi
+ratio() { python3 -c "import sys; a, b = map(float, sys.argv[1:]); print(f'{a / b:.3f}')" "$1" "$2" 2>/dev/null || echo "?"; }
+echo "plugin pair / gran/hertz/history, per core, 1 rank: $(ratio "$rate_plugin_1" "$rate_hertzhist_1") (target >= 1.0)"
+echo "wall/gran hertz/history floor's fix time / wall/mdrdem floor's (Modify s, 1 rank): $(ratio "$modify_plugin_1" "$modify_pluginwall_1") (target >= 1.0)"
+echo "plugin 2 ranks / 1 rank: $(ratio "$rate_plugin_2" "$rate_plugin_1") (target >= 1.8); gran/hertz/history: $(ratio "$rate_hertzhist_2" "$rate_hertzhist_1")"
+if [ "$drum" = yes ]; then
+  echo "drum on 2 ranks, loop time without / with fix balance: $(ratio "$drum_no" "$drum_yes") (target > 1)"
 fi

@@ -19,6 +19,7 @@
 
 #include "mdrdem.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -323,8 +324,23 @@ void FixWallMdrdem::post_force(int /*vflag*/)
   c_radius.clear();
   c_row.clear();
   if (setup) c_scratch.assign((size_t) nlocal * tmax * (1 + 2 * dnum), 0.0);
+  // A sphere without wall histories whose centre is beyond reach of both planes has nothing to
+  // do (most of a bed on a floor): skip it before the general candidate search.
+  double **x = atom->x;
+  double *radius = atom->radius;
+  int *type = atom->type;
+  const double skin = neighbor->skin;
+  const bool adhesive = std::any_of(neck_coefficient.begin(), neck_coefficient.end(),
+                                    [](double c) { return c > 0.0; });
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
+    if (wallstyle <= ZPLANE && ncontact[i] == 0) {
+      const double r = radius[i];
+      const double reach =
+          r + skin + (adhesive ? neck_coefficient[type[i]] * std::cbrt(r) : 0.0);
+      const double xa = x[i][wallstyle];
+      if (xa - wlo >= reach && whi - xa >= reach) continue;
+    }
     candidates(i, wlo, whi, vwall, found);
     if (!setup) {
       if (found.empty()) {
