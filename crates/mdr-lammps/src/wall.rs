@@ -16,7 +16,7 @@
 //! The C++ fix finds each sphere's point on the wall (the geometry of LAMMPS's `fix wall/gran`
 //! and of its regions) and passes one batch per step: the branch from that point to the
 //! sphere's centre, the wall's velocity there and its curvature. Every force comes from the same
-//! kernel as the pair's: [`ContactLaw::update`] and the EPSD rolling law.
+//! kernel as the pair's: [`ContactLaw::update`](mdr_contact::model::ContactLaw::update) and the EPSD rolling law.
 
 use crate::coeffs::{CoeffLine, CoeffTable, PairModel};
 use crate::compute::MdrdemAtoms;
