@@ -299,6 +299,17 @@ for target in pair wall; do
   echo "$target, 0.3 m/s: e_n uninterrupted $e_split, restarted while held $e_cont, restarted without histories $e_forgot"
   check 'v[0] == v[1]' "adhesion-$target-restart-while-held" "$e_split" "$e_cont"
   check 'abs(v[0]-v[1]) > 1e-3' "adhesion-$target-restart-check-detects-lost-history" "$e_split" "$e_forgot"
+  # A restart file written without adhesion (5 values per contact, at step 10,000 of the
+  # 0.3 m/s impact, still loading) continued with adhesion: the histories gain the attached
+  # radius at zero, and since Heß's springs load as the plain MDR law the impact ends as the one
+  # adhesive throughout; continued without adhesion it rebounds elastically.
+  loading=(-var speed 0.3 -var target "$target" -var split 10000)
+  e_adhesive=$("${lmp[@]}" "${adhesive[@]}" "${loading[@]}" | sed -n 's/^EN //p')
+  "${lmp[@]}" "${adhesive[@]}" "${loading[@]}" -var adhesion 0 -var restart yes -var restart_file "dry-$target.restart" > /dev/null
+  e_gained=$("${lmp[@]}" "${adhesive_restarted[@]}" "${loading[@]}" -var restart_file "dry-$target.restart" | sed -n 's/^EN //p')
+  e_dry=$("${lmp[@]}" "${adhesive_restarted[@]}" "${loading[@]}" -var adhesion 0 -var restart_file "dry-$target.restart" | sed -n 's/^EN //p')
+  echo "$target, 0.3 m/s: e_n adhesive throughout $e_adhesive, from a restart file without adhesion $e_gained (continued without: $e_dry)"
+  check 'abs(v[0]-v[1]) <= 1e-9*v[0] and v[2] > 0.99' "adhesion-$target-restart-file-without-adhesion" "$e_adhesive" "$e_gained" "$e_dry"
 done
 
 # Cross-code: an elastic adhesive pair under displacement control (in.jkr), pair_style mdrdem

@@ -38,13 +38,13 @@ FixMdrdemHistory::FixMdrdemHistory(LAMMPS *lmp, int narg, char **arg) :
     partners_current(true),
     npartner(nullptr), poffset(nullptr), maxpartner(0), nlocal_neigh(0), nall_neigh(0),
     have_neigh(false), commflag(NPARTNER), saved_step(-1), record_step(-1), step_values_step(-1),
-    record(nullptr)
+    record(nullptr), file_width(0)
 {
   if (narg != 4) error->all(FLERR, "Illegal fix MDRDEM/HISTORY command: ID group MDRDEM/HISTORY dnum");
   dnum = utils::inumeric(FLERR, arg[3], false, lmp);
   if (mdrdem_partner_signs(dnum, signs) != 0)
     error->all(FLERR, "fix MDRDEM/HISTORY: dnum must be 5, 6, 10 or 11 (got {})", dnum);
-  width = dnum;
+  width = file_width = dnum;
 
   restart_peratom = 1;
   restart_global = 1;    // so that write_restart() syncs the partner lists first
@@ -402,7 +402,13 @@ void FixMdrdemHistory::restart(char *buf)
   double state[2];
   std::memcpy(state, buf, sizeof(state));
   saved_step = record_step = (bigint) state[0];
-  width = static_cast<int>(state[1]);
+  width = file_width = static_cast<int>(state[1]);
+  // A file written without adhesion read by a run with it: its histories lack the attached
+  // radius (the last value of each dnum block, crates/mdr-lammps/src/history.rs), which starts
+  // at zero (springs attach when they touch).
+  const bool adds_adhesion = (dnum == 6 || dnum == 11) &&
+      (file_width == dnum - 1 || file_width == 2 * (dnum - 1));
+  if (adds_adhesion) width = file_width == dnum - 1 ? dnum : 2 * dnum;
   if (width != dnum && width != 2 * dnum)
     error->all(FLERR, "fix {}: the restart file holds {} history values per contact, not {} or {}",
                id, width, dnum, 2 * dnum);
@@ -485,14 +491,20 @@ void FixMdrdemHistory::unpack_restart(int nlocal, int nth)
   for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
   const int count = static_cast<int>(extra[nlocal][m++]);
   npartner[nlocal] = static_cast<int>(extra[nlocal][m++]);
-  if (count != size_restart(nlocal))
+  if (count != (file_width + 1) * npartner[nlocal] + 2 + RECORD)
     error->one(FLERR, "fix {}: restart file not written by this version of pair_style mdrdem", id);
   maxpartner = std::max(maxpartner, npartner[nlocal]);
   int64_t start = reserve(nlocal, npartner[nlocal]);
+  const int blocks = width / dnum;                 // 1, or 2 with the histories before a step
+  const int file_dnum = file_width / blocks;       // dnum, or dnum - 1 without the adhesive slot
   for (int n = 0; n < npartner[nlocal]; n++) {
     partner_tag[start + n] = (tagint) ubuf(extra[nlocal][m++]).i;
-    std::memcpy(&partner_values[(start + n) * width], &extra[nlocal][m], width * sizeof(double));
-    m += width;
+    double *to = &partner_values[(start + n) * width];
+    for (int b = 0; b < blocks; b++) {
+      std::memcpy(&to[b * dnum], &extra[nlocal][m], file_dnum * sizeof(double));
+      for (int c = file_dnum; c < dnum; c++) to[b * dnum + c] = 0.0;
+      m += file_dnum;
+    }
   }
   std::memcpy(record[nlocal], &extra[nlocal][m], RECORD * sizeof(double));
 }

@@ -95,6 +95,8 @@ class FixMdrdemHistory : public Fix {
   bigint saved_step, record_step, step_values_step;
   std::vector<double> step_values;
   double **record;
+  int file_width;    // values per partner in the restart file being read (width, or less by
+                     // the adhesive slot per block when it was written without adhesion)
   std::vector<double> setup_v, setup_omega;    // velocities of a replayed setup call, 3 × nall
 };
 

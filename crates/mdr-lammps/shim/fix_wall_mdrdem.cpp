@@ -47,7 +47,7 @@ static int dimension_of(const char *word)
 FixWallMdrdem::FixWallMdrdem(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), wall(nullptr), region(nullptr), wiggle(0), wshear(0), axis(0),
     amplitude(0.0), period(0.0), wiggle_omega(0.0), vshear(0.0), ncontact(nullptr),
-    slots(nullptr), before_step(-1), drop_migrated(false), history(nullptr), total_flag(0)
+    slots(nullptr), before_step(-1), file_dnum(0), drop_migrated(false), history(nullptr), total_flag(0)
 {
   // the law's keywords up to the wall style, checked by the Rust library (errors name them)
   int iarg = 3;
@@ -59,6 +59,7 @@ FixWallMdrdem::FixWallMdrdem(LAMMPS *lmp, int narg, char **arg) :
   wall = mdrdem_wall_new(iarg - 3, arg + 3, err, sizeof(err));
   if (wall == nullptr) error->all(FLERR, "fix wall/mdrdem: {}", err);
   dnum = mdrdem_wall_history_size(wall);
+  file_dnum = dnum;
   width = 2 + 2 * dnum;
 
   const std::string style = arg[iarg];
@@ -452,9 +453,13 @@ void FixWallMdrdem::restart(char *buf)
   std::memcpy(state, buf, sizeof(state));
   time_origin = (bigint) state[0];
   before_step = (bigint) state[1];
-  if ((int) state[2] != dnum)
+  file_dnum = (int) state[2];
+  // A file written without adhesion read by a fix line with it: the attached radius (the last
+  // value of each history) starts at zero.
+  const bool adds_adhesion = (dnum == 6 || dnum == 11) && file_dnum == dnum - 1;
+  if (file_dnum != dnum && !adds_adhesion)
     error->all(FLERR, "fix {}: the restart file holds {} history values per wall contact, the "
-               "fix line needs {} (rolling or adhesion switched on or off)", id, (int) state[2], dnum);
+               "fix line needs {} (rolling or adhesion switched on or off)", id, file_dnum, dnum);
   if (region) {
     int n = (int) sizeof(state);
     if (!region->restart(buf, n)) {
@@ -513,10 +518,22 @@ void FixWallMdrdem::unpack_restart(int nlocal, int nth)
   for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
   const int count = static_cast<int>(extra[nlocal][m]);
   const int n = static_cast<int>(extra[nlocal][m + 1]);
-  if (n < 0 || n > tmax || count != 2 + n * width)
+  const int file_slot = 2 + 2 * file_dnum;
+  if (n < 0 || n > tmax || count != 2 + n * file_slot)
     error->one(FLERR, "fix {}: the restart file's wall histories do not fit this fix line", id);
   ncontact[nlocal] = n;
-  std::memcpy(slots[nlocal], &extra[nlocal][m + 2], (size_t) n * width * sizeof(double));
+  // slot: wall id, touch flag, the history, the history before the saved step (each padded
+  // with the zero attached radius when the file has none)
+  for (int k = 0; k < n; k++) {
+    const double *from = &extra[nlocal][m + 2 + k * file_slot];
+    double *to = &slots[nlocal][k * width];
+    to[0] = from[0];
+    to[1] = from[1];
+    for (int b = 0; b < 2; b++) {
+      for (int c = 0; c < dnum; c++)
+        to[2 + b * dnum + c] = c < file_dnum ? from[2 + b * file_dnum + c] : 0.0;
+    }
+  }
 }
 
 int FixWallMdrdem::size_restart(int nlocal)

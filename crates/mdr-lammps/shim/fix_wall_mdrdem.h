@@ -64,6 +64,7 @@ class FixWallMdrdem : public Fix {
   int *ncontact;    // per atom: slots in use
   double **slots;   // per atom: tmax slots of `width`
   bigint before_step;    // the step whose histories before it the slots hold (-1: none)
+  int file_dnum;         // history values per contact in the restart file being read
   bool drop_migrated;    // test hook: a sphere moving to another rank arrives without histories
 
   class FixMdrdemHistory *history;
