@@ -202,3 +202,101 @@ fn a_held_neck_pulls_across_a_separation() {
     );
     assert!(let_go);
 }
+
+/// A sphere pressed onto an adhesive `fix wall/mdrdem` plane and lifted off step by step: each
+/// step's force from the wall kernel equals mdr-contact's adhesive law for the sphere on the
+/// wall's half-space (`E*` of the two materials by eq. 3, `R = r`), tensile above the plane
+/// while the neck holds, none after it lets go; the wall's reach coefficient is the neck's.
+#[test]
+fn a_wall_holds_a_neck_above_the_plane() {
+    use mdr_contact::material::{effective_modulus, effective_shear_modulus, Material};
+    use mdr_lammps::wall::{compute_wall, MdrdemWallContacts};
+    use mdr_lammps::WallTable;
+    let mut table = CoeffTable::new(1);
+    table.set((1, 1), (1, 1), line("").unwrap()).unwrap();
+    let mut wall = WallTable::new(line("adhesion 0.1").unwrap());
+    wall.init(&table).unwrap();
+    let layout = wall.layout();
+    assert_eq!(layout.size(), 6);
+    let (radius, mass) = (1e-5, 4.0e-12);
+    let soft = Material::new(1.0e9, 0.3, 1000.0).unwrap();
+    let pair = ContactPair::new(
+        effective_modulus(&soft, &soft),
+        effective_shear_modulus(&soft, &soft),
+        radius,
+        mass,
+    )
+    .unwrap();
+    let law = AdhesiveMdr::new(MdrElastoPlastic::new(20.0, 0.1).unwrap(), 0.1)
+        .unwrap()
+        .bind(&pair)
+        .unwrap();
+    let reach = 0.75
+        * (std::f64::consts::PI.powi(2) * 0.01 * radius / pair.effective_modulus().powi(2)).cbrt();
+    assert!((wall.neck_coefficient(1) * radius.cbrt() - reach).abs() <= 1e-12 * reach);
+    let mut row = vec![0.0; 1 + 2 * layout.size()];
+    let mut reference = AdhesiveMdrState::default();
+    let (mut tensile_apart, mut let_go) = (0, false);
+    let overlaps = (0..=100)
+        .map(|k| 20e-9 * (k as f64 / 100.0))
+        .chain((0..=400).map(|k| 20e-9 - 1e-10 * k as f64));
+    for overlap in overlaps {
+        let x = [0.0, 0.0, radius - overlap];
+        let zeros = [0.0; 3];
+        let mut f = [0.0; 3];
+        let mut torque = [0.0; 3];
+        let itype = 1i32;
+        let atoms = MdrdemAtoms {
+            x: x.as_ptr(),
+            v: zeros.as_ptr(),
+            omega: zeros.as_ptr(),
+            f: f.as_mut_ptr(),
+            torque: torque.as_mut_ptr(),
+            radius: &radius,
+            rmass: &mass,
+            atom_type: &itype,
+            nlocal: 1,
+            nall: 1,
+        };
+        let atom = [0i32];
+        let branch = [0.0, 0.0, x[2]];
+        let (vwall, radii) = ([0.0; 3], [0.0; 2]);
+        let rows = [row.as_mut_ptr()];
+        let contacts = MdrdemWallContacts {
+            n: 1,
+            atom: atom.as_ptr(),
+            branch: branch.as_ptr(),
+            wall_velocity: vwall.as_ptr(),
+            wall_radius: radii.as_ptr(),
+            row: rows.as_ptr(),
+            dnum: layout.size() as i32,
+            history_update: 1,
+            replay: 0,
+            replay_velocity: std::ptr::null(),
+        };
+        unsafe { compute_wall(&wall, &atoms, &contacts, 1e-9) }.unwrap();
+        let seen = radius - x[2];
+        let expected = if seen > 0.0 || row[0] != 0.0 {
+            law.update(&mut reference, seen).force
+        } else {
+            0.0
+        };
+        assert!(
+            (f[2] - expected).abs() <= 1e-12 * expected.abs().max(1e-9),
+            "overlap {seen:e}: {} vs {expected:e}",
+            f[2]
+        );
+        if seen < 0.0 && f[2] < 0.0 {
+            tensile_apart += 1;
+        }
+        if seen < 0.0 && row[0] != 0.0 && reference.contact_radius == 0.0 {
+            let_go = true;
+            assert_eq!(f[2], 0.0);
+        }
+    }
+    assert!(
+        tensile_apart > 10,
+        "{tensile_apart} tensile steps above the plane"
+    );
+    assert!(let_go);
+}
