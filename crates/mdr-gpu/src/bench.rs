@@ -3,14 +3,14 @@
 
 use crate::bed::{GpuBed, GpuOptions, GpuState};
 use crate::device::{GpuContext, GpuError};
-use crate::law::BENCH_THETA_RATIO;
+use crate::law::{GpuLaws, GpuNormalLaw, BENCH_THETA_RATIO};
 use mdr_contact::damping::HertzianViscous;
 use mdr_contact::model::Books;
-use mdr_contact::normal::{Hertz, MdrElastoPlastic, NormalModel};
-use mdr_contact::rolling::NoRolling;
+use mdr_contact::normal::{AdhesiveMdr, Hertz, MdrElastoPlastic, NormalLaw, NormalModel, Thornton};
+use mdr_contact::rolling::{EpsdRolling, EpsdRollingState, NoRolling, RollingModel};
 use mdr_contact::tangential::Mindlin;
 use mdr_rapier::neighbour_list::bed::{
-    peak_rss_mb, reference_system, Bed, BedError, BenchFigures, BenchLaw, BenchSettings, BenchValue,
+    peak_rss_mb, reference_system, Bed, BedError, BenchFigures, BenchSettings, BenchValue,
 };
 use mdr_rapier::neighbour_list::{Boundary, NeighbourListStepper};
 use nalgebra::Vector3;
@@ -83,7 +83,7 @@ pub fn bench_bed_gpu(
         .chain(&state.linvel)
         .chain(&state.angvel);
     let figures = BenchFigures {
-        law: settings.law.name(),
+        law: system.laws().normal.name(),
         particles: n,
         steps: settings.steps,
         threads: 0,
@@ -146,6 +146,10 @@ pub struct CpuPair {
     pub displacement: Vector3<f64>,
     /// Mindlin's contact radius.
     pub contact_radius: f64,
+    /// The normal law's residual overlap (`NormalLaw::residual_overlap`).
+    pub residual_overlap: f64,
+    /// The rolling resistance spring's torque (zero without rolling resistance).
+    pub rolling_torque: Vector3<f64>,
 }
 
 /// The CPU path's state after a run: particles and the touching pairs' histories.
@@ -172,7 +176,20 @@ pub fn cpu_reference_run(
     settings: &BenchSettings,
     steps: usize,
 ) -> Result<CpuState, GpuError> {
+    cpu_reference_run_with(bed, settings, &GpuLaws::from(settings.law), steps)
+}
+
+/// [`cpu_reference_run`] with the contact model `laws` (as [`crate::GpuOptions::laws`] gives
+/// the GPU path): the reference system with that normal law, Mindlin, damping and, where
+/// `laws.rolling` is set, `EpsdRolling`.
+pub fn cpu_reference_run_with(
+    bed: &Bed,
+    settings: &BenchSettings,
+    laws: &GpuLaws,
+    steps: usize,
+) -> Result<CpuState, GpuError> {
     settings.validate()?;
+    laws.validate()?;
     let tiled;
     let bed = if settings.tile > 1 {
         tiled = bed.tiled(settings.tile, settings.tile)?;
@@ -184,11 +201,34 @@ pub fn cpu_reference_run(
         .num_threads(settings.threads)
         .build()
         .map_err(|e| BedError::ThreadPool(e.to_string()))?;
-    pool.install(|| match settings.law {
-        BenchLaw::Hertz => cpu_run(Hertz, bed, settings, steps),
-        BenchLaw::Mdr { qc } => cpu_run(
-            MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)
-                .map_err(mdr_rapier::error::CouplingError::from)?,
+    let contact = |e: mdr_contact::ContactError| mdr_rapier::error::CouplingError::from(e);
+    let rolling = laws.rolling;
+    pool.install(|| match laws.normal {
+        GpuNormalLaw::Hertz => cpu_run_rolling(Hertz, rolling, bed, settings, steps),
+        GpuNormalLaw::Mdr { qc } => cpu_run_rolling(
+            MdrElastoPlastic::new(qc, BENCH_THETA_RATIO).map_err(contact)?,
+            rolling,
+            bed,
+            settings,
+            steps,
+        ),
+        GpuNormalLaw::Thornton { yield_pressure } => cpu_run_rolling(
+            Thornton::new(yield_pressure).map_err(contact)?,
+            rolling,
+            bed,
+            settings,
+            steps,
+        ),
+        GpuNormalLaw::AdhesiveMdr {
+            qc,
+            work_of_adhesion,
+        } => cpu_run_rolling(
+            AdhesiveMdr::new(
+                MdrElastoPlastic::new(qc, BENCH_THETA_RATIO).map_err(contact)?,
+                work_of_adhesion,
+            )
+            .map_err(contact)?,
+            rolling,
             bed,
             settings,
             steps,
@@ -196,8 +236,26 @@ pub fn cpu_reference_run(
     })
 }
 
-fn cpu_run<N>(
+/// The torque of a rolling law's state (zero without one).
+trait RollingTorque {
+    fn torque(&self) -> Vector3<f64>;
+}
+
+impl RollingTorque for () {
+    fn torque(&self) -> Vector3<f64> {
+        Vector3::zeros()
+    }
+}
+
+impl RollingTorque for EpsdRollingState {
+    fn torque(&self) -> Vector3<f64> {
+        self.torque
+    }
+}
+
+fn cpu_run_rolling<N>(
     normal: N,
+    rolling: Option<f64>,
     bed: &Bed,
     settings: &BenchSettings,
     steps: usize,
@@ -206,9 +264,36 @@ where
     N: NormalModel,
     N::Law: Clone,
 {
+    match rolling {
+        None => cpu_run(normal, NoRolling, bed, settings, steps),
+        Some(mu) => cpu_run(
+            normal,
+            EpsdRolling::new(mu).map_err(mdr_rapier::error::CouplingError::from)?,
+            bed,
+            settings,
+            steps,
+        ),
+    }
+}
+
+fn cpu_run<N, R>(
+    normal: N,
+    rolling: R,
+    bed: &Bed,
+    settings: &BenchSettings,
+    steps: usize,
+) -> Result<CpuState, GpuError>
+where
+    N: NormalModel,
+    N::Law: Clone,
+    R: RollingModel,
+    R::Law: Clone,
+    <R::Law as mdr_contact::rolling::RollingLaw>::State: RollingTorque,
+{
     let (stepper, mut world) = reference_system(normal, bed)?;
-    let mut stepper: NeighbourListStepper<N, Mindlin, HertzianViscous, NoRolling, Books> = stepper
+    let mut stepper: NeighbourListStepper<N, Mindlin, HertzianViscous, R, Books> = stepper
         .skin(settings.skin)?
+        .with_rolling(rolling)
         .track_orientation(settings.orientation);
     mdr_rapier::neighbour_list::with_workers_awake(|| -> Result<(), GpuError> {
         for _ in 0..steps {
@@ -227,9 +312,11 @@ where
                 i: list.i[q],
                 j: list.j[q],
                 image: list.image[q],
-                max_overlap: mdr_contact::normal::NormalLaw::max_overlap(&law.normal, &h.normal),
+                max_overlap: law.normal.max_overlap(&h.normal),
                 displacement: h.tangential.displacement,
                 contact_radius: h.tangential.contact_radius,
+                residual_overlap: law.normal.residual_overlap(&h.normal),
+                rolling_torque: list.history[q].rolling.torque(),
             });
         }
     }
@@ -259,6 +346,12 @@ pub struct Differences {
     /// The largest difference of a touching pair's tangential displacement, relative to the
     /// largest displacement of any pair.
     pub displacement_relative: f64,
+    /// The largest difference of a touching pair's contact radius, relative to the largest
+    /// contact radius of any pair.
+    pub contact_radius_relative: f64,
+    /// The largest difference of a touching pair's rolling torque, relative to the largest
+    /// rolling torque of any pair (zero without rolling resistance).
+    pub rolling_torque_relative: f64,
     /// Touching pairs found in one run and not the other.
     pub unmatched_pairs: usize,
     /// Touching pairs compared.
@@ -297,6 +390,16 @@ pub fn differences(gpu: &GpuState, cpu: &CpuState) -> Differences {
         .map(|p| p.displacement.norm())
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
+    let scale = |f: &dyn Fn(&CpuPair) -> f64| {
+        cpu.pairs
+            .iter()
+            .map(f)
+            .fold(0.0, f64::max)
+            .max(f64::MIN_POSITIVE)
+    };
+    let radius_scale = scale(&|p| p.contact_radius);
+    let torque_scale = scale(&|p| p.rolling_torque.norm());
+    let (mut radius_abs, mut torque_abs) = (0.0f64, 0.0f64);
     let mut g = 0;
     for c in &cpu.pairs {
         while g < active.len() && (active[g].i, active[g].j, active[g].image) < (c.i, c.j, c.image)
@@ -308,6 +411,8 @@ pub fn differences(gpu: &GpuState, cpu: &CpuState) -> Differences {
             let a = active[g];
             overlap_rel = overlap_rel.max((a.max_overlap - c.max_overlap).abs() / c.max_overlap);
             disp_abs = disp_abs.max((a.displacement - c.displacement).norm());
+            radius_abs = radius_abs.max((a.contact_radius - c.contact_radius).abs());
+            torque_abs = torque_abs.max((a.rolling_torque - c.rolling_torque).norm());
             g += 1;
         } else {
             unmatched += 1;
@@ -320,6 +425,8 @@ pub fn differences(gpu: &GpuState, cpu: &CpuState) -> Differences {
         angular_velocity: largest(&gpu.angvel, &cpu.angvel),
         max_overlap_relative: overlap_rel,
         displacement_relative: disp_abs / disp_scale,
+        contact_radius_relative: radius_abs / radius_scale,
+        rolling_torque_relative: torque_abs / torque_scale,
         unmatched_pairs: unmatched,
         pairs: cpu.pairs.len(),
     }

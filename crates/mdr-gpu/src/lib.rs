@@ -25,7 +25,8 @@ mod law;
 
 pub use bed::{GpuBed, GpuOptions, GpuPair, GpuState};
 pub use bench::{
-    bench_bed_gpu, cpu_reference_run, differences, CpuPair, CpuState, Differences, GpuBenchFigures,
+    bench_bed_gpu, cpu_reference_run, cpu_reference_run_with, differences, CpuPair, CpuState,
+    Differences, GpuBenchFigures,
 };
 pub use device::{GpuContext, GpuError};
-pub use law::BENCH_THETA_RATIO;
+pub use law::{GpuLaws, GpuNormalLaw, BENCH_THETA_RATIO};
