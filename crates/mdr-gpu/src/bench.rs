@@ -163,6 +163,11 @@ pub struct CpuState {
     pub angvel: Vec<Vector3<f64>>,
     /// Touching pairs, sorted by `(i, j, image)`.
     pub pairs: Vec<CpuPair>,
+    /// Per particle: the floor contact's `(max overlap, ξ, contact radius)` (as
+    /// [`crate::GpuState::floor`]), `None` when apart.
+    pub floor: Vec<Option<(f64, Vector3<f64>, f64)>>,
+    /// Per particle: the floor contact's rolling torque (zero when apart).
+    pub floor_rolling_torque: Vec<Vector3<f64>>,
     /// Neighbour-list builds.
     pub rebuilds: u64,
     /// The box.
@@ -320,8 +325,27 @@ where
             });
         }
     }
+    let n = stepper.particles().len();
+    let mut floor = vec![None; n];
+    let mut floor_rolling_torque = vec![Vector3::zeros(); n];
+    let surface = stepper.surface_pairs();
+    for q in 0..surface.len() {
+        if surface.active[q] {
+            let i = surface.particle[q] as usize;
+            let (law, _) = stepper.surface_pair_laws(i, surface.surface[q] as usize);
+            let h = &surface.history[q];
+            floor[i] = Some((
+                law.normal.max_overlap(&h.contact.normal),
+                h.contact.tangential.displacement,
+                h.contact.tangential.contact_radius,
+            ));
+            floor_rolling_torque[i] = h.rolling.torque();
+        }
+    }
     let p = stepper.particles();
     Ok(CpuState {
+        floor,
+        floor_rolling_torque,
         position: p.position.clone(),
         linvel: p.linvel.clone(),
         angvel: p.angvel.clone(),
@@ -354,6 +378,12 @@ pub struct Differences {
     pub rolling_torque_relative: f64,
     /// Touching pairs found in one run and not the other.
     pub unmatched_pairs: usize,
+    /// The largest difference of a floor contact's history (largest overlap, tangential
+    /// displacement, contact radius, rolling torque), each relative to its largest value over
+    /// the floor contacts.
+    pub floor_history_relative: f64,
+    /// Particles touching the floor in one run and not the other.
+    pub unmatched_floor_contacts: usize,
     /// Touching pairs compared.
     pub pairs: usize,
 }
@@ -419,6 +449,7 @@ pub fn differences(gpu: &GpuState, cpu: &CpuState) -> Differences {
         }
     }
     unmatched += active.len() - g;
+    let (floor_history_relative, unmatched_floor_contacts) = floor_differences(gpu, cpu);
     Differences {
         position_diameters,
         velocity: largest(&gpu.linvel, &cpu.linvel),
@@ -428,6 +459,56 @@ pub fn differences(gpu: &GpuState, cpu: &CpuState) -> Differences {
         contact_radius_relative: radius_abs / radius_scale,
         rolling_torque_relative: torque_abs / torque_scale,
         unmatched_pairs: unmatched,
+        floor_history_relative,
+        unmatched_floor_contacts,
         pairs: cpu.pairs.len(),
     }
+}
+
+/// The largest relative difference of the floor contacts' histories, and the particles touching
+/// the floor in one run only.
+fn floor_differences(gpu: &GpuState, cpu: &CpuState) -> (f64, usize) {
+    let both: Vec<_> = gpu
+        .floor
+        .iter()
+        .zip(&cpu.floor)
+        .zip(
+            gpu.floor_rolling_torque
+                .iter()
+                .zip(&cpu.floor_rolling_torque),
+        )
+        .filter_map(|((g, c), t)| Some(((*g)?, (*c)?, t)))
+        .collect();
+    let unmatched = gpu
+        .floor
+        .iter()
+        .zip(&cpu.floor)
+        .filter(|(g, c)| g.is_some() != c.is_some())
+        .count();
+    let largest = |f: &dyn Fn(&(f64, Vector3<f64>, f64), &Vector3<f64>) -> f64| {
+        both.iter()
+            .map(|(_, c, (_, t))| f(c, t))
+            .fold(0.0, f64::max)
+            .max(f64::MIN_POSITIVE)
+    };
+    let scales = [
+        largest(&|c, _| c.0),
+        largest(&|c, _| c.1.norm()),
+        largest(&|c, _| c.2),
+        largest(&|_, t| t.norm()),
+    ];
+    let worst = both
+        .iter()
+        .map(|(g, c, (tg, tc))| {
+            [
+                (g.0 - c.0).abs() / scales[0],
+                (g.1 - c.1).norm() / scales[1],
+                (g.2 - c.2).abs() / scales[2],
+                (*tg - *tc).norm() / scales[3],
+            ]
+            .into_iter()
+            .fold(0.0, f64::max)
+        })
+        .fold(0.0, f64::max);
+    (worst, unmatched)
 }

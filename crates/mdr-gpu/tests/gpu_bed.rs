@@ -71,12 +71,13 @@ struct Tolerances {
     displacement_relative: f64,
     contact_radius_relative: f64,
     rolling_torque_relative: f64,
+    floor_history_relative: f64,
 }
 
 /// Hertz and MDR. Measured: positions 2.2e-16 (Hertz) and 9.2e-16 (MDR) diameters, velocities
 /// 6.1e-15 and 1.8e-14, angular velocities 8.8e-15 and 4.9e-14, largest overlaps equal,
 /// tangential displacements 4.2e-14 and 9.5e-13 of the largest, contact radii 6.5e-14 and
-/// 1.2e-12.
+/// 1.2e-12, floor histories 6.5e-16 and 8.0e-16 (the adhesive law: 8.3e-16).
 const ELASTIC_PLASTIC: Tolerances = Tolerances {
     position_diameters: 5e-15,
     velocity: 1e-13,
@@ -85,13 +86,14 @@ const ELASTIC_PLASTIC: Tolerances = Tolerances {
     displacement_relative: 5e-12,
     contact_radius_relative: 5e-12,
     rolling_torque_relative: 0.0,
+    floor_history_relative: 5e-15,
 };
 
 /// Thornton's law and rolling resistance, whose contacts change more per step. Measured:
 /// positions 3.6e-15 (Thornton) and 2.1e-15 (rolling) diameters, velocities 1.5e-13 and
 /// 2.2e-13, angular velocities 3.9e-13 and 4.0e-13, largest overlaps 4.2e-12 and 6.0e-13,
 /// tangential displacements 1.2e-11 and 3.5e-12, contact radii 8.4e-12 and 2.3e-12, rolling
-/// torques 2.2e-12 of the largest.
+/// torques 2.2e-12 of the largest, floor histories 3.8e-12 and 4.8e-15.
 const SUB_MODELS: Tolerances = Tolerances {
     position_diameters: 2e-14,
     velocity: 1e-12,
@@ -100,6 +102,7 @@ const SUB_MODELS: Tolerances = Tolerances {
     displacement_relative: 5e-11,
     contact_radius_relative: 4e-11,
     rolling_torque_relative: 1e-11,
+    floor_history_relative: 2e-11,
 };
 
 /// The same touching pairs, and every difference within `t`.
@@ -111,6 +114,14 @@ fn assert_within(d: &Differences, t: &Tolerances, what: &str) {
         d.pairs
     );
     assert_eq!(d.unmatched_pairs, 0, "{what}: the same touching pairs");
+    assert_eq!(
+        d.unmatched_floor_contacts, 0,
+        "{what}: the same floor contacts"
+    );
+    assert!(
+        d.floor_history_relative < t.floor_history_relative,
+        "{what}: {d:?}"
+    );
     assert!(d.position_diameters < t.position_diameters, "{what}: {d:?}");
     assert!(d.velocity < t.velocity, "{what}: {d:?}");
     assert!(d.angular_velocity < t.angular_velocity, "{what}: {d:?}");
