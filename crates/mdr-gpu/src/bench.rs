@@ -465,6 +465,9 @@ pub fn differences(gpu: &GpuState, cpu: &CpuState) -> Differences {
     }
 }
 
+/// A floor contact's `(max overlap, ξ, contact radius)`.
+type FloorHistory = (f64, Vector3<f64>, f64);
+
 /// The largest relative difference of the floor contacts' histories, and the particles touching
 /// the floor in one run only.
 fn floor_differences(gpu: &GpuState, cpu: &CpuState) -> (f64, usize) {
@@ -485,7 +488,7 @@ fn floor_differences(gpu: &GpuState, cpu: &CpuState) -> (f64, usize) {
         .zip(&cpu.floor)
         .filter(|(g, c)| g.is_some() != c.is_some())
         .count();
-    let largest = |f: &dyn Fn(&(f64, Vector3<f64>, f64), &Vector3<f64>) -> f64| {
+    let largest = |f: &dyn Fn(&FloorHistory, &Vector3<f64>) -> f64| {
         both.iter()
             .map(|(_, c, (_, t))| f(c, t))
             .fold(0.0, f64::max)
