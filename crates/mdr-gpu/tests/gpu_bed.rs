@@ -181,14 +181,34 @@ fn a_perturbed_law_parameter_fails_the_comparison() {
     assert!(d.position_diameters > 1e-6, "{d:?}");
 }
 
-/// Two runs give the same state bit for bit (no atomics on floats, a sorted list).
+/// Two runs give the same state bit for bit (no atomics on floats, a sorted list), with the
+/// MDR law and with the adhesive law and rolling resistance.
 #[test]
 fn the_gpu_repeats_itself_bit_for_bit() {
     let ctx = context();
     let bed = small_bed();
     let s = settings(BenchLaw::Mdr { qc: 10.0 });
-    let a = gpu_run(&ctx, &bed, &s);
-    let b = gpu_run(&ctx, &bed, &s);
+    for laws in [
+        None,
+        Some(GpuLaws {
+            rolling: Some(0.2),
+            ..ADHESIVE
+        }),
+    ] {
+        let run = || {
+            let options = GpuOptions {
+                laws,
+                ..GpuOptions::default()
+            };
+            let mut system = GpuBed::new(&ctx, &bed, &s, &options).unwrap();
+            system.step(STEPS).unwrap();
+            system.state().unwrap()
+        };
+        assert_repeats(&run(), &run());
+    }
+}
+
+fn assert_repeats(a: &GpuState, b: &GpuState) {
     assert!(a.rebuilds >= 1);
     let bits = |v: &[nalgebra::Vector3<f64>]| -> Vec<[u64; 3]> {
         v.iter()
@@ -202,9 +222,15 @@ fn the_gpu_repeats_itself_bit_for_bit() {
     for (p, q) in a.pairs.iter().zip(&b.pairs) {
         assert_eq!((p.i, p.j, p.image, p.active), (q.i, q.j, q.image, q.active));
         assert_eq!(p.max_overlap.to_bits(), q.max_overlap.to_bits());
+        assert_eq!(
+            p.normal_state.map(f64::to_bits),
+            q.normal_state.map(f64::to_bits)
+        );
         assert_eq!(bits(&[p.displacement]), bits(&[q.displacement]));
+        assert_eq!(bits(&[p.rolling_torque]), bits(&[q.rolling_torque]));
     }
     assert_eq!(a.floor, b.floor);
+    assert_eq!(bits(&a.floor_rolling_torque), bits(&b.floor_rolling_torque));
 }
 
 /// Too few neighbour slots stop the run with the typed error naming the setting.
@@ -322,20 +348,36 @@ const ROLLING_MDR: GpuLaws = GpuLaws {
     rolling: Some(0.2),
 };
 
-/// Rolling resistance (`EpsdRolling`, `μ_r = 0.2`) on the MDR bed: the GPU equals the CPU path
-/// within round-off growth, the rolling springs' torques included.
+/// Rolling resistance (`EpsdRolling`, `μ_r = 0.2`) with every normal law (its stiffness is
+/// the normal law's tangent stiffness): the GPU equals the CPU path within round-off growth,
+/// the rolling springs' torques included.
 #[test]
 fn rolling_resistance_matches_the_cpu_path() {
     let ctx = context();
-    let (_, c, d) = compare_laws(&ctx, ROLLING_MDR, ROLLING_MDR);
-    assert_within(&d, &SUB_MODELS, "rolling");
-    let loaded = c
-        .pairs
-        .iter()
-        .filter(|p| p.rolling_torque.norm() > 0.0)
-        .count();
-    eprintln!("rolling: {loaded} of {} springs loaded", c.pairs.len());
-    assert!(loaded > c.pairs.len() / 2, "{loaded} loaded springs");
+    for normal in [
+        GpuNormalLaw::Mdr { qc: 10.0 },
+        GpuNormalLaw::Hertz,
+        THORNTON.normal,
+        ADHESIVE.normal,
+    ] {
+        let laws = GpuLaws {
+            normal,
+            ..ROLLING_MDR
+        };
+        let (_, c, d) = compare_laws(&ctx, laws, laws);
+        let what = format!("rolling with {}", normal.name());
+        assert_within(&d, &SUB_MODELS, &what);
+        let loaded = c
+            .pairs
+            .iter()
+            .filter(|p| p.rolling_torque.norm() > 0.0)
+            .count();
+        eprintln!("{what}: {loaded} of {} springs loaded", c.pairs.len());
+        assert!(
+            loaded > c.pairs.len() / 2,
+            "{what}: {loaded} loaded springs"
+        );
+    }
 }
 
 const ADHESIVE: GpuLaws = GpuLaws {
