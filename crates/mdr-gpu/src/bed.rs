@@ -197,7 +197,7 @@ struct Pipelines {
 
 /// The reference bed system (`reference_system` of `mdr_rapier::neighbour_list::bed`: the
 /// floor `z = 0`, x/y periodic box, `g = 1` along −z, `dt = 1e-4`, Hertz or MDR with Mindlin and
-/// Hertzian viscous damping) stepped on the device.
+/// Hertzian viscous damping, or the contact model of [`GpuOptions::laws`]) stepped on the device.
 pub struct GpuBed {
     device: wgpu::Device,
     queue: wgpu::Queue,

@@ -206,19 +206,18 @@ pub fn cpu_reference_run_with(
         .num_threads(settings.threads)
         .build()
         .map_err(|e| BedError::ThreadPool(e.to_string()))?;
-    let contact = |e: mdr_contact::ContactError| mdr_rapier::error::CouplingError::from(e);
     let rolling = laws.rolling;
     pool.install(|| match laws.normal {
         GpuNormalLaw::Hertz => cpu_run_rolling(Hertz, rolling, bed, settings, steps),
         GpuNormalLaw::Mdr { qc } => cpu_run_rolling(
-            MdrElastoPlastic::new(qc, BENCH_THETA_RATIO).map_err(contact)?,
+            MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)?,
             rolling,
             bed,
             settings,
             steps,
         ),
         GpuNormalLaw::Thornton { yield_pressure } => cpu_run_rolling(
-            Thornton::new(yield_pressure).map_err(contact)?,
+            Thornton::new(yield_pressure)?,
             rolling,
             bed,
             settings,
@@ -229,10 +228,9 @@ pub fn cpu_reference_run_with(
             work_of_adhesion,
         } => cpu_run_rolling(
             AdhesiveMdr::new(
-                MdrElastoPlastic::new(qc, BENCH_THETA_RATIO).map_err(contact)?,
+                MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)?,
                 work_of_adhesion,
-            )
-            .map_err(contact)?,
+            )?,
             rolling,
             bed,
             settings,
@@ -271,13 +269,7 @@ where
 {
     match rolling {
         None => cpu_run(normal, NoRolling, bed, settings, steps),
-        Some(mu) => cpu_run(
-            normal,
-            EpsdRolling::new(mu).map_err(mdr_rapier::error::CouplingError::from)?,
-            bed,
-            settings,
-            steps,
-        ),
+        Some(mu) => cpu_run(normal, EpsdRolling::new(mu)?, bed, settings, steps),
     }
 }
 

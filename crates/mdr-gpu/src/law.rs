@@ -111,30 +111,26 @@ impl From<BenchLaw> for GpuLaws {
 impl GpuLaws {
     /// Check every parameter as the law crate does (the error names it).
     pub fn validate(&self) -> Result<(), GpuError> {
-        let contact = |e: mdr_contact::ContactError| {
-            GpuError::from(mdr_rapier::error::CouplingError::from(e))
-        };
         match self.normal {
             GpuNormalLaw::Hertz => {}
             GpuNormalLaw::Mdr { qc } => {
-                MdrElastoPlastic::new(qc, BENCH_THETA_RATIO).map_err(contact)?;
+                MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)?;
             }
             GpuNormalLaw::Thornton { yield_pressure } => {
-                Thornton::new(yield_pressure).map_err(contact)?;
+                Thornton::new(yield_pressure)?;
             }
             GpuNormalLaw::AdhesiveMdr {
                 qc,
                 work_of_adhesion,
             } => {
                 AdhesiveMdr::new(
-                    MdrElastoPlastic::new(qc, BENCH_THETA_RATIO).map_err(contact)?,
+                    MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)?,
                     work_of_adhesion,
-                )
-                .map_err(contact)?;
+                )?;
             }
         }
         if let Some(mu) = self.rolling {
-            EpsdRolling::new(mu).map_err(contact)?;
+            EpsdRolling::new(mu)?;
         }
         Ok(())
     }
@@ -222,8 +218,7 @@ fn mdr_law_constants(law: &mdr_contact::normal::MdrLaw) -> LawConstants {
 /// A pair with `E*` and `R` (the shear modulus and mass, which the normal laws do not read,
 /// set to 1) to bind a law again and compare it with the stepper's.
 fn pair_of(e: f64, r: f64) -> Result<ContactPair, GpuError> {
-    ContactPair::new(e, 1.0, r, 1.0)
-        .map_err(|e| GpuError::from(mdr_rapier::error::CouplingError::from(e)))
+    Ok(ContactPair::new(e, 1.0, r, 1.0)?)
 }
 
 fn mismatch(what: &str) -> GpuError {
@@ -400,12 +395,10 @@ where
 {
     let moduli = pair_moduli(one, settings)?;
     let (stepper, world) = reference_system(normal, one)?;
-    let contact =
-        |e: mdr_contact::ContactError| GpuError::from(mdr_rapier::error::CouplingError::from(e));
     let mu_r = rolling.unwrap_or(0.0);
     let mut stepper = stepper
         .skin(settings.skin)?
-        .with_rolling(EpsdRolling::new(mu_r).map_err(contact)?);
+        .with_rolling(EpsdRolling::new(mu_r)?);
     stepper.compute_forces(&world, false)?;
     let species = stepper.particles().species_table[0];
     type Bound<L> = (
@@ -455,20 +448,17 @@ impl BoundLaws {
             density: vec![bed.density[0]],
             position: vec![bed.position[0]],
         };
-        let contact = |e: mdr_contact::ContactError| {
-            GpuError::from(mdr_rapier::error::CouplingError::from(e))
-        };
         match laws.normal {
             GpuNormalLaw::Hertz => bind(Hertz, &one, settings, laws.rolling, hertz_constants),
             GpuNormalLaw::Mdr { qc } => bind(
-                MdrElastoPlastic::new(qc, BENCH_THETA_RATIO).map_err(contact)?,
+                MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)?,
                 &one,
                 settings,
                 laws.rolling,
                 |law, _, _| Ok(mdr_law_constants(law)),
             ),
             GpuNormalLaw::Thornton { yield_pressure } => bind(
-                Thornton::new(yield_pressure).map_err(contact)?,
+                Thornton::new(yield_pressure)?,
                 &one,
                 settings,
                 laws.rolling,
@@ -479,10 +469,9 @@ impl BoundLaws {
                 work_of_adhesion,
             } => bind(
                 AdhesiveMdr::new(
-                    MdrElastoPlastic::new(qc, BENCH_THETA_RATIO).map_err(contact)?,
+                    MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)?,
                     work_of_adhesion,
-                )
-                .map_err(contact)?,
+                )?,
                 &one,
                 settings,
                 laws.rolling,
