@@ -4,6 +4,8 @@
 # the reference bed tiled 3 × 3, 10 × 10 and 20 × 20 (90,000, 10⁶ and 4·10⁶ spheres), then the
 # CPU path (`--threads` = every core) on the same beds with fewer steps; the 90,000-sphere GPU
 # run is also compared with the CPU path (`--compare-cpu`: the largest position difference).
+# Then the GPU path's other contact models on the 10⁶-sphere bed: Thornton's law, the adhesive
+# MDR law, and MDR with rolling resistance (`--rolling 0.2`).
 # Prints one table: particle-steps per second, ms per step and bytes per sphere (device buffers
 # for the GPU, the stepper's buffers for the CPU), and keeps every JSON line.
 #
@@ -52,7 +54,7 @@ field() {
 }
 
 echo "machine: $(nproc) cores; binary $bin; $(date -u +%Y-%m-%dT%H:%MZ)"
-printf '%-6s %-4s %10s %7s %16s %10s %14s %s\n' device law spheres steps "M part-steps/s" ms/step "bytes/sphere" note
+printf '%-6s %-12s %10s %7s %16s %10s %14s %s\n' device law spheres steps "M part-steps/s" ms/step "bytes/sphere" note
 for c in "${cases[@]}"; do
   read -r tile gsteps gwarm csteps cwarm <<< "$c"
   compare=()
@@ -66,14 +68,40 @@ for c in "${cases[@]}"; do
   if grep -q max_position_difference_diameters <<< "$line"; then
     note="$note; vs CPU: $(field max_position_difference_diameters "$line") diameters"
   fi
-  printf '%-6s %-4s %10s %7s %16.2f %10.3f %14.0f %s\n' gpu mdr "$(field particles "$line")" \
+  printf '%-6s %-12s %10s %7s %16.2f %10.3f %14.0f %s\n' gpu mdr "$(field particles "$line")" \
     "$gsteps" "$(awk "BEGIN{print $(field particle_steps_per_s "$line")/1e6}")" \
     "$(field ms_per_step "$line")" "$(field device_bytes_per_particle "$line")" "$note"
   line=$("$bin" bench bed --data "$data" --law mdr --device cpu --tile "$tile" \
     --steps "$csteps" --warmup "$cwarm" --threads "$threads" --json)
   echo "{\"case\":\"cpu_tile$tile\",${line:1}" >> "$jsonl"
-  printf '%-6s %-4s %10s %7s %16.2f %10.3f %14.0f %s\n' cpu mdr "$(field particles "$line")" \
+  printf '%-6s %-12s %10s %7s %16.2f %10.3f %14.0f %s\n' cpu mdr "$(field particles "$line")" \
     "$csteps" "$(awk "BEGIN{print $(field particle_steps_per_s "$line")/1e6}")" \
     "$(field ms_per_step "$line")" "$(field stepper_bytes_per_particle "$line")" "$threads threads"
+done
+
+# The other contact models on the GPU: law name, then its flags.
+if [ "$quick" = 1 ]; then
+  tile=1 msteps=10 mwarm=2
+else
+  tile=10 msteps=1000 mwarm=100
+fi
+for model in "thornton --law thornton" "adhesive-mdr --law adhesive-mdr" \
+  "mdr+rolling --law mdr --rolling 0.2"; do
+  read -r name flags <<< "$model"
+  compare=()
+  if [ "$quick" = 1 ]; then
+    compare=(--compare-cpu --threads "$threads")
+  fi
+  # shellcheck disable=SC2086 # the flags are words
+  line=$("$bin" bench bed --data "$data" $flags --device gpu --tile "$tile" \
+    --steps "$msteps" --warmup "$mwarm" "${compare[@]}" --json)
+  echo "{\"case\":\"gpu_${name}_tile$tile\",${line:1}" >> "$jsonl"
+  note="$(field gpu_adapter "$line")"
+  if grep -q max_position_difference_diameters <<< "$line"; then
+    note="$note; vs CPU: $(field max_position_difference_diameters "$line") diameters"
+  fi
+  printf '%-6s %-12s %10s %7s %16.2f %10.3f %14.0f %s\n' gpu "$name" "$(field particles "$line")" \
+    "$msteps" "$(awk "BEGIN{print $(field particle_steps_per_s "$line")/1e6}")" \
+    "$(field ms_per_step "$line")" "$(field device_bytes_per_particle "$line")" "$note"
 done
 echo "JSON lines: $jsonl"

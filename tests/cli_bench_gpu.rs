@@ -79,3 +79,71 @@ fn compare_cpu_needs_the_gpu_and_the_cpu_json_names_its_device() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["device"], "cpu");
 }
+
+/// The GPU path's other laws and rolling resistance from the command line: the figures name
+/// the law, and the run matches the CPU path of the same contact model.
+#[test]
+fn bench_bed_on_the_gpu_runs_thornton_adhesion_and_rolling() {
+    for (law, extra) in [
+        ("thornton", ["--rolling", "0.2"]),
+        ("adhesive-mdr", ["--work-of-adhesion", "2"]),
+    ] {
+        let mut args = vec![
+            "bench",
+            "bed",
+            "--device",
+            "gpu",
+            "--law",
+            law,
+            "--steps",
+            "5",
+            "--warmup",
+            "2",
+            "--compare-cpu",
+            "--json",
+        ];
+        args.extend(extra);
+        let out = mdr_dem(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{law}: {stderr}");
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(v["law"], law, "{v}");
+        let d = v["max_position_difference_diameters"].as_f64().unwrap();
+        assert!(d < 1e-13, "{law}: {v}");
+    }
+}
+
+/// The CPU bench has neither Thornton, the adhesive law nor rolling resistance: each is
+/// refused with a message naming it, and a bad parameter is refused naming the parameter.
+#[test]
+fn gpu_only_laws_are_refused_on_the_cpu_with_their_names() {
+    for (args, named) in [
+        (vec!["--law", "thornton"], "--law thornton"),
+        (vec!["--law", "adhesive-mdr"], "--law adhesive-mdr"),
+        (vec!["--rolling", "0.1"], "--rolling"),
+    ] {
+        let mut all = vec!["bench", "bed", "--steps", "1", "--warmup", "0"];
+        all.extend(args);
+        let out = mdr_dem(&all);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{named}");
+        assert!(
+            stderr.contains(named) && stderr.contains("--device gpu"),
+            "{stderr}"
+        );
+    }
+    let out = mdr_dem(&[
+        "bench",
+        "bed",
+        "--device",
+        "gpu",
+        "--law",
+        "thornton",
+        "--yield-stress=-1",
+        "--steps",
+        "1",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(stderr.contains("yield_stress"), "{stderr}");
+}

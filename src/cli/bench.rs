@@ -57,6 +57,12 @@ pub enum LawArg {
     Hertz,
     /// The MDR elasto-plastic law (`q_c` from `--qc`, `Θ = 0.37 E*`).
     Mdr,
+    /// Thornton's elastic–perfectly-plastic law (`p_y` from `--yield-stress`); `--device gpu`
+    /// only.
+    Thornton,
+    /// The adhesive MDR law (`q_c` from `--qc`, `Θ = 0.37 E*`, `Δγ` from
+    /// `--work-of-adhesion`); `--device gpu` only.
+    AdhesiveMdr,
 }
 
 /// Where `bench bed` steps the bed.
@@ -93,6 +99,16 @@ pub struct BedArgs {
     /// MDR critical line load `q_c` (force/length, reduced units) for `--law mdr`.
     #[arg(long, default_value_t = 10.0)]
     pub qc: f64,
+    /// Thornton's limiting contact pressure `p_y` (reduced units) for `--law thornton`.
+    #[arg(long, default_value_t = 1000.0)]
+    pub yield_stress: f64,
+    /// Work of adhesion `Δγ` (energy per area, reduced units) for `--law adhesive-mdr`.
+    #[arg(long, default_value_t = 2.0)]
+    pub work_of_adhesion: f64,
+    /// Rolling resistance coefficient `μ_r` (elastic–plastic spring rolling resistance,
+    /// `EpsdRolling`); `--device gpu` only.
+    #[arg(long)]
+    pub rolling: Option<f64>,
     /// Neighbour skin (as LAMMPS `neighbor 0.1 bin`).
     #[arg(long, default_value_t = 0.1)]
     pub skin: f64,
@@ -170,8 +186,8 @@ fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
     };
     let settings = BenchSettings {
         law: match args.law {
-            LawArg::Hertz => BenchLaw::Hertz,
-            LawArg::Mdr => BenchLaw::Mdr { qc: args.qc },
+            LawArg::Mdr | LawArg::AdhesiveMdr => BenchLaw::Mdr { qc: args.qc },
+            LawArg::Hertz | LawArg::Thornton => BenchLaw::Hertz,
         },
         steps: args.steps,
         warmup: args.warmup,
@@ -188,6 +204,12 @@ fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
     }
     if args.compare_cpu {
         bail!("--compare-cpu compares the GPU path with the CPU path: it needs --device gpu");
+    }
+    if let Some(refused) = gpu_only(args) {
+        bail!(
+            "bench bed: {refused} runs on the GPU path only (--device gpu); the CPU bench has \
+             --law hertz and --law mdr without rolling resistance"
+        );
     }
     let figures = bench_bed(&bed, &settings)?;
     if args.json {
@@ -237,16 +259,58 @@ fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The flags of `bench bed` that only the GPU path has, named, or `None`.
+fn gpu_only(args: &BedArgs) -> Option<String> {
+    let law = match args.law {
+        LawArg::Thornton => Some("--law thornton"),
+        LawArg::AdhesiveMdr => Some("--law adhesive-mdr"),
+        LawArg::Hertz | LawArg::Mdr => None,
+    };
+    match (law, args.rolling) {
+        (Some(law), Some(_)) => Some(format!("{law} with --rolling")),
+        (Some(law), None) => Some(law.to_owned()),
+        (None, Some(_)) => Some("--rolling".to_owned()),
+        (None, None) => None,
+    }
+}
+
+/// The contact model of `bench bed --device gpu`.
+fn gpu_laws(args: &BedArgs) -> mdr_gpu::GpuLaws {
+    use mdr_gpu::GpuNormalLaw;
+    mdr_gpu::GpuLaws {
+        normal: match args.law {
+            LawArg::Hertz => GpuNormalLaw::Hertz,
+            LawArg::Mdr => GpuNormalLaw::Mdr { qc: args.qc },
+            LawArg::Thornton => GpuNormalLaw::Thornton {
+                yield_pressure: args.yield_stress,
+            },
+            LawArg::AdhesiveMdr => GpuNormalLaw::AdhesiveMdr {
+                qc: args.qc,
+                work_of_adhesion: args.work_of_adhesion,
+            },
+        },
+        rolling: args.rolling,
+    }
+}
+
 /// `bench bed --device gpu`: the bed on the device, optionally compared with the CPU path.
 fn run_bed_gpu(args: &BedArgs, bed: &Bed, settings: &BenchSettings) -> anyhow::Result<()> {
+    let laws = gpu_laws(args);
+    laws.validate()?;
     let ctx = mdr_gpu::GpuContext::new()?;
     let options = mdr_gpu::GpuOptions {
         max_neighbours: args.max_neighbours,
+        laws: Some(laws),
         ..mdr_gpu::GpuOptions::default()
     };
     let (gpu, state) = mdr_gpu::bench_bed_gpu(&ctx, bed, settings, &options)?;
     let difference = if args.compare_cpu {
-        let cpu = mdr_gpu::cpu_reference_run(bed, settings, settings.warmup + settings.steps)?;
+        let cpu = mdr_gpu::cpu_reference_run_with(
+            bed,
+            settings,
+            &laws,
+            settings.warmup + settings.steps,
+        )?;
         Some(mdr_gpu::differences(&state, &cpu))
     } else {
         None

@@ -2,8 +2,8 @@
 //! read-back ([`GpuBed`]).
 
 use crate::device::{GpuContext, GpuError};
-use crate::law::{BoundLaws, LawConstants};
-use mdr_rapier::neighbour_list::bed::{Bed, BedError, BenchLaw, BenchSettings};
+use crate::law::{BoundLaws, GpuLaws, LawConstants};
+use mdr_rapier::neighbour_list::bed::{Bed, BedError, BenchSettings};
 use mdr_rapier::neighbour_list::boundary::Boundary;
 use nalgebra::Vector3;
 use wgpu::util::DeviceExt;
@@ -27,6 +27,10 @@ pub struct GpuOptions {
     /// Particles per cell of the binning grid (cells of side `2 r + skin`; the reference bed
     /// has at most 4). More stops the run with [`GpuError::CellOverflow`].
     pub cell_capacity: u32,
+    /// The contact model, when it is not the one of [`BenchSettings::law`] (that normal law
+    /// with Mindlin and damping, no rolling resistance): another normal law (Thornton, the
+    /// adhesive MDR law) or rolling resistance.
+    pub laws: Option<GpuLaws>,
 }
 
 impl Default for GpuOptions {
@@ -34,6 +38,7 @@ impl Default for GpuOptions {
         Self {
             max_neighbours: 16,
             cell_capacity: 12,
+            laws: None,
         }
     }
 }
@@ -76,6 +81,8 @@ struct Params {
     dt: f64,
     gravity_z: f64,
     floor_z: f64,
+    search_reach: f64,
+    pad: f64,
     n: u32,
     law: u32,
     orientation: u32,
@@ -95,14 +102,19 @@ pub struct GpuPair {
     pub j: u32,
     /// Image code of `j` as seen from `i` (`Image::code`).
     pub image: u8,
-    /// Whether it touched at the last force evaluation.
+    /// Whether it touched (or held, adhesively) at the last force evaluation.
     pub active: bool,
     /// The normal law's history: the largest overlap so far.
     pub max_overlap: f64,
+    /// The rest of the normal law's state: Thornton's unloading coefficient and residual
+    /// overlap, or the adhesive law's attached radius (then zero); zero for Hertz and MDR.
+    pub normal_state: [f64; 2],
     /// Mindlin's tangential displacement `ξ`.
     pub displacement: Vector3<f64>,
     /// Mindlin's contact radius of the last step.
     pub contact_radius: f64,
+    /// The rolling resistance spring's torque (zero without rolling resistance).
+    pub rolling_torque: Vector3<f64>,
 }
 
 /// The device state read back: particles, the touching pairs' histories, the floor contacts.
@@ -123,6 +135,9 @@ pub struct GpuState {
     pub asymmetric_pairs: usize,
     /// Per particle: the floor contact's `(max overlap, ξ, contact radius)`, `None` when apart.
     pub floor: Vec<Option<(f64, Vector3<f64>, f64)>>,
+    /// Per particle: the floor contact's rolling torque (zero when apart or without rolling
+    /// resistance).
+    pub floor_rolling_torque: Vec<Vector3<f64>>,
     /// Neighbour-list builds so far.
     pub rebuilds: u64,
 }
@@ -138,7 +153,7 @@ struct Buffers {
     floor: wgpu::Buffer,
     counts: wgpu::Buffer,
     keys: wgpu::Buffer,
-    h_normal: wgpu::Buffer,
+    h_state: wgpu::Buffer,
     h_xi: wgpu::Buffer,
     h_radius: wgpu::Buffer,
     cell_count: wgpu::Buffer,
@@ -160,7 +175,7 @@ impl Buffers {
             &self.floor,
             &self.counts,
             &self.keys,
-            &self.h_normal,
+            &self.h_state,
             &self.h_xi,
             &self.h_radius,
             &self.cell_count,
@@ -182,7 +197,7 @@ struct Pipelines {
 
 /// The reference bed system (`reference_system` of `mdr_rapier::neighbour_list::bed`: the
 /// floor `z = 0`, x/y periodic box, `g = 1` along −z, `dt = 1e-4`, Hertz or MDR with Mindlin and
-/// Hertzian viscous damping) stepped on the device.
+/// Hertzian viscous damping, or the contact model of [`GpuOptions::laws`]) stepped on the device.
 pub struct GpuBed {
     device: wgpu::Device,
     queue: wgpu::Queue,
@@ -194,7 +209,9 @@ pub struct GpuBed {
     max_neighbours: u32,
     cell_capacity: u32,
     groups: (u32, u32),
-    law: BenchLaw,
+    laws: GpuLaws,
+    state_words: u32,
+    floor_words: u32,
     yield_overlap: f64,
     device_bytes: u64,
     steps: u64,
@@ -240,8 +257,9 @@ fn bytes_of(factors: &[u64]) -> Option<u64> {
 
 impl GpuBed {
     /// The system of `settings` (law, skin, orientation, tile) on `bed` (the reference bed:
-    /// every sphere of diameter 1 and density 1), uploaded to `ctx`'s device. Every buffer is
-    /// checked against the adapter's limits before it is allocated.
+    /// every sphere of diameter 1 and density 1), uploaded to `ctx`'s device; the contact model
+    /// is `options.laws` where given. Every buffer is checked against the adapter's limits
+    /// before it is allocated.
     pub fn new(
         ctx: &GpuContext,
         bed: &Bed,
@@ -275,7 +293,13 @@ impl GpuBed {
             bed
         };
         let n = bed.len();
-        let bound = BoundLaws::of_reference_system(bed, settings)?;
+        let laws = options.laws.unwrap_or_else(|| GpuLaws::from(settings.law));
+        let bound = BoundLaws::of_reference_system(bed, settings, &laws)?;
+        // f64 words per slot: the normal law's state and the rolling law's (torque, stiffness).
+        let normal_words = laws.normal.state_words();
+        let state_words = normal_words + if laws.rolling.is_some() { 4 } else { 0 };
+        // Per particle's floor contact: active, that state, ξ (3), a.
+        let floor_words = 1 + state_words + 4;
         let Boundary::PeriodicXY { lo, hi } = bound.boundary else {
             return Err(GpuError::Unsupported(
                 "the GPU path has the x/y periodic box of the reference bed only".to_owned(),
@@ -283,7 +307,9 @@ impl GpuBed {
         };
         let len = [hi[0] - lo[0], hi[1] - lo[1]];
         let radius = bound.species.radius;
-        let cutoff = 2.0 * radius + settings.skin;
+        // A held adhesive pair is at most the neck's reach apart (the CPU list's cut-off).
+        let search_reach = settings.skin + bound.neck_reach;
+        let cutoff = 2.0 * radius + search_reach;
         bound.boundary.check_cutoff(cutoff)?;
 
         // The binning grid: periodic x/y cells of side ≥ cutoff; z cells over the bed's height
@@ -325,16 +351,21 @@ impl GpuBed {
             ("positions at the build", bytes_of(&[n64, 24])),
             ("wrench", bytes_of(&[n64, 48])),
             ("rotation", bytes_of(&[n64, 32])),
-            ("floor history", bytes_of(&[n64, 48])),
+            ("floor history", bytes_of(&[n64, u64::from(floor_words), 8])),
             ("neighbour counts", bytes_of(&[n64, 4])),
             ("neighbour keys", bytes_of(&[n64, slots, 4])),
-            ("normal histories", bytes_of(&[n64, slots, 8])),
+            (
+                "normal histories",
+                bytes_of(&[n64, slots, u64::from(state_words), 8]),
+            ),
             ("tangential histories", bytes_of(&[n64, slots, 24])),
             ("contact radii", bytes_of(&[n64, slots, 8])),
             ("cell counts", bytes_of(&[ncells, 4])),
             ("cell items", bytes_of(&[ncells, cap, 4])),
         ];
-        let u32_indices = bytes_of(&[n64, slots, 3]).is_some_and(|k| k <= u64::from(u32::MAX))
+        let u32_indices = bytes_of(&[n64, slots, u64::from(state_words.max(3))])
+            .is_some_and(|k| k <= u64::from(u32::MAX))
+            && bytes_of(&[n64, u64::from(floor_words)]).is_some_and(|k| k <= u64::from(u32::MAX))
             && bytes_of(&[ncells, cap]).is_some_and(|k| k <= u64::from(u32::MAX))
             && bytes_of(&[n64, 9]).is_some_and(|k| k < u64::from(ACTIVE));
         let mut device_bytes = 0u64;
@@ -403,11 +434,10 @@ impl GpuBed {
             dt: bound.dt,
             gravity_z: bound.gravity_z,
             floor_z: 0.0,
+            search_reach,
+            pad: 0.0,
             n: n as u32,
-            law: match settings.law {
-                BenchLaw::Hertz => 0,
-                BenchLaw::Mdr { .. } => 1,
-            },
+            law: laws.normal.code(),
             orientation: u32::from(settings.orientation),
             groups_x: groups_x as u32,
             cells_x: cells_x as u32,
@@ -462,10 +492,10 @@ impl GpuBed {
                 bytemuck::cast_slice(&identity),
                 wgpu::BufferUsages::empty(),
             ),
-            floor: zeroed("floor history", n64 * 48),
+            floor: zeroed("floor history", n64 * u64::from(floor_words) * 8),
             counts: zeroed("neighbour counts", n64 * 4),
             keys: zeroed("neighbour keys", n64 * slots * 4),
-            h_normal: zeroed("normal histories", n64 * slots * 8),
+            h_state: zeroed("normal histories", n64 * slots * u64::from(state_words) * 8),
             h_xi: zeroed("tangential histories", n64 * slots * 24),
             h_radius: zeroed("contact radii", n64 * slots * 8),
             cell_count: zeroed("cell counts", ncells * 4),
@@ -483,7 +513,19 @@ impl GpuBed {
         };
 
         let source = include_str!("bed.wgsl")
-            .replace("__MAXN5__", &(5 * options.max_neighbours).to_string())
+            .replace(
+                "__MAXNCARRY__",
+                &((state_words + 4) * options.max_neighbours).to_string(),
+            )
+            .replace("__NN__", &normal_words.to_string())
+            .replace(
+                "__ROLLING__",
+                if laws.rolling.is_some() {
+                    "true"
+                } else {
+                    "false"
+                },
+            )
             .replace("__MAXN__", &options.max_neighbours.to_string())
             .replace("__CELLCAP__", &options.cell_capacity.to_string());
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -564,7 +606,9 @@ impl GpuBed {
             max_neighbours: options.max_neighbours,
             cell_capacity: options.cell_capacity,
             groups: (groups_x as u32, groups_y as u32),
-            law: settings.law,
+            laws,
+            state_words,
+            floor_words,
             yield_overlap: bound.yield_overlap,
             device_bytes,
             steps: 0,
@@ -586,9 +630,9 @@ impl GpuBed {
         self.steps
     }
 
-    /// The law.
-    pub fn law(&self) -> BenchLaw {
-        self.law
+    /// The contact model.
+    pub fn laws(&self) -> GpuLaws {
+        self.laws
     }
 
     /// Bytes of every device buffer of the system (particles, lists, histories, grid).
@@ -727,11 +771,14 @@ impl GpuBed {
         let linvel = self.read_vectors(&self.buffers.vel)?;
         let angvel = self.read_vectors(&self.buffers.angvel)?;
         let rotation: Vec<f64> = self.read(&self.buffers.rotation, n as u64 * 32)?;
-        let floor_flat: Vec<f64> = self.read(&self.buffers.floor, n as u64 * 48)?;
+        let fw = self.floor_words as usize;
+        let sw = self.state_words as usize;
+        let nw = self.laws.normal.state_words() as usize;
+        let floor_flat: Vec<f64> = self.read(&self.buffers.floor, (n * fw) as u64 * 8)?;
         let counts: Vec<u32> = self.read(&self.buffers.counts, n as u64 * 4)?;
         let total = (n * slots) as u64;
         let keys: Vec<u32> = self.read(&self.buffers.keys, total * 4)?;
-        let h_normal: Vec<f64> = self.read(&self.buffers.h_normal, total * 8)?;
+        let h_state: Vec<f64> = self.read(&self.buffers.h_state, total * sw as u64 * 8)?;
         let h_xi: Vec<f64> = self.read(&self.buffers.h_xi, total * 24)?;
         let h_radius: Vec<f64> = self.read(&self.buffers.h_radius, total * 8)?;
         let entry = |i: usize, s: usize| -> GpuPair {
@@ -750,13 +797,27 @@ impl GpuBed {
                 j: hi,
                 image,
                 active,
-                max_overlap: if active { h_normal[k] } else { 0.0 },
+                max_overlap: if active { h_state[sw * k] } else { 0.0 },
+                normal_state: if active {
+                    [1, 2].map(|w| if w < nw { h_state[sw * k + w] } else { 0.0 })
+                } else {
+                    [0.0; 2]
+                },
                 displacement: if active {
                     Vector3::new(h_xi[3 * k], h_xi[3 * k + 1], h_xi[3 * k + 2])
                 } else {
                     Vector3::zeros()
                 },
                 contact_radius: if active { h_radius[k] } else { 0.0 },
+                rolling_torque: if active && sw > nw {
+                    Vector3::new(
+                        h_state[sw * k + nw],
+                        h_state[sw * k + nw + 1],
+                        h_state[sw * k + nw + 2],
+                    )
+                } else {
+                    Vector3::zeros()
+                },
             }
         };
         let mut pairs = Vec::new();
@@ -780,8 +841,10 @@ impl GpuBed {
                 e.image,
                 e.active,
                 e.max_overlap.to_bits(),
+                e.normal_state.map(f64::to_bits),
                 e.displacement.map(f64::to_bits),
                 e.contact_radius.to_bits(),
+                e.rolling_torque.map(f64::to_bits),
             )
         };
         let asymmetric_pairs = if pairs.len() == mirrored.len() {
@@ -793,9 +856,24 @@ impl GpuBed {
         } else {
             pairs.len().abs_diff(mirrored.len()).max(1)
         };
+        // Per particle: active, the normal state (nw), ξ (3), a, the rolling state.
         let floor = floor_flat
-            .chunks_exact(6)
-            .map(|h| (h[0] != 0.0).then(|| (h[1], Vector3::new(h[2], h[3], h[4]), h[5])))
+            .chunks_exact(fw)
+            .map(|h| {
+                let t = 1 + nw;
+                (h[0] != 0.0).then(|| (h[1], Vector3::new(h[t], h[t + 1], h[t + 2]), h[t + 3]))
+            })
+            .collect();
+        let floor_rolling_torque = floor_flat
+            .chunks_exact(fw)
+            .map(|h| {
+                let t = 1 + nw + 4;
+                if h[0] != 0.0 && fw > t {
+                    Vector3::new(h[t], h[t + 1], h[t + 2])
+                } else {
+                    Vector3::zeros()
+                }
+            })
             .collect();
         Ok(GpuState {
             position,
@@ -808,6 +886,7 @@ impl GpuBed {
             pairs,
             asymmetric_pairs,
             floor,
+            floor_rolling_torque,
             rebuilds,
         })
     }

@@ -1,17 +1,35 @@
 // The settled-bed step of the neighbour-list path in f64 (docs/gpu.md): list build by cell
-// binning, pair forces with histories (Hertz or MDR normal law, Mindlin, Hertzian viscous
-// damping), the floor plane, the x/y periodic box, and rapier's symplectic Euler integration.
-// Every formula is the CPU path's, written in the same order (mdr-contact and mdr-rapier's
-// kernel): `normal_law` is `HertzLaw::update` / `MdrLaw::update`, `contact_update` is
-// `ContactLaw::update` with `MindlinLaw::update`, `integrate` is the stepper's step 4.
+// binning, pair forces with histories (Hertz, MDR, Thornton or adhesive MDR normal law,
+// Mindlin, Hertzian viscous damping, optionally rolling resistance), the floor plane, the x/y
+// periodic box, and rapier's symplectic Euler integration. Every formula is the CPU path's,
+// written in the same order (mdr-contact and mdr-rapier's kernel): `normal_law` is
+// `HertzLaw::update` / `MdrLaw::update` / `ThorntonLaw::update` / `AdhesiveMdrLaw::update`,
+// `contact_update` is `ContactLaw::update` with `MindlinLaw::update`, `rolling_update` is
+// `EpsdRollingLaw::update`, `pair_wrench` is `evaluate_pair`, `integrate` is the stepper's
+// step 4.
 //
-// `MAXN` (neighbour slots per particle) and `CELLCAP` (particles per cell) are written in by the
-// host before the module is compiled.
+// `MAXN` (neighbour slots per particle), `CELLCAP` (particles per cell), `NN` (f64 words of the
+// normal law's state) and `ROLLING` are written in by the host before the module is compiled.
 
 
 const MAXN: u32 = __MAXN__u;
 const CELLCAP: u32 = __CELLCAP__u;
+const NN: u32 = __NN__u;
+const ROLLING: bool = __ROLLING__;
+// f64 words per slot of `h_state`: the normal law's state, then the rolling law's (torque,
+// stiffness).
+const NR: u32 = select(0u, 4u, ROLLING);
+const NS: u32 = NN + NR;
+// f64 words per particle of `floor_hist`: active, the normal state, ξ (3), a, the rolling state.
+const FS: u32 = 1u + NS + 4u;
+// f64 words per slot carried over by a rebuild: the normal and rolling state, ξ (3), a.
+const CARRY: u32 = NS + 4u;
 const WG: u32 = 64u;
+const PI: f64 = 3.141592653589793lf;
+const LAW_HERTZ: u32 = 0u;
+const LAW_MDR: u32 = 1u;
+const LAW_THORNTON: u32 = 2u;
+const LAW_ADHESIVE_MDR: u32 = 3u;
 const ACTIVE: u32 = 0x80000000u;
 
 // Status words (atomics): rebuild requested, rebuilds done, neighbour overflow (1 + particle),
@@ -34,7 +52,15 @@ struct Law {
     friction: f64,
     dashpot: f64,
     tangential_ratio: f64,
-    pad: f64,
+    stiffness_coefficient: f64,
+    effective_radius: f64,
+    hardening_ratio: f64,
+    yield_pressure: f64,
+    yield_force: f64,
+    detach_coefficient: f64,
+    pull_off: f64,
+    rolling_arm: f64,
+    rolling_stiffness_ratio: f64,
 }
 
 struct Params {
@@ -53,8 +79,10 @@ struct Params {
     dt: f64,
     gravity_z: f64,
     floor_z: f64,
+    search_reach: f64, // skin + the adhesive neck reach: r_i + r_j + search_reach lists a pair
+    pad: f64,
     n: u32,
-    law: u32,          // 0 Hertz, 1 MDR
+    law: u32,          // LAW_*
     orientation: u32,  // 1: integrate orientations
     groups_x: u32,     // workgroups along x of a particle dispatch
     cells_x: u32,
@@ -70,10 +98,10 @@ struct Params {
 @group(0) @binding(4) var<storage, read_write> built: array<f64>;
 @group(0) @binding(5) var<storage, read_write> wrench: array<f64>;      // force (3), torque (3)
 @group(0) @binding(6) var<storage, read_write> rotation: array<f64>;    // x, y, z, w
-@group(0) @binding(7) var<storage, read_write> floor_hist: array<f64>;  // active, d_max, ξ (3), a
+@group(0) @binding(7) var<storage, read_write> floor_hist: array<f64>;  // FS per particle
 @group(0) @binding(8) var<storage, read_write> counts: array<u32>;
 @group(0) @binding(9) var<storage, read_write> keys: array<u32>;        // ACTIVE | (j · 9 + image)
-@group(0) @binding(10) var<storage, read_write> h_normal: array<f64>;   // normal law state
+@group(0) @binding(10) var<storage, read_write> h_state: array<f64>;    // NS per slot
 @group(0) @binding(11) var<storage, read_write> h_xi: array<f64>;       // Mindlin ξ, (slot, axis)
 @group(0) @binding(12) var<storage, read_write> h_radius: array<f64>;   // Mindlin contact radius
 @group(0) @binding(13) var<storage, read_write> cell_count: array<atomic<u32>>;
@@ -230,7 +258,7 @@ fn search(@builtin(global_invocation_id) gid: vec3<u32>) {
     let cx = i32(cell_coord(xi.x, p.box_lo.x, p.cell_side.x, p.cells_x));
     let cy = i32(cell_coord(xi.y, p.box_lo.y, p.cell_side.y, p.cells_y));
     let cz = i32(u32(clamp(floor((xi.z - p.z_lo) * p.inv_cell_z), 0.0lf, f64(p.cells_z - 1u))));
-    let reach = p.radius + p.radius + p.skin;
+    let reach = p.radius + p.radius + p.search_reach;
     var found: array<u32, MAXN>;
     var m = 0u;
     var overflow = false;
@@ -295,14 +323,16 @@ fn search(@builtin(global_invocation_id) gid: vec3<u32>) {
     let base = i * MAXN;
     let old_m = counts[i];
     var old_keys: array<u32, MAXN>;
-    var old_h: array<f64, __MAXN5__u>;
+    var old_h: array<f64, __MAXNCARRY__u>;
     for (var q = 0u; q < old_m; q++) {
         old_keys[q] = keys[base + q];
-        old_h[5u * q] = h_normal[base + q];
-        old_h[5u * q + 1u] = h_xi[3u * (base + q)];
-        old_h[5u * q + 2u] = h_xi[3u * (base + q) + 1u];
-        old_h[5u * q + 3u] = h_xi[3u * (base + q) + 2u];
-        old_h[5u * q + 4u] = h_radius[base + q];
+        for (var k = 0u; k < NS; k++) {
+            old_h[CARRY * q + k] = h_state[NS * (base + q) + k];
+        }
+        old_h[CARRY * q + NS] = h_xi[3u * (base + q)];
+        old_h[CARRY * q + NS + 1u] = h_xi[3u * (base + q) + 1u];
+        old_h[CARRY * q + NS + 2u] = h_xi[3u * (base + q) + 2u];
+        old_h[CARRY * q + NS + 3u] = h_radius[base + q];
     }
     var q = 0u;
     for (var s = 0u; s < m; s++) {
@@ -312,11 +342,13 @@ fn search(@builtin(global_invocation_id) gid: vec3<u32>) {
         }
         if q < old_m && old_keys[q] == (key | ACTIVE) {
             keys[base + s] = key | ACTIVE;
-            h_normal[base + s] = old_h[5u * q];
-            h_xi[3u * (base + s)] = old_h[5u * q + 1u];
-            h_xi[3u * (base + s) + 1u] = old_h[5u * q + 2u];
-            h_xi[3u * (base + s) + 2u] = old_h[5u * q + 3u];
-            h_radius[base + s] = old_h[5u * q + 4u];
+            for (var k = 0u; k < NS; k++) {
+                h_state[NS * (base + s) + k] = old_h[CARRY * q + k];
+            }
+            h_xi[3u * (base + s)] = old_h[CARRY * q + NS];
+            h_xi[3u * (base + s) + 1u] = old_h[CARRY * q + NS + 1u];
+            h_xi[3u * (base + s) + 2u] = old_h[CARRY * q + NS + 2u];
+            h_radius[base + s] = old_h[CARRY * q + NS + 3u];
         } else {
             keys[base + s] = key;
         }
@@ -330,35 +362,70 @@ fn search(@builtin(global_invocation_id) gid: vec3<u32>) {
 struct NormalOut {
     force: f64,
     radius: f64,
+    stiffness: f64,
 }
 
-// `HertzLaw::update` (eq. 5) or `MdrLaw::update` (the closed form of docs/theory.md §4);
-// `state` is the largest overlap so far.
-fn normal_law(law: Law, state: ptr<function, f64>, d: f64) -> NormalOut {
-    var out = NormalOut(0.0lf, 0.0lf);
-    if p.law == 0u {
-        let sqrt_d = sqrt(d);
-        if d <= 0.0lf {
-            return out;
-        }
-        if d > *state {
-            *state = d;
-        }
-        out.radius = law.sqrt_radius * sqrt_d;
-        out.force = law.force_coefficient * d * sqrt_d;
-        return out;
+// `pow3_2` of the law crate.
+fn pow3_2(d: f64) -> f64 {
+    return d * sqrt(d);
+}
+
+// `x^{2/3}` for x > 0 (Rust's `powf(2/3)`; shaders have no f64 `pow`): the cube root by two
+// Newton steps from the f32 root (relative error 1e-7, then 1e-14, then round-off), squared.
+fn pow2_3(x: f64) -> f64 {
+    if x <= 0.0lf {
+        return 0.0lf;
     }
+    // f32 holds no number below 1e-38: scale tiny arguments by 2^90 (the root by 2^30).
+    var xs = x;
+    var scale = 1.0lf;
+    if x < 1e-30lf {
+        xs = x * 1237940039285380274899124224.0lf;
+        scale = 9.313225746154785e-10lf;
+    }
+    var y = f64(pow(f32(xs), 1.0f / 3.0f));
+    y = y - (y * y * y - xs) / (3.0lf * y * y);
+    y = y - (y * y * y - xs) / (3.0lf * y * y);
+    y = y * scale;
+    return y * y;
+}
+
+// `HertzLaw::update` (eq. 5); `state.x` is the largest overlap so far.
+fn hertz_law(law: Law, state: ptr<function, vec3<f64>>, d: f64) -> NormalOut {
+    var out = NormalOut(0.0lf, 0.0lf, 0.0lf);
+    let sqrt_d = sqrt(d);
     if d <= 0.0lf {
         return out;
     }
-    *state = max(*state, d);
-    let s0 = *state - law.yield_displacement;
+    if d > (*state).x {
+        (*state).x = d;
+    }
+    out.radius = law.sqrt_radius * sqrt_d;
+    out.force = law.force_coefficient * d * sqrt_d;
+    out.stiffness = 2.0lf * law.effective_modulus * out.radius;
+    return out;
+}
+
+// `MdrLaw::update` (the closed form of docs/theory.md §4); `state.x` is the largest overlap.
+fn mdr_law(law: Law, state: ptr<function, vec3<f64>>, d: f64) -> NormalOut {
+    var out = NormalOut(0.0lf, 0.0lf, 0.0lf);
+    if d <= 0.0lf {
+        return out;
+    }
+    let loading = d >= (*state).x;
+    (*state).x = max((*state).x, d);
+    let s0 = (*state).x - law.yield_displacement;
     if d >= s0 {
         let sqrt_d = sqrt(d);
         let s = max(s0, 0.0lf);
         let sqrt_s = sqrt(s);
         out.radius = law.sqrt_radius * sqrt_d;
+        var softening = 0.0lf;
+        if loading {
+            softening = law.plastic_fraction * sqrt_s;
+        }
         out.force = law.force_coefficient * (d * sqrt_d - law.plastic_fraction * s * sqrt_s);
+        out.stiffness = law.stiffness_coefficient * (sqrt_d - softening);
         return out;
     }
     let excess = d - law.plastic_fraction * s0;
@@ -368,26 +435,315 @@ fn normal_law(law: Law, state: ptr<function, f64>, d: f64) -> NormalOut {
     let sqrt_excess = sqrt(excess);
     out.radius = law.flat_radius_sqrt * sqrt_excess;
     out.force = law.flat_force_coefficient * excess * sqrt_excess;
+    out.stiffness = 2.0lf * law.effective_modulus * out.radius;
     return out;
 }
 
+// `ThorntonLaw::update` with the 1997 unloading branch (docs/theory.md §6): `state` is the
+// largest overlap, the unloading coefficient and the residual overlap.
+fn thornton_law(law: Law, state: ptr<function, vec3<f64>>, d: f64) -> NormalOut {
+    var out = NormalOut(0.0lf, 0.0lf, 0.0lf);
+    if d <= 0.0lf {
+        return out;
+    }
+    let e2 = 2.0lf * law.effective_modulus;
+    if d >= (*state).x {
+        (*state).x = d;
+        let a = sqrt(law.effective_radius * d);
+        if d <= law.yield_displacement {
+            out.force = law.force_coefficient * pow3_2(d);
+            out.radius = a;
+            out.stiffness = e2 * a;
+            return out;
+        }
+        // `loading_force` above the yield point: F_y + π p_y R (δ − δ_y).
+        let force = law.yield_force
+            + PI * law.yield_pressure * law.effective_radius * (d - law.yield_displacement);
+        // R_p = 4 E* a³ / (3 F*), δ_p = δ* − (F* / ((4/3) E* √R_p))^{2/3}.
+        let r_p = 4.0lf * law.effective_modulus * a * a * a / (3.0lf * force);
+        let coefficient = 4.0lf / 3.0lf * law.effective_modulus * sqrt(r_p);
+        (*state).y = coefficient;
+        (*state).z = d - pow2_3(force / coefficient);
+        out.force = force;
+        out.radius = a;
+        out.stiffness = PI * law.yield_pressure * law.effective_radius;
+        return out;
+    }
+    if (*state).x <= law.yield_displacement {
+        let a = sqrt(law.effective_radius * d);
+        out.force = law.force_coefficient * pow3_2(d);
+        out.radius = a;
+        out.stiffness = e2 * a;
+        return out;
+    }
+    let x = d - (*state).z;
+    if x <= 0.0lf {
+        return out;
+    }
+    let c = (*state).y;
+    // a = √(R_p x), R_p = (3c / (4E*))².
+    let q = 0.75lf * c / law.effective_modulus;
+    let r_p = q * q;
+    let a = sqrt(r_p * x);
+    out.force = c * pow3_2(x);
+    out.radius = a;
+    out.stiffness = e2 * a;
+    return out;
+}
+
+// The crater of the adhesive MDR law after loading to `max_overlap` (`AdhesiveMdrLaw::crater`).
+struct Crater {
+    radius: f64,
+    theta: f64,
+    depth: f64,
+    plastic_radius_sq: f64,
+}
+
+fn crater_of(law: Law, max_overlap: f64) -> Crater {
+    let s = max(max_overlap - law.yield_displacement, 0.0lf);
+    let theta = law.hardening_ratio;
+    return Crater(law.effective_radius, theta, (1.0lf - theta) * s, law.effective_radius * s);
+}
+
+fn crater_height(c: Crater, a: f64) -> f64 {
+    if a * a < c.plastic_radius_sq {
+        return c.theta * a * a / c.radius + c.depth;
+    }
+    return a * a / c.radius;
+}
+
+fn crater_slope(c: Crater, a: f64) -> f64 {
+    if a * a < c.plastic_radius_sq {
+        return 2.0lf * c.theta * a / c.radius;
+    }
+    return 2.0lf * a / c.radius;
+}
+
+fn crater_integral(c: Crater, a: f64) -> f64 {
+    let r = c.radius;
+    if a * a <= c.plastic_radius_sq {
+        return c.theta * a * a * a / (3.0lf * r) + c.depth * a;
+    }
+    let b = sqrt(c.plastic_radius_sq);
+    return a * a * a / (3.0lf * r) + 2.0lf / 3.0lf * (1.0lf - c.theta) * b * b * b / r;
+}
+
+fn crater_touching_radius(c: Crater, d: f64) -> f64 {
+    if d <= c.depth {
+        return 0.0lf;
+    }
+    let outer = c.radius * d;
+    if outer >= c.plastic_radius_sq {
+        return sqrt(outer);
+    }
+    return sqrt(c.radius * (d - c.depth) / c.theta);
+}
+
+// `φ(t) = h(t²) − c t − d` of `AdhesiveMdrLaw::attached_radius`.
+fn edge_phi(c: Crater, detach: f64, t: f64, d: f64) -> f64 {
+    return crater_height(c, t * t) - detach * t - d;
+}
+
+// `AdhesiveMdrLaw::attached_radius`: the touching radius while the contact grows; otherwise
+// the outermost spring still within its limit (Halley's method from the right, as on the CPU).
+fn attached_radius(law: Law, c: Crater, previous: f64, d: f64) -> f64 {
+    let touching = crater_touching_radius(c, d);
+    if touching >= previous {
+        return touching;
+    }
+    let k = law.detach_coefficient;
+    var t = sqrt(previous);
+    var value = edge_phi(c, k, t, d);
+    if value <= 0.0lf {
+        return previous;
+    }
+    if 2.0lf * t * crater_slope(c, t * t) - k <= 0.0lf {
+        return 0.0lf;
+    }
+    let floor_t = sqrt(touching);
+    for (var iteration = 0; iteration < 100; iteration++) {
+        let edge_slope = crater_slope(c, t * t);
+        let slope = 2.0lf * t * edge_slope - k;
+        if slope <= 0.0lf {
+            return 0.0lf;
+        }
+        let curvature = 6.0lf * edge_slope;
+        let denominator = 2.0lf * slope * slope - value * curvature;
+        var step: f64;
+        if denominator > 0.0lf {
+            step = 2.0lf * value * slope / denominator;
+        } else {
+            step = value / slope;
+        }
+        let next = max(t - step, floor_t);
+        if t - next <= 1e-15lf * t {
+            t = next;
+            break;
+        }
+        t = next;
+        value = edge_phi(c, k, t, d);
+        if value <= 0.0lf {
+            break;
+        }
+    }
+    return max(t * t, touching);
+}
+
+// `AdhesiveMdrLaw::update` (docs/theory.md, "Adhesion: Heß's rule on the plastic springs"):
+// `state` is the largest overlap and the attached radius (the adhesive work, a book, is not
+// kept on the device).
+fn adhesive_mdr_law(law: Law, state: ptr<function, vec3<f64>>, d: f64) -> NormalOut {
+    var out = NormalOut(0.0lf, 0.0lf, 0.0lf);
+    if law.detach_coefficient == 0.0lf {
+        out = mdr_law(law, state, d);
+        (*state).y = out.radius;
+        return out;
+    }
+    let loading = d > (*state).x;
+    let residual = law.plastic_fraction * max((*state).x - law.yield_displacement, 0.0lf);
+    if (*state).y == 0.0lf && d <= residual {
+        return out;
+    }
+    if loading {
+        (*state).x = d;
+    }
+    let c = crater_of(law, (*state).x);
+    let previous = (*state).y;
+    let a = attached_radius(law, c, previous, d);
+    (*state).y = a;
+    if a == 0.0lf {
+        return out;
+    }
+    let modulus = law.effective_modulus;
+    out.force = 2.0lf * modulus * (a * d - crater_integral(c, a));
+    var softening = 0.0lf;
+    if loading && c.plastic_radius_sq > 0.0lf {
+        softening = (1.0lf - c.theta) * sqrt(c.plastic_radius_sq);
+    }
+    out.radius = a;
+    out.stiffness = 2.0lf * modulus * (a - softening);
+    return out;
+}
+
+fn normal_law(law: Law, state: ptr<function, vec3<f64>>, d: f64) -> NormalOut {
+    if p.law == LAW_HERTZ {
+        return hertz_law(law, state, d);
+    }
+    if p.law == LAW_MDR {
+        return mdr_law(law, state, d);
+    }
+    if p.law == LAW_THORNTON {
+        return thornton_law(law, state, d);
+    }
+    return adhesive_mdr_law(law, state, d);
+}
+
+// `NormalLaw::holds`: an adhesive contact with attached springs holds apart.
+fn holds(law: Law, h: History) -> bool {
+    return p.law == LAW_ADHESIVE_MDR && law.detach_coefficient > 0.0lf && h.normal.y > 0.0lf;
+}
+
 struct History {
-    normal: f64,
+    normal: vec3<f64>,
     xi: vec3<f64>,
     radius: f64,
+    torque: vec3<f64>,
+    rolling_stiffness: f64,
+}
+
+fn default_history() -> History {
+    let zero = vec3<f64>(0.0lf, 0.0lf, 0.0lf);
+    return History(zero, zero, 0.0lf, zero, 0.0lf);
+}
+
+// The slot `k`'s history (`k` = particle · MAXN + slot).
+fn load_slot(k: u32) -> History {
+    var h = default_history();
+    for (var w = 0u; w < NN; w++) {
+        h.normal[w] = h_state[NS * k + w];
+    }
+    h.xi = vec3<f64>(h_xi[3u * k], h_xi[3u * k + 1u], h_xi[3u * k + 2u]);
+    h.radius = h_radius[k];
+    if ROLLING {
+        let r = NS * k + NN;
+        h.torque = vec3<f64>(h_state[r], h_state[r + 1u], h_state[r + 2u]);
+        h.rolling_stiffness = h_state[r + 3u];
+    }
+    return h;
+}
+
+fn store_slot(k: u32, h: History) {
+    for (var w = 0u; w < NN; w++) {
+        h_state[NS * k + w] = h.normal[w];
+    }
+    h_xi[3u * k] = h.xi.x;
+    h_xi[3u * k + 1u] = h.xi.y;
+    h_xi[3u * k + 2u] = h.xi.z;
+    h_radius[k] = h.radius;
+    if ROLLING {
+        let r = NS * k + NN;
+        h_state[r] = h.torque.x;
+        h_state[r + 1u] = h.torque.y;
+        h_state[r + 2u] = h.torque.z;
+        h_state[r + 3u] = h.rolling_stiffness;
+    }
+}
+
+// Particle `i`'s floor history: active, the normal state, ξ, a, the rolling state.
+fn load_floor(i: u32) -> History {
+    let f = FS * i;
+    var h = default_history();
+    for (var w = 0u; w < NN; w++) {
+        h.normal[w] = floor_hist[f + 1u + w];
+    }
+    let t = f + 1u + NN;
+    h.xi = vec3<f64>(floor_hist[t], floor_hist[t + 1u], floor_hist[t + 2u]);
+    h.radius = floor_hist[t + 3u];
+    if ROLLING {
+        h.torque = vec3<f64>(floor_hist[t + 4u], floor_hist[t + 5u], floor_hist[t + 6u]);
+        h.rolling_stiffness = floor_hist[t + 7u];
+    }
+    return h;
+}
+
+fn store_floor(i: u32, touching: bool, h: History) {
+    let f = FS * i;
+    floor_hist[f] = select(0.0lf, 1.0lf, touching);
+    for (var w = 0u; w < NN; w++) {
+        floor_hist[f + 1u + w] = h.normal[w];
+    }
+    let t = f + 1u + NN;
+    floor_hist[t] = h.xi.x;
+    floor_hist[t + 1u] = h.xi.y;
+    floor_hist[t + 2u] = h.xi.z;
+    floor_hist[t + 3u] = h.radius;
+    if ROLLING {
+        floor_hist[t + 4u] = h.torque.x;
+        floor_hist[t + 5u] = h.torque.y;
+        floor_hist[t + 6u] = h.torque.z;
+        floor_hist[t + 7u] = h.rolling_stiffness;
+    }
+}
+
+// What `ContactLaw::update` returns that the pair kernel uses.
+struct ContactOut {
+    force: vec3<f64>,
+    normal_force: f64,
+    stiffness: f64,
 }
 
 // `ContactLaw::update` with `MindlinLaw::update` (displacement form, rescaled on unloading) and
 // `HertzianViscousLaw`: the force on body 1.
 fn contact_update(law: Law, h: ptr<function, History>, overlap: f64, n: vec3<f64>,
-                  rv: vec3<f64>) -> vec3<f64> {
+                  rv: vec3<f64>) -> ContactOut {
+    let zero = vec3<f64>(0.0lf, 0.0lf, 0.0lf);
     var normal_state = (*h).normal;
     let normal = normal_law(law, &normal_state, overlap);
     (*h).normal = normal_state;
     if normal.force <= 0.0lf && normal.radius <= 0.0lf {
-        (*h).xi = vec3<f64>(0.0lf, 0.0lf, 0.0lf);
+        (*h).xi = zero;
         (*h).radius = 0.0lf;
-        return vec3<f64>(0.0lf, 0.0lf, 0.0lf);
+        return ContactOut(zero, 0.0lf, 0.0lf);
     }
     let normal_speed = dot3(rv, n);
     let approach_rate = -normal_speed;
@@ -397,13 +753,13 @@ fn contact_update(law: Law, h: ptr<function, History>, overlap: f64, n: vec3<f64
     }
     let damping = dashpot * approach_rate;
     let normal_force = max(normal.force + damping, min(normal.force, 0.0lf));
-    // Mindlin, with the Coulomb cap on the total normal force.
+    // Mindlin, with the Coulomb cap on the total normal force plus twice the pull-off force.
     let a = normal.radius;
-    let cap_force = normal_force + 0.0lf;
-    var t_force = vec3<f64>(0.0lf, 0.0lf, 0.0lf);
+    let cap_force = normal_force + 2.0lf * law.pull_off;
+    var t_force = zero;
     var sliding = false;
     if a <= 0.0lf || cap_force <= 0.0lf {
-        (*h).xi = vec3<f64>(0.0lf, 0.0lf, 0.0lf);
+        (*h).xi = zero;
         (*h).radius = 0.0lf;
     } else {
         var xi = (*h).xi;
@@ -457,7 +813,56 @@ fn contact_update(law: Law, h: ptr<function, History>, overlap: f64, n: vec3<f64
             force = force - v_t * eta_t;
         }
     }
-    return force;
+    return ContactOut(force, normal_force, normal.stiffness);
+}
+
+// `EpsdRollingLaw::update` (Ai et al. 2011, type C): the rolling torque on body 1.
+fn rolling_update(law: Law, h: ptr<function, History>, n: vec3<f64>, increment: vec3<f64>,
+                  normal_force: f64, normal_stiffness: f64) -> vec3<f64> {
+    let zero = vec3<f64>(0.0lf, 0.0lf, 0.0lf);
+    if normal_force <= 0.0lf {
+        (*h).torque = zero;
+        (*h).rolling_stiffness = 0.0lf;
+        return zero;
+    }
+    var torque = (*h).torque;
+    let old_len2 = dot3(torque, torque);
+    if old_len2 > 0.0lf {
+        torque = torque - n * dot3(n, torque);
+        let new_len2 = dot3(torque, torque);
+        if new_len2 > 0.0lf {
+            torque = torque * sqrt(old_len2 / new_len2);
+        }
+    }
+    let rotation = increment - n * dot3(n, increment);
+    let stiffness = law.rolling_stiffness_ratio * normal_stiffness;
+    torque = torque + rotation * (-stiffness);
+    let cap = law.rolling_arm * normal_force;
+    let magnitude2 = dot3(torque, torque);
+    if magnitude2 > cap * cap {
+        let magnitude = sqrt(magnitude2);
+        torque = torque * (cap / magnitude);
+    }
+    (*h).torque = torque;
+    (*h).rolling_stiffness = stiffness;
+    return torque;
+}
+
+// `evaluate_pair`: the contact law, then the rolling law on the relative rotation; the force on
+// body 1 and the rolling torque on body 1 (body 2 receives their negatives).
+struct PairOut {
+    force: vec3<f64>,
+    rolling_torque: vec3<f64>,
+}
+
+fn pair_wrench(law: Law, h: ptr<function, History>, overlap: f64, n: vec3<f64>, rv: vec3<f64>,
+               w1: vec3<f64>, w2: vec3<f64>) -> PairOut {
+    let out = contact_update(law, h, overlap, n, rv);
+    var roll = vec3<f64>(0.0lf, 0.0lf, 0.0lf);
+    if ROLLING {
+        roll = rolling_update(law, h, n, (w1 - w2) * p.dt, out.normal_force, out.stiffness);
+    }
+    return PairOut(out.force, roll);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -471,38 +876,32 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
     if i >= p.n {
         return;
     }
+    let zero = vec3<f64>(0.0lf, 0.0lf, 0.0lf);
     let xi = load_pos(i);
     let vi = load_vel(i);
     let wi = load_angvel(i);
     let r = p.radius;
-    var force = vec3<f64>(0.0lf, 0.0lf, 0.0lf);
-    var torque = vec3<f64>(0.0lf, 0.0lf, 0.0lf);
-    // The floor `z = floor_z`, normal +z (`sphere_half_space`).
+    var force = zero;
+    var torque = zero;
+    // The floor `z = floor_z`, normal +z (`sphere_half_space`; `sphere_half_space_signed` for
+    // a held adhesive contact).
     {
-        let fb = 6u * i;
         let signed = xi.z - p.floor_z;
         let overlap = r - signed;
-        if overlap <= 0.0lf {
-            for (var k = 0u; k < 6u; k++) {
-                floor_hist[fb + k] = 0.0lf;
-            }
+        let was_active = floor_hist[FS * i] != 0.0lf;
+        var h = load_floor(i);
+        let held = was_active && holds(p.floor, h);
+        if overlap <= 0.0lf && !held {
+            store_floor(i, false, default_history());
         } else {
             let n = vec3<f64>(0.0lf, 0.0lf, 1.0lf);
             let point = xi - n * (signed + 0.5lf * overlap);
             let arm1 = point - xi;
-            var h = History(floor_hist[fb + 1u],
-                            vec3<f64>(floor_hist[fb + 2u], floor_hist[fb + 3u], floor_hist[fb + 4u]),
-                            floor_hist[fb + 5u]);
             let rv = vi + cross3(wi, arm1);
-            let f = contact_update(p.floor, &h, overlap, n, rv);
-            floor_hist[fb] = 1.0lf;
-            floor_hist[fb + 1u] = h.normal;
-            floor_hist[fb + 2u] = h.xi.x;
-            floor_hist[fb + 3u] = h.xi.y;
-            floor_hist[fb + 4u] = h.xi.z;
-            floor_hist[fb + 5u] = h.radius;
-            force = f;
-            torque = cross3(arm1, f);
+            let out = pair_wrench(p.floor, &h, overlap, n, rv, wi, zero);
+            store_floor(i, true, h);
+            force = out.force;
+            torque = cross3(arm1, out.force) + out.rolling_torque;
         }
     }
     let base = i * MAXN;
@@ -528,17 +927,17 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         let dist2 = dot3(d, d);
         let reach = r + r;
         let touch = !(dist2 >= reach * reach || dist2 == 0.0lf);
-        if !touch {
+        let was_active = (key & ACTIVE) != 0u;
+        var h = default_history();
+        if was_active {
+            h = load_slot(base + s);
+        }
+        // A held adhesive contact goes on at its negative overlap until its law lets go.
+        let held = was_active && dist2 != 0.0lf && holds(p.sphere, h);
+        if !(touch || held) {
             // Separated: inactive, the history left as it is (reset when it touches again).
             keys[base + s] = key & ~ACTIVE;
             continue;
-        }
-        var h = History(0.0lf, vec3<f64>(0.0lf, 0.0lf, 0.0lf), 0.0lf);
-        if (key & ACTIVE) != 0u {
-            h = History(h_normal[base + s],
-                        vec3<f64>(h_xi[3u * (base + s)], h_xi[3u * (base + s) + 1u],
-                                  h_xi[3u * (base + s) + 2u]),
-                        h_radius[base + s]);
         }
         let dist = sqrt(dist2);
         let overlap = reach - dist;
@@ -548,20 +947,16 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         let w1 = load_angvel(b1);
         let w2 = load_angvel(b2);
         let rv = (load_vel(b1) - load_vel(b2)) - cross3(w1 * lever1 + w2 * lever2, n);
-        let f = contact_update(p.sphere, &h, overlap, n, rv);
+        let out = pair_wrench(p.sphere, &h, overlap, n, rv, w1, w2);
         keys[base + s] = key | ACTIVE;
-        h_normal[base + s] = h.normal;
-        h_xi[3u * (base + s)] = h.xi.x;
-        h_xi[3u * (base + s) + 1u] = h.xi.y;
-        h_xi[3u * (base + s) + 2u] = h.xi.z;
-        h_radius[base + s] = h.radius;
-        let moment = cross3(n, f);
+        store_slot(base + s, h);
+        let moment = cross3(n, out.force);
         if i == b1 {
-            force = force + f;
-            torque = torque + moment * (-lever1);
+            force = force + out.force;
+            torque = torque + (moment * (-lever1) + out.rolling_torque);
         } else {
-            force = force + (-f);
-            torque = torque + moment * (-lever2);
+            force = force + (-out.force);
+            torque = torque + (moment * (-lever2) - out.rolling_torque);
         }
     }
     store_wrench(2u * i, force);

@@ -3,14 +3,14 @@
 
 use crate::bed::{GpuBed, GpuOptions, GpuState};
 use crate::device::{GpuContext, GpuError};
-use crate::law::BENCH_THETA_RATIO;
+use crate::law::{GpuLaws, GpuNormalLaw, BENCH_THETA_RATIO};
 use mdr_contact::damping::HertzianViscous;
 use mdr_contact::model::Books;
-use mdr_contact::normal::{Hertz, MdrElastoPlastic, NormalModel};
-use mdr_contact::rolling::NoRolling;
+use mdr_contact::normal::{AdhesiveMdr, Hertz, MdrElastoPlastic, NormalLaw, NormalModel, Thornton};
+use mdr_contact::rolling::{EpsdRolling, EpsdRollingState, NoRolling, RollingModel};
 use mdr_contact::tangential::Mindlin;
 use mdr_rapier::neighbour_list::bed::{
-    peak_rss_mb, reference_system, Bed, BedError, BenchFigures, BenchLaw, BenchSettings, BenchValue,
+    peak_rss_mb, reference_system, Bed, BedError, BenchFigures, BenchSettings, BenchValue,
 };
 use mdr_rapier::neighbour_list::{Boundary, NeighbourListStepper};
 use nalgebra::Vector3;
@@ -83,7 +83,7 @@ pub fn bench_bed_gpu(
         .chain(&state.linvel)
         .chain(&state.angvel);
     let figures = BenchFigures {
-        law: settings.law.name(),
+        law: system.laws().normal.name(),
         particles: n,
         steps: settings.steps,
         threads: 0,
@@ -146,6 +146,10 @@ pub struct CpuPair {
     pub displacement: Vector3<f64>,
     /// Mindlin's contact radius.
     pub contact_radius: f64,
+    /// The normal law's residual overlap (`NormalLaw::residual_overlap`).
+    pub residual_overlap: f64,
+    /// The rolling resistance spring's torque (zero without rolling resistance).
+    pub rolling_torque: Vector3<f64>,
 }
 
 /// The CPU path's state after a run: particles and the touching pairs' histories.
@@ -159,6 +163,11 @@ pub struct CpuState {
     pub angvel: Vec<Vector3<f64>>,
     /// Touching pairs, sorted by `(i, j, image)`.
     pub pairs: Vec<CpuPair>,
+    /// Per particle: the floor contact's `(max overlap, ξ, contact radius)` (as
+    /// [`crate::GpuState::floor`]), `None` when apart.
+    pub floor: Vec<Option<(f64, Vector3<f64>, f64)>>,
+    /// Per particle: the floor contact's rolling torque (zero when apart).
+    pub floor_rolling_torque: Vec<Vector3<f64>>,
     /// Neighbour-list builds.
     pub rebuilds: u64,
     /// The box.
@@ -172,7 +181,20 @@ pub fn cpu_reference_run(
     settings: &BenchSettings,
     steps: usize,
 ) -> Result<CpuState, GpuError> {
+    cpu_reference_run_with(bed, settings, &GpuLaws::from(settings.law), steps)
+}
+
+/// [`cpu_reference_run`] with the contact model `laws` (as [`crate::GpuOptions::laws`] gives
+/// the GPU path): the reference system with that normal law, Mindlin, damping and, where
+/// `laws.rolling` is set, `EpsdRolling`.
+pub fn cpu_reference_run_with(
+    bed: &Bed,
+    settings: &BenchSettings,
+    laws: &GpuLaws,
+    steps: usize,
+) -> Result<CpuState, GpuError> {
     settings.validate()?;
+    laws.validate()?;
     let tiled;
     let bed = if settings.tile > 1 {
         tiled = bed.tiled(settings.tile, settings.tile)?;
@@ -184,11 +206,32 @@ pub fn cpu_reference_run(
         .num_threads(settings.threads)
         .build()
         .map_err(|e| BedError::ThreadPool(e.to_string()))?;
-    pool.install(|| match settings.law {
-        BenchLaw::Hertz => cpu_run(Hertz, bed, settings, steps),
-        BenchLaw::Mdr { qc } => cpu_run(
-            MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)
-                .map_err(mdr_rapier::error::CouplingError::from)?,
+    let rolling = laws.rolling;
+    pool.install(|| match laws.normal {
+        GpuNormalLaw::Hertz => cpu_run_rolling(Hertz, rolling, bed, settings, steps),
+        GpuNormalLaw::Mdr { qc } => cpu_run_rolling(
+            MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)?,
+            rolling,
+            bed,
+            settings,
+            steps,
+        ),
+        GpuNormalLaw::Thornton { yield_pressure } => cpu_run_rolling(
+            Thornton::new(yield_pressure)?,
+            rolling,
+            bed,
+            settings,
+            steps,
+        ),
+        GpuNormalLaw::AdhesiveMdr {
+            qc,
+            work_of_adhesion,
+        } => cpu_run_rolling(
+            AdhesiveMdr::new(
+                MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)?,
+                work_of_adhesion,
+            )?,
+            rolling,
             bed,
             settings,
             steps,
@@ -196,8 +239,26 @@ pub fn cpu_reference_run(
     })
 }
 
-fn cpu_run<N>(
+/// The torque of a rolling law's state (zero without one).
+trait RollingTorque {
+    fn torque(&self) -> Vector3<f64>;
+}
+
+impl RollingTorque for () {
+    fn torque(&self) -> Vector3<f64> {
+        Vector3::zeros()
+    }
+}
+
+impl RollingTorque for EpsdRollingState {
+    fn torque(&self) -> Vector3<f64> {
+        self.torque
+    }
+}
+
+fn cpu_run_rolling<N>(
     normal: N,
+    rolling: Option<f64>,
     bed: &Bed,
     settings: &BenchSettings,
     steps: usize,
@@ -206,9 +267,30 @@ where
     N: NormalModel,
     N::Law: Clone,
 {
+    match rolling {
+        None => cpu_run(normal, NoRolling, bed, settings, steps),
+        Some(mu) => cpu_run(normal, EpsdRolling::new(mu)?, bed, settings, steps),
+    }
+}
+
+fn cpu_run<N, R>(
+    normal: N,
+    rolling: R,
+    bed: &Bed,
+    settings: &BenchSettings,
+    steps: usize,
+) -> Result<CpuState, GpuError>
+where
+    N: NormalModel,
+    N::Law: Clone,
+    R: RollingModel,
+    R::Law: Clone,
+    <R::Law as mdr_contact::rolling::RollingLaw>::State: RollingTorque,
+{
     let (stepper, mut world) = reference_system(normal, bed)?;
-    let mut stepper: NeighbourListStepper<N, Mindlin, HertzianViscous, NoRolling, Books> = stepper
+    let mut stepper: NeighbourListStepper<N, Mindlin, HertzianViscous, R, Books> = stepper
         .skin(settings.skin)?
+        .with_rolling(rolling)
         .track_orientation(settings.orientation);
     mdr_rapier::neighbour_list::with_workers_awake(|| -> Result<(), GpuError> {
         for _ in 0..steps {
@@ -227,14 +309,35 @@ where
                 i: list.i[q],
                 j: list.j[q],
                 image: list.image[q],
-                max_overlap: mdr_contact::normal::NormalLaw::max_overlap(&law.normal, &h.normal),
+                max_overlap: law.normal.max_overlap(&h.normal),
                 displacement: h.tangential.displacement,
                 contact_radius: h.tangential.contact_radius,
+                residual_overlap: law.normal.residual_overlap(&h.normal),
+                rolling_torque: list.history[q].rolling.torque(),
             });
+        }
+    }
+    let n = stepper.particles().len();
+    let mut floor = vec![None; n];
+    let mut floor_rolling_torque = vec![Vector3::zeros(); n];
+    let surface = stepper.surface_pairs();
+    for q in 0..surface.len() {
+        if surface.active[q] {
+            let i = surface.particle[q] as usize;
+            let (law, _) = stepper.surface_pair_laws(i, surface.surface[q] as usize);
+            let h = &surface.history[q];
+            floor[i] = Some((
+                law.normal.max_overlap(&h.contact.normal),
+                h.contact.tangential.displacement,
+                h.contact.tangential.contact_radius,
+            ));
+            floor_rolling_torque[i] = h.rolling.torque();
         }
     }
     let p = stepper.particles();
     Ok(CpuState {
+        floor,
+        floor_rolling_torque,
         position: p.position.clone(),
         linvel: p.linvel.clone(),
         angvel: p.angvel.clone(),
@@ -259,8 +362,20 @@ pub struct Differences {
     /// The largest difference of a touching pair's tangential displacement, relative to the
     /// largest displacement of any pair.
     pub displacement_relative: f64,
+    /// The largest difference of a touching pair's contact radius, relative to the largest
+    /// contact radius of any pair.
+    pub contact_radius_relative: f64,
+    /// The largest difference of a touching pair's rolling torque, relative to the largest
+    /// rolling torque of any pair (zero without rolling resistance).
+    pub rolling_torque_relative: f64,
     /// Touching pairs found in one run and not the other.
     pub unmatched_pairs: usize,
+    /// The largest difference of a floor contact's history (largest overlap, tangential
+    /// displacement, contact radius, rolling torque), each relative to its largest value over
+    /// the floor contacts.
+    pub floor_history_relative: f64,
+    /// Particles touching the floor in one run and not the other.
+    pub unmatched_floor_contacts: usize,
     /// Touching pairs compared.
     pub pairs: usize,
 }
@@ -297,6 +412,16 @@ pub fn differences(gpu: &GpuState, cpu: &CpuState) -> Differences {
         .map(|p| p.displacement.norm())
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
+    let scale = |f: &dyn Fn(&CpuPair) -> f64| {
+        cpu.pairs
+            .iter()
+            .map(f)
+            .fold(0.0, f64::max)
+            .max(f64::MIN_POSITIVE)
+    };
+    let radius_scale = scale(&|p| p.contact_radius);
+    let torque_scale = scale(&|p| p.rolling_torque.norm());
+    let (mut radius_abs, mut torque_abs) = (0.0f64, 0.0f64);
     let mut g = 0;
     for c in &cpu.pairs {
         while g < active.len() && (active[g].i, active[g].j, active[g].image) < (c.i, c.j, c.image)
@@ -308,19 +433,77 @@ pub fn differences(gpu: &GpuState, cpu: &CpuState) -> Differences {
             let a = active[g];
             overlap_rel = overlap_rel.max((a.max_overlap - c.max_overlap).abs() / c.max_overlap);
             disp_abs = disp_abs.max((a.displacement - c.displacement).norm());
+            radius_abs = radius_abs.max((a.contact_radius - c.contact_radius).abs());
+            torque_abs = torque_abs.max((a.rolling_torque - c.rolling_torque).norm());
             g += 1;
         } else {
             unmatched += 1;
         }
     }
     unmatched += active.len() - g;
+    let (floor_history_relative, unmatched_floor_contacts) = floor_differences(gpu, cpu);
     Differences {
         position_diameters,
         velocity: largest(&gpu.linvel, &cpu.linvel),
         angular_velocity: largest(&gpu.angvel, &cpu.angvel),
         max_overlap_relative: overlap_rel,
         displacement_relative: disp_abs / disp_scale,
+        contact_radius_relative: radius_abs / radius_scale,
+        rolling_torque_relative: torque_abs / torque_scale,
         unmatched_pairs: unmatched,
+        floor_history_relative,
+        unmatched_floor_contacts,
         pairs: cpu.pairs.len(),
     }
+}
+
+/// A floor contact's `(max overlap, ξ, contact radius)`.
+type FloorHistory = (f64, Vector3<f64>, f64);
+
+/// The largest relative difference of the floor contacts' histories, and the particles touching
+/// the floor in one run only.
+fn floor_differences(gpu: &GpuState, cpu: &CpuState) -> (f64, usize) {
+    let both: Vec<_> = gpu
+        .floor
+        .iter()
+        .zip(&cpu.floor)
+        .zip(
+            gpu.floor_rolling_torque
+                .iter()
+                .zip(&cpu.floor_rolling_torque),
+        )
+        .filter_map(|((g, c), t)| Some(((*g)?, (*c)?, t)))
+        .collect();
+    let unmatched = gpu
+        .floor
+        .iter()
+        .zip(&cpu.floor)
+        .filter(|(g, c)| g.is_some() != c.is_some())
+        .count();
+    let largest = |f: &dyn Fn(&FloorHistory, &Vector3<f64>) -> f64| {
+        both.iter()
+            .map(|(_, c, (_, t))| f(c, t))
+            .fold(0.0, f64::max)
+            .max(f64::MIN_POSITIVE)
+    };
+    let scales = [
+        largest(&|c, _| c.0),
+        largest(&|c, _| c.1.norm()),
+        largest(&|c, _| c.2),
+        largest(&|_, t| t.norm()),
+    ];
+    let worst = both
+        .iter()
+        .map(|(g, c, (tg, tc))| {
+            [
+                (g.0 - c.0).abs() / scales[0],
+                (g.1 - c.1).norm() / scales[1],
+                (g.2 - c.2).abs() / scales[2],
+                (*tg - *tc).norm() / scales[3],
+            ]
+            .into_iter()
+            .fold(0.0, f64::max)
+        })
+        .fold(0.0, f64::max);
+    (worst, unmatched)
 }

@@ -119,6 +119,13 @@ impl From<mdr_rapier::error::CouplingError> for GpuError {
     }
 }
 
+/// A law parameter the law crate refused (it names the parameter).
+impl From<mdr_contact::ContactError> for GpuError {
+    fn from(e: mdr_contact::ContactError) -> Self {
+        mdr_rapier::error::CouplingError::from(e).into()
+    }
+}
+
 /// A device with 64-bit floats in shaders, and its queue.
 pub struct GpuContext {
     pub(crate) device: wgpu::Device,

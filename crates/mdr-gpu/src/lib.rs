@@ -1,7 +1,8 @@
 //! The neighbour-list path of mdr-dem on the GPU: wgpu compute shaders in f64 (Vulkan, Metal or
 //! DX12 with `SHADER_F64`) running the settled-bed system of `mdr-dem bench bed` with the CPU
-//! path's arithmetic: the same law formulas (Hertz or MDR normal, Mindlin tangential, Hertzian
-//! viscous damping), the same integrator order, the same list and history semantics.
+//! path's arithmetic: the same law formulas (Hertz, MDR, Thornton or adhesive MDR normal,
+//! Mindlin tangential, Hertzian viscous damping, optionally rolling resistance), the same
+//! integrator order, the same list and history semantics ([`GpuLaws`]).
 //! The design, its determinism and its cost are described in `docs/gpu.md`.
 //!
 //! ```no_run
@@ -25,7 +26,8 @@ mod law;
 
 pub use bed::{GpuBed, GpuOptions, GpuPair, GpuState};
 pub use bench::{
-    bench_bed_gpu, cpu_reference_run, differences, CpuPair, CpuState, Differences, GpuBenchFigures,
+    bench_bed_gpu, cpu_reference_run, cpu_reference_run_with, differences, CpuPair, CpuState,
+    Differences, GpuBenchFigures,
 };
 pub use device::{GpuContext, GpuError};
-pub use law::BENCH_THETA_RATIO;
+pub use law::{GpuLaws, GpuNormalLaw, BENCH_THETA_RATIO};
