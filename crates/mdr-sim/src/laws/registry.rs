@@ -6,6 +6,10 @@
 //! stepper compiled for that law. The pair loop is monomorphised per law; nothing is looked up
 //! per contact.
 //!
+//! Each entry also carries the law's validator entry ([`mdr_impact::DeclaredLaw`]), so the
+//! single-impact validator (`mdr-dem impact …`, Python's `curve`/`oblique`) runs every
+//! registered law by name too.
+//!
 //! Adding a normal law: write its file in `mdr-contact` (a [`NormalModel`] with a
 //! [`Declared`] declaration and a state with a checkpoint record,
 //! [`super::NormalHistoryRecord`]) and add `NormalEntry::of::<TheLaw>()` below
@@ -24,6 +28,7 @@ use mdr_contact::params::{Declared, LawDeclaration};
 use mdr_contact::rolling::EpsdRolling;
 use mdr_contact::tangential::Mindlin;
 use mdr_contact::Result;
+use mdr_impact::DeclaredLaw;
 use mdr_rapier::neighbour_list::Boundary;
 
 /// The normal laws of scenes, by name. The adhesive MDR law is declared
@@ -112,6 +117,8 @@ pub struct NormalEntry {
     neighbour_list: NeighbourListBuilder,
     /// The rapier pipeline stepper compiled for the law.
     rapier_pipeline: RapierPipelineBuilder,
+    /// The single-impact validator's integrators compiled for the law.
+    pub impact: DeclaredLaw,
 }
 
 /// Builds the neighbour-list stepper of one law from its parameter values.
@@ -128,6 +135,7 @@ impl NormalEntry {
             check: check::<L>,
             neighbour_list: neighbour_list::<L>,
             rapier_pipeline: rapier_pipeline::<L>,
+            impact: DeclaredLaw::of::<L>(),
         }
     }
 
