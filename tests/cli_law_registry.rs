@@ -120,3 +120,125 @@ fn sim_run_refuses_a_demo_law_value_outside_its_declared_range() {
         "{err}"
     );
 }
+
+/// The paper's steel ball (R = 0.635 cm, 7800 kg/m³) on a half-space: the reduced mass is the
+/// ball's mass.
+fn paper_ball_mass() -> f64 {
+    4.0 / 3.0 * std::f64::consts::PI * 0.635e-2_f64.powi(3) * 7800.0
+}
+
+/// `mdr-dem impact curve` runs the demo law by its registered name, its stiffness given by the
+/// flag its declaration derives: an undamped linear spring returns every impact (`e_n = 1`)
+/// after half a period, `t_c = π √(m*/k_n)`, with the peak force `F = v₀ √(k_n m*)`, whatever
+/// the speed.
+#[test]
+fn impact_curve_runs_the_demo_law_as_its_analytic_solution() {
+    let k = 1.0e4;
+    let text = stdout(&mdr_dem(&[
+        "impact",
+        "curve",
+        "--law",
+        "linear-spring",
+        "--normal-stiffness-n-per-m",
+        "1e4",
+        "--velocities",
+        "0.1,1",
+        "--csv",
+        "-",
+        "--quiet",
+    ]));
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let m = paper_ball_mass();
+    let contact_time = std::f64::consts::PI * (m / k).sqrt();
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 2);
+    for row in rows {
+        let v0 = row[column("v0_m_per_s")];
+        let e_n = row[column("e_n")];
+        let t_c = row[column("contact_time_s")];
+        let f_max = row[column("f_max_n")];
+        assert!((e_n - 1.0).abs() < 1e-4, "e_n = {e_n} at {v0} m/s");
+        assert!(
+            (t_c / contact_time - 1.0).abs() < 1e-3,
+            "t_c = {t_c} vs {contact_time}"
+        );
+        assert!(
+            (f_max / (v0 * (k * m).sqrt()) - 1.0).abs() < 1e-3,
+            "F_max = {f_max}"
+        );
+    }
+    // The law is named by its underscore name too; the help lists its derived flag.
+    let help = stdout(&mdr_dem(&["impact", "curve", "--help"]));
+    assert!(
+        help.contains("--normal-stiffness-n-per-m") && help.contains("k_n (N/m, in (0, inf))"),
+        "{help}"
+    );
+}
+
+/// A missing, out-of-range or misplaced demo-law parameter is refused naming its flag.
+#[test]
+fn impact_refuses_demo_law_parameters_by_their_derived_flag() {
+    let fails = |args: &[&str], needles: &[&str]| {
+        let output = mdr_dem(args);
+        assert!(!output.status.success(), "{args:?} succeeded");
+        let err = String::from_utf8_lossy(&output.stderr);
+        for needle in needles {
+            assert!(err.contains(needle), "{args:?}: no `{needle}` in {err}");
+        }
+    };
+    fails(
+        &[
+            "impact",
+            "curve",
+            "--law",
+            "linear_spring",
+            "--velocities",
+            "1",
+        ],
+        &["--law", "--normal-stiffness-n-per-m", "k_n"],
+    );
+    fails(
+        &[
+            "impact",
+            "trace",
+            "--law",
+            "linear_spring",
+            "--normal-stiffness-n-per-m",
+            "-5",
+            "--v0",
+            "1",
+        ],
+        &["invalid value for --normal-stiffness-n-per-m", "(0, inf)"],
+    );
+    fails(
+        &[
+            "impact",
+            "curve",
+            "--normal-stiffness-n-per-m",
+            "1e4",
+            "--velocities",
+            "1",
+        ],
+        &[
+            "invalid value for --normal-stiffness-n-per-m",
+            "none of the laws",
+        ],
+    );
+    fails(
+        &[
+            "sim",
+            "drop",
+            "--law",
+            "linear_spring",
+            "--normal-stiffness-n-per-m",
+            "1e4",
+            "--v0",
+            "1",
+        ],
+        &["--law", "sim run"],
+    );
+}

@@ -166,6 +166,11 @@ impl SceneSettings {
             [NormalSpec::Mdr(model)] => SceneLaw::Mdr(*model),
             [NormalSpec::Hertz] => SceneLaw::Mdr(MdrElastoPlastic::elastic()),
             [NormalSpec::Thornton(model)] => SceneLaw::Thornton(*model),
+            [NormalSpec::Declared(law)] => bail!(
+                "invalid value for --law: `sim drop|pair` run mdr, thornton and hertz; run `{}` \
+                 in a scene (`mdr-dem sim run`) or in the validator (`mdr-dem impact`)",
+                law.name()
+            ),
             _ => bail!("invalid value for --law: `sim drop|pair` run one law at a time"),
         };
         let steps_per_contact = match (steps_per_contact, a.steps) {

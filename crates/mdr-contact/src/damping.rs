@@ -6,6 +6,7 @@
 use crate::error::{non_negative, Result};
 use crate::material::ContactPair;
 use crate::normal::NormalResponse;
+use crate::params::{Declared, LawDeclaration, LawKind, Param, Range};
 
 /// A damping law bound to one pair.
 pub trait DampingLaw: Send + Sync {
@@ -188,5 +189,76 @@ impl DampingLaw for StiffnessViscousLaw {
     #[inline]
     fn tangential_ratio(&self) -> f64 {
         self.tangential_ratio
+    }
+}
+
+/// The tangential dashpot's ratio, declared alike by both viscous damping laws.
+const TANGENTIAL_RATIO: Param = Param::new(
+    "damping_tangential_ratio",
+    "η_t/η_n",
+    "1",
+    Range::NON_NEGATIVE,
+    "tangential dashpot over the normal one while the Mindlin spring sticks (LAMMPS gammat/gamman; its NULL is 0.5)",
+)
+.default(0.0);
+
+/// No damping: no parameters.
+impl Declared for NoDamping {
+    const DECLARATION: LawDeclaration = LawDeclaration {
+        name: "none",
+        kind: LawKind::Damping,
+        summary: "no damping",
+        params: &[],
+    };
+    fn from_values(values: &[f64]) -> Result<Self> {
+        crate::params::check_values::<Self>(values)?;
+        Ok(NoDamping)
+    }
+}
+
+/// `γ_n` and the tangential ratio.
+impl Declared for HertzianViscous {
+    const DECLARATION: LawDeclaration = LawDeclaration {
+        name: "hertzian_viscous",
+        kind: LawKind::Damping,
+        summary: "F_d = m γ_n (dδ/dt) √(R δ) (LAMMPS gran/hertz/history)",
+        params: &[
+            Param::new(
+                "damping_gamma_n_per_m_s",
+                "γ_n",
+                "1/(m·s)",
+                Range::NON_NEGATIVE,
+                "normal dashpot: F_d = m γ_n (dδ/dt) √(R δ), m the reduced mass, R the effective radius",
+            )
+            .lammps("gamman"),
+            TANGENTIAL_RATIO,
+        ],
+    };
+    fn from_values(values: &[f64]) -> Result<Self> {
+        crate::params::check_values::<Self>(values)?;
+        Self::new(values[0])?.with_tangential_ratio(values[1])
+    }
+}
+
+/// `η` and the tangential ratio.
+impl Declared for StiffnessViscous {
+    const DECLARATION: LawDeclaration = LawDeclaration {
+        name: "stiffness_viscous",
+        kind: LawKind::Damping,
+        summary: "F_d = η √(m k_n) (dδ/dt), k_n the normal law's tangent stiffness (Tsuji)",
+        params: &[
+            Param::new(
+                "damping_eta",
+                "η",
+                "1",
+                Range::NON_NEGATIVE,
+                "normal dashpot: F_d = η √(m k_n) (dδ/dt)",
+            ),
+            TANGENTIAL_RATIO,
+        ],
+    };
+    fn from_values(values: &[f64]) -> Result<Self> {
+        crate::params::check_values::<Self>(values)?;
+        Self::new(values[0])?.with_tangential_ratio(values[1])
     }
 }

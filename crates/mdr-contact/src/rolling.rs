@@ -16,6 +16,7 @@
 
 use crate::error::{non_negative, Result};
 use crate::material::ContactPair;
+use crate::params::{Declared, LawDeclaration, LawKind, Param, Range};
 use nalgebra::Vector3;
 
 /// Input of one rolling-resistance update.
@@ -263,6 +264,41 @@ impl RollingLaw for EpsdRollingLaw {
     #[inline]
     fn dissipated_work(&self, state: &EpsdRollingState) -> f64 {
         state.dissipated_work
+    }
+}
+
+/// No rolling resistance: no parameters.
+impl Declared for NoRolling {
+    const DECLARATION: LawDeclaration = LawDeclaration {
+        name: "none",
+        kind: LawKind::Rolling,
+        summary: "no rolling resistance",
+        params: &[],
+    };
+    fn from_values(values: &[f64]) -> Result<Self> {
+        crate::params::check_values::<Self>(values)?;
+        Ok(NoRolling)
+    }
+}
+
+/// `μ_r`; 0 leaves the spring without torque, the scenes' default.
+impl Declared for EpsdRolling {
+    const DECLARATION: LawDeclaration = LawDeclaration {
+        name: "epsd",
+        kind: LawKind::Rolling,
+        summary: "elastic-plastic spring rolling resistance (Ai et al. 2011, eqs. 13-16)",
+        params: &[Param::new(
+            "rolling_friction",
+            "μ_r",
+            "1",
+            Range::NON_NEGATIVE,
+            "rolling-resistance coefficient: |M_r| ≤ μ_r R F_N, k_r = 2.25 k_n μ_r² R²; 0 is off",
+        )
+        .default(0.0)],
+    };
+    fn from_values(values: &[f64]) -> Result<Self> {
+        crate::params::check_values::<Self>(values)?;
+        Self::new(values[0])
     }
 }
 

@@ -336,6 +336,9 @@ impl Impact {
                     .bind(&self.pair)
                     .map_err(ImpactError::parameter("law"))?,
             ),
+            (NormalSpec::Declared(_), _) => {
+                unreachable!("a declared law runs through its own compiled entry")
+            }
         }
     }
 
@@ -379,6 +382,7 @@ impl Impact {
                 .map_err(ImpactError::parameter("yield-stress"))?
                 .yield_speed(mass),
             NormalSpec::Hertz => f64::INFINITY,
+            NormalSpec::Declared(law) => law.yield_speed(&self.pair)?,
         })
     }
 
@@ -414,6 +418,13 @@ impl Impact {
                 release_overlap: run.residual_overlap,
                 stuck: false,
             }));
+        }
+        if let NormalSpec::Declared(law) = self.normal {
+            return if self.is_head_on() {
+                Ok(self.head_on_outcome(law.head_on(self, None)?))
+            } else {
+                law.oblique(self)
+            };
         }
         if self.is_head_on() {
             let run = self.visit_law(NormalVisitor {
@@ -492,10 +503,13 @@ impl Impact {
             ));
         }
         let mut points = Vec::with_capacity(self.steps_per_contact + 2);
-        let run = self.visit_law(NormalVisitor {
-            impact: self,
-            trace: Some(&mut points),
-        })?;
+        let run = match self.normal {
+            NormalSpec::Declared(law) => law.head_on(self, Some(&mut points))?,
+            _ => self.visit_law(NormalVisitor {
+                impact: self,
+                trace: Some(&mut points),
+            })?,
+        };
         Ok((self.head_on_outcome(run), points))
     }
 
@@ -503,7 +517,7 @@ impl Impact {
         self.steps_per_contact.saturating_mul(200)
     }
 
-    fn head_on_outcome(&self, run: NormalRun) -> ImpactOutcome {
+    pub(crate) fn head_on_outcome(&self, run: NormalRun) -> ImpactOutcome {
         let mass = self.pair.reduced_mass();
         let v_out = run.restitution * self.speed;
         ImpactOutcome {
@@ -527,9 +541,9 @@ impl Impact {
     }
 }
 
-struct NormalVisitor<'a> {
-    impact: &'a Impact,
-    trace: Option<&'a mut Vec<TracePoint>>,
+pub(crate) struct NormalVisitor<'a> {
+    pub(crate) impact: &'a Impact,
+    pub(crate) trace: Option<&'a mut Vec<TracePoint>>,
 }
 
 impl LawVisitor for NormalVisitor<'_> {
@@ -547,8 +561,8 @@ impl LawVisitor for NormalVisitor<'_> {
     }
 }
 
-struct ObliqueVisitor<'a> {
-    impact: &'a Impact,
+pub(crate) struct ObliqueVisitor<'a> {
+    pub(crate) impact: &'a Impact,
 }
 
 impl LawVisitor for ObliqueVisitor<'_> {

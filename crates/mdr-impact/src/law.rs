@@ -1,6 +1,7 @@
 //! Which normal law an impact uses, and how it is evaluated. The laws themselves live in
 //! `mdr-contact`; this module only names them.
 
+use crate::declared::DeclaredNormal;
 use mdr_contact::normal::{MdrElastoPlastic, Thornton};
 use mdr_contact::ContactPair;
 
@@ -13,6 +14,9 @@ pub enum NormalSpec {
     Thornton(Thornton),
     /// Hertz (eq. 5), purely elastic.
     Hertz,
+    /// Any other declared law, by its declaration and parameter values
+    /// ([`crate::DeclaredLaw`]): closed form, time integration.
+    Declared(DeclaredNormal),
 }
 
 impl NormalSpec {
@@ -21,12 +25,14 @@ impl NormalSpec {
         Self::Mdr(MdrElastoPlastic::paper())
     }
 
-    /// Short name used in tables, plots and on the command line: `mdr`, `thornton`, `hertz`.
+    /// Short name used in tables, plots and on the command line: `mdr`, `thornton`, `hertz`,
+    /// or a declared law's name.
     pub fn name(&self) -> &'static str {
         match self {
             Self::Mdr(_) => "mdr",
             Self::Thornton(_) => "thornton",
             Self::Hertz => "hertz",
+            Self::Declared(law) => law.name(),
         }
     }
 }
@@ -39,6 +45,23 @@ pub fn thornton_matched_yield_stress(pair: &ContactPair, yield_overlap: f64) -> 
     2.0 * pair.effective_modulus() / std::f64::consts::PI
         * (yield_overlap / pair.effective_radius()).sqrt()
 }
+
+/// The validator's value of a law parameter the command line, Python and a `--config` file
+/// may omit: the declared default where the law declares one, else the paper's value for the
+/// MDR law (Fig. 2: `q_c = 3.8·10⁵ N/m`, `Θ = 0.37 E*`); `None`: the parameter is required.
+pub fn validator_default(param: &mdr_contact::params::Param) -> Option<f64> {
+    param.default.or(match param.key {
+        "critical_line_load_n_per_m" => Some(PAPER_CRITICAL_LINE_LOAD),
+        "hardening_ratio" => Some(PAPER_HARDENING_RATIO),
+        _ => None,
+    })
+}
+
+/// The paper's critical line load `q_c` (N/m), Fig. 2.
+pub const PAPER_CRITICAL_LINE_LOAD: f64 = 3.8e5;
+
+/// The paper's hardening ratio `Θ/E*`, Fig. 2.
+pub const PAPER_HARDENING_RATIO: f64 = 0.37;
 
 /// How the normal law is represented.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -13,6 +13,7 @@
 //! - [`plot`]: SVG and PNG figures.
 #![warn(missing_docs)]
 
+mod declared;
 mod energy;
 pub mod error;
 pub mod fit;
@@ -23,6 +24,7 @@ pub mod output;
 pub mod plot;
 mod sweep;
 
+pub use declared::{DeclaredLaw, DeclaredNormal, MAX_DECLARED_PARAMS};
 pub use error::{ImpactError, Result};
 pub use impact::{Impact, ImpactOutcome, DEFAULT_STEPS_PER_CONTACT};
 pub use integrate::TracePoint;

@@ -8,6 +8,7 @@ use crate::errors::{self, invalid};
 use mdr_contact::normal::{AdhesiveMdr, AdhesiveMdrLaw, AdhesiveMdrState as State};
 use mdr_contact::normal::{MdrElastoPlastic, MdrLaw as BoundLaw, MdrState as PlainState};
 use mdr_contact::normal::{NormalLaw, NormalModel};
+use mdr_contact::params::{Declared, LawDeclaration, Param, ParamProblem};
 use mdr_contact::{ContactPair, Material};
 use mdr_impact::{Impact, Method, NormalSpec, DEFAULT_SPRINGS, DEFAULT_STEPS_PER_CONTACT};
 use pyo3::exceptions::PyTypeError;
@@ -124,9 +125,17 @@ impl Params {
             }
         }
         .map_err(errors::contact(false))?;
-        let model =
-            MdrElastoPlastic::new(self.qc.unwrap_or(3.8e5), self.theta_ratio.unwrap_or(0.37))
-                .map_err(errors::contact(false))?;
+        let given = |p: &Param| match p.python_name() {
+            "qc" => self.qc,
+            "theta_ratio" => self.theta_ratio,
+            _ => None,
+        };
+        let model = MdrElastoPlastic::from_values(&declared_values(
+            &MdrElastoPlastic::DECLARATION,
+            given,
+            |_| None,
+        )?)
+        .map_err(errors::contact(false))?;
         let law = model.bind(&pair).map_err(errors::contact(false))?;
         let work_of_adhesion = self.work_of_adhesion.unwrap_or(0.0);
         let adhesive = AdhesiveMdr::new(model, work_of_adhesion)
@@ -141,6 +150,26 @@ impl Params {
             adhesive,
         })
     }
+}
+
+/// The values of `law`'s declared parameters: the keyword's (`given`), else the validator's
+/// default (`mdr_impact::law::validator_default`), else `fallback`'s; each checked against its
+/// declared range, the error naming the keyword, the range and the equation.
+pub fn declared_values(
+    law: &LawDeclaration,
+    given: impl Fn(&Param) -> Option<f64>,
+    fallback: impl Fn(&Param) -> Option<f64>,
+) -> PyResult<Vec<f64>> {
+    law.values(|p| {
+        given(p)
+            .or_else(|| mdr_impact::law::validator_default(p))
+            .or_else(|| fallback(p))
+    })
+    .map_err(|problems| {
+        let problem = &problems[0];
+        let (ParamProblem::Missing(p) | ParamProblem::Invalid(p, _)) = problem;
+        invalid(p.python_name(), format!("{problem} (law=\"{}\")", law.name))
+    })
 }
 
 /// Resolved [`Params`].

@@ -4,48 +4,109 @@
 
 use crate::arrays::{array1, Values};
 use crate::errors::{self, invalid};
-use crate::law::{check_steps, parse_method, MdrLaw, Params, Setup};
+use crate::law::{check_steps, declared_values, parse_method, MdrLaw, Params, Setup, PARAM_NAMES};
 use mdr_contact::normal::{NormalLaw, Thornton};
+use mdr_contact::params::{Declared, Param};
 use mdr_impact::fit::{fit as fit_law, predict, FitParameter, FitValues};
 use mdr_impact::output::Measurement;
 use mdr_impact::{
     log_spaced, Impact, ImpactOutcome, Method, NormalSpec, Progress, Sweep, TangentialSpec,
     DEFAULT_SPRINGS, DEFAULT_STEPS_PER_CONTACT, PAPER_SCALE,
 };
+use mdr_sim::laws::registry::{normal_law, normal_law_names, NORMAL_LAWS};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use std::collections::BTreeMap;
 
-/// The normal law named `law` ("mdr", "thornton", "hertz") for `setup`, as the CLI's `--law`,
-/// `--elastic` and `--yield-stress`.
+/// The parameters of the registered normal laws given as keyword arguments, by Python name
+/// (each law declares its parameters' keywords: `qc`, `theta_ratio`, `yield_stress`,
+/// `normal_stiffness_n_per_m`, …). Those the material arguments hold (`qc`, `theta_ratio`,
+/// `work_of_adhesion`) and `yield_stress` (a named argument) stay where they are.
+type LawKeywords = BTreeMap<&'static str, f64>;
+
+/// Take the registered laws' other parameter keywords out of `kwargs`.
+fn take_law_keywords(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<LawKeywords> {
+    let mut taken = LawKeywords::new();
+    let Some(kwargs) = kwargs else {
+        return Ok(taken);
+    };
+    for param in NORMAL_LAWS.iter().flat_map(|e| e.declaration.params) {
+        let name = param.python_name();
+        if PARAM_NAMES.contains(&name) || name == "yield_stress" {
+            continue;
+        }
+        if let Some(value) = kwargs.get_item(name)? {
+            let value = value
+                .extract::<f64>()
+                .map_err(|_| invalid(name, format!("{value} is not a number")))?;
+            taken.insert(name, value);
+            kwargs.del_item(name)?;
+        }
+    }
+    Ok(taken)
+}
+
+/// The normal law named `law` (any registered law: `mdr_dem.scene_laws()`) for `setup`, as the
+/// CLI's `--law`, `--elastic` and the law-parameter flags.
 fn normal_spec(
     setup: &Setup,
     law: &str,
     elastic: bool,
     yield_stress: Option<f64>,
+    keywords: &LawKeywords,
 ) -> PyResult<NormalSpec> {
-    Ok(match (law, elastic) {
+    let entry = normal_law(&law.replace('-', "_")).ok_or_else(|| {
+        invalid(
+            "law",
+            format!(
+                "`{law}` (registered: {})",
+                normal_law_names()
+                    .iter()
+                    .map(|n| format!("\"{n}\""))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        )
+    })?;
+    if let Some(unused) = keywords.keys().find(|k| {
+        !entry
+            .declaration
+            .params
+            .iter()
+            .any(|p| p.python_name() == **k)
+    }) {
+        return Err(invalid(
+            unused,
+            format!(
+                "it is not a parameter of law=\"{}\"",
+                entry.declaration.name
+            ),
+        ));
+    }
+    let given = |p: &Param| keywords.get(p.python_name()).copied();
+    Ok(match (entry.declaration.name, elastic) {
         // Adhesion is the MDR law's: its elastic limit is JKR, not Hertz.
         ("mdr", true) if setup.work_of_adhesion() > 0.0 => {
             NormalSpec::Mdr(mdr_contact::normal::MdrElastoPlastic::elastic())
         }
-        ("mdr" | "thornton" | "hertz", true) | ("hertz", false) => NormalSpec::Hertz,
+        (_, true) | ("hertz", false) => NormalSpec::Hertz,
         ("mdr", false) => NormalSpec::Mdr(setup.model),
         ("thornton", false) => {
             // The CLI's default p_y: the same yield overlap as the MDR law.
-            let default = mdr_impact::law::thornton_matched_yield_stress(
+            let matched = mdr_impact::law::thornton_matched_yield_stress(
                 &setup.pair,
                 setup.law.yield_overlap(),
             );
-            NormalSpec::Thornton(
-                Thornton::new(yield_stress.unwrap_or(default)).map_err(errors::contact(false))?,
-            )
+            let values =
+                declared_values(&Thornton::DECLARATION, |_| yield_stress, |_| Some(matched))?;
+            NormalSpec::Thornton(Thornton::from_values(&values).map_err(errors::contact(false))?)
         }
-        (other, _) => {
-            return Err(invalid(
-                "law",
-                format!("`{other}` (allowed: \"mdr\", \"thornton\", \"hertz\")"),
-            ))
-        }
+        (_, false) => NormalSpec::Declared(
+            entry
+                .impact
+                .with_values(&declared_values(&entry.declaration, given, |_| None)?)
+                .map_err(|e| invalid("law", e))?,
+        ),
     })
 }
 
@@ -110,8 +171,9 @@ pub fn curve<'py>(
     yield_stress: Option<f64>,
     material: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let keywords = take_law_keywords(material)?;
     let setup = Params::from_kwargs(material, &[])?.resolve()?;
-    let spec = normal_spec(&setup, law, elastic, yield_stress)?;
+    let spec = normal_spec(&setup, law, elastic, yield_stress, &keywords)?;
     let method = parse_method(method, springs)?.unwrap_or(Method::Closed);
     if matches!(method, Method::Springs { .. }) && !matches!(spec, NormalSpec::Mdr(_)) {
         return Err(invalid(
@@ -404,6 +466,7 @@ pub fn oblique<'py>(
     yield_stress: Option<f64>,
     material: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let keywords = take_law_keywords(material)?;
     let setup = Params::from_kwargs(material, &[])?.resolve()?;
     if !setup.half_space() {
         return Err(invalid(
@@ -425,7 +488,7 @@ pub fn oblique<'py>(
     }
     let mu = check_mu(mu)?;
     check_steps(steps)?;
-    let spec = normal_spec(&setup, law, elastic, yield_stress)?;
+    let spec = normal_spec(&setup, law, elastic, yield_stress, &keywords)?;
     let angles = match angles {
         Some(a) => Values::read(py, "angles", a)?.data,
         None => vec![5.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0, 85.0],

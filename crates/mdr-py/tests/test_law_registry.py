@@ -66,3 +66,23 @@ def test_a_declared_range_error_names_the_scene_key(tmp_path):
     )
     with pytest.raises(ValueError, match=r"hardening_ratio.*\[0, 1\]"):
         mdr_dem.run_scene(scene, tmp_path / "out")
+
+
+def test_demo_law_runs_in_the_validator_as_its_analytic_solution():
+    # The paper's steel ball on a half-space: the reduced mass is the ball's mass.
+    k, r, rho = 1.0e4, 0.635e-2, 7800.0
+    m = 4.0 / 3.0 * math.pi * r**3 * rho
+    curve = mdr_dem.curve([0.1, 1.0], law="linear_spring", normal_stiffness_n_per_m=k)
+    # An undamped linear spring: e_n = 1, half a period of contact, F_max = v0 √(k m).
+    assert list(curve["e_n"]) == pytest.approx([1.0, 1.0], abs=1e-4)
+    assert list(curve["contact_time_s"]) == pytest.approx([math.pi * math.sqrt(m / k)] * 2, rel=1e-3)
+    assert list(curve["f_max_n"]) == pytest.approx([v * math.sqrt(k * m) for v in (0.1, 1.0)], rel=1e-3)
+
+
+def test_demo_law_keywords_are_checked_as_declared():
+    with pytest.raises(ValueError, match="normal_stiffness_n_per_m"):
+        mdr_dem.curve([1.0], law="linear_spring")
+    with pytest.raises(ValueError, match=r"normal_stiffness_n_per_m.*\(0, inf\)"):
+        mdr_dem.curve([1.0], law="linear_spring", normal_stiffness_n_per_m=-1.0)
+    with pytest.raises(ValueError, match="not a parameter of law=\"mdr\""):
+        mdr_dem.curve([1.0], normal_stiffness_n_per_m=1.0e4)

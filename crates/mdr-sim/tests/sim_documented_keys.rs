@@ -176,3 +176,87 @@ fn a_run_keeps_its_last_three_checkpoints() {
     assert_eq!(step(kept.last().unwrap()), summary.step);
     assert!(step(&kept[0]) < step(&kept[1]) && step(&kept[1]) < step(&kept[2]));
 }
+
+/// The unit as the tables write it (`–` for a dimensionless one).
+fn documented_unit(unit: &str) -> &str {
+    if unit == "1" {
+        "–"
+    } else {
+        unit
+    }
+}
+
+/// docs/user-guide.md's `[contact]` table states every registered law's parameters as their
+/// declarations do: unit, the laws declaring it, required or its default, allowed range. A
+/// declaration changed without the table (or the reverse) fails here.
+#[test]
+fn contact_table_is_the_declarations() {
+    use mdr_sim::laws::registry::{DAMPING_LAWS, NORMAL_LAWS, ROLLING_LAWS, TANGENTIAL_LAWS};
+    let guide = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/user-guide.md"),
+    )
+    .unwrap();
+    let section = guide
+        .split("### `[contact]`")
+        .nth(1)
+        .and_then(|s| s.split("\n### ").next())
+        .expect("a [contact] section");
+    let row = |key: &str| -> Vec<String> {
+        section
+            .lines()
+            .find(|l| l.starts_with(&format!("| `{key}` |")))
+            .unwrap_or_else(|| panic!("no row for `{key}`"))
+            .split('|')
+            .map(|c| c.trim().to_owned())
+            .collect()
+    };
+    let declarations = NORMAL_LAWS
+        .iter()
+        .map(|e| e.declaration)
+        .chain(TANGENTIAL_LAWS.iter().map(|e| e.declaration))
+        .chain(DAMPING_LAWS.iter().map(|e| e.declaration))
+        .chain(ROLLING_LAWS.iter().map(|e| e.declaration));
+    let mut checked = 0;
+    for law in declarations {
+        for p in law.params {
+            let cells = row(p.key);
+            // cells: "", key, unit, used with, allowed, meaning, "".
+            assert_eq!(cells[2], documented_unit(p.unit), "unit of `{}`", p.key);
+            assert!(
+                cells[3].contains(&format!("`{}`", law.name)),
+                "`{}` is declared by `{}`: {cells:?}",
+                p.key,
+                law.name
+            );
+            match p.default {
+                None => assert!(cells[3].contains("(required"), "`{}` is required", p.key),
+                Some(d) => assert!(
+                    cells[3].contains(&format!("(default {d})")),
+                    "`{}` defaults to {d}: {cells:?}",
+                    p.key
+                ),
+            }
+            assert_eq!(cells[4], p.range.notation, "range of `{}`", p.key);
+            checked += 1;
+        }
+    }
+    assert!(checked >= 8, "{checked} parameters checked");
+    // The `normal` row names every registered normal law but the demo one.
+    let normal = row("normal");
+    for entry in NORMAL_LAWS
+        .iter()
+        .filter(|e| e.declaration.name != "linear_spring")
+    {
+        assert!(normal[4].contains(&format!("`{}`", entry.declaration.name)));
+    }
+    // The `tangential` and `damping` rows name every registered law of their kind.
+    for (key, laws) in [("tangential", TANGENTIAL_LAWS), ("damping", DAMPING_LAWS)] {
+        let cells = row(key);
+        for entry in laws {
+            assert!(
+                cells[4].contains(&format!("`{}`", entry.declaration.name)),
+                "{key}: {cells:?}"
+            );
+        }
+    }
+}

@@ -2,10 +2,11 @@
 //! `--config` file they may come from, their checks, and the small helpers the subcommands use
 //! to name a bad flag and to write files.
 
+use super::law_flags::{registered_law, LawParamArgs};
 use anyhow::{anyhow, Context};
 use clap::{Args, ValueEnum};
 use mdr_contact::normal::{AdhesiveMdr, MdrElastoPlastic, NormalLaw, NormalModel, Thornton};
-use mdr_contact::params::Declared;
+use mdr_contact::params::{Declared, LawDeclaration};
 use mdr_contact::{ContactError, ContactPair, Material};
 use mdr_impact::output::{read_measurements, write_atomic, Measurement};
 use mdr_impact::plot::Figure;
@@ -16,18 +17,6 @@ use mdr_impact::{
 use serde::Deserialize;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-
-/// Normal law names on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum LawName {
-    /// MDR elasto-plastic law (Lyashenko & Popov 2018).
-    Mdr,
-    /// Thornton (1997) elastic–perfectly-plastic law.
-    Thornton,
-    /// Hertz, elastic.
-    Hertz,
-}
 
 /// How the normal law is represented.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Deserialize)]
@@ -65,7 +54,7 @@ where
 /// The same keys (e.g. `radius = 0.005`, `theta-ratio = 0.4`, `law = ["mdr", "hertz"]`) may be
 /// given in the `--config` file.
 #[derive(Debug, Clone, Default, Args, Deserialize)]
-#[serde(default, rename_all = "kebab-case", deny_unknown_fields)]
+#[serde(default, rename_all = "kebab-case")]
 pub struct CommonArgs {
     /// Particle radius (m) [default: 0.00635].
     #[arg(long, allow_negative_numbers = true, value_name = "M")]
@@ -92,27 +81,14 @@ pub struct CommonArgs {
     /// Target sphere density (kg/m³); see --target-radius.
     #[arg(long, allow_negative_numbers = true, value_name = "KG_PER_M3")]
     pub target_density: Option<f64>,
-    /// Critical line load q_c (N/m), eq. (7) [default: 3.8e5].
-    #[arg(long, allow_negative_numbers = true, value_name = "N_PER_M",
-        help = declared_help::<MdrElastoPlastic>(0, "3.8e5"))]
-    pub qc: Option<f64>,
-    /// Hardening ratio Θ/E*, eq. (12) [default: 0.37].
-    #[arg(long, allow_negative_numbers = true,
-        help = declared_help::<MdrElastoPlastic>(1, "0.37"))]
-    pub theta_ratio: Option<f64>,
     /// No plasticity (every law becomes Hertz).
     #[arg(long)]
     pub elastic: bool,
-    /// Normal law(s): mdr, thornton, hertz; several (comma-separated or repeated) give one
+    /// Normal law(s), by registered name; several (comma-separated or repeated) give one
     /// comparison [default: mdr].
-    #[arg(long, value_enum, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', help = law_help())]
     #[serde(deserialize_with = "one_or_many")]
-    pub law: Option<Vec<LawName>>,
-    /// Thornton's limiting contact pressure (Pa) [default: the value whose yield speed equals the
-    /// MDR law's].
-    #[arg(long, allow_negative_numbers = true, value_name = "PA",
-        help = declared_help::<Thornton>(0, "the value whose yield speed equals the MDR law's"))]
-    pub yield_stress: Option<f64>,
+    pub law: Option<Vec<String>>,
     /// Work of adhesion Δγ (J/m², ≥ 0): Heß's adhesion rule on the MDR springs; the contact
     /// holds past zero overlap until it lets go, and slow impacts stick (e_n = 0) [default: 0].
     #[arg(long, allow_negative_numbers = true, value_name = "J_PER_M2",
@@ -135,6 +111,12 @@ pub struct CommonArgs {
     /// Time steps per Hertz contact time [default: 2000].
     #[arg(long)]
     pub steps: Option<usize>,
+    /// The parameters of the registered laws, one flag each as the law declares it (`--qc`,
+    /// `--theta-ratio`, `--yield-stress`, …). In a `--config` file it takes every key the
+    /// fields above do not, and refuses those that are no law's flag.
+    #[command(flatten)]
+    #[serde(flatten)]
+    pub law_params: LawParamArgs,
     /// TOML file with any of these keys; flags override it.
     #[arg(long, value_name = "FILE.toml")]
     #[serde(skip)]
@@ -155,10 +137,15 @@ impl CommonArgs {
             .with_context(|| format!("--config: cannot read `{}`", path.display()))?;
         let file: CommonArgs = toml::from_str(&text)
             .map_err(|e| anyhow!("--config: `{}` is not valid: {e}", path.display()))?;
+        let law_params = self
+            .law_params
+            .merged(&file.law_params)
+            .map_err(|e| anyhow!("--config: `{}` is not valid: {e}", path.display()))?;
         macro_rules! pick {
             ($($f:ident),*) => {
                 CommonArgs {
                     $($f: self.$f.clone().or(file.$f.clone()),)*
+                    law_params,
                     // A switch on the command line, a boolean in the file.
                     elastic: self.elastic || file.elastic,
                     config: None,
@@ -175,10 +162,7 @@ impl CommonArgs {
             target_poisson,
             target_radius,
             target_density,
-            qc,
-            theta_ratio,
             law,
-            yield_stress,
             work_of_adhesion,
             mu,
             scale,
@@ -202,6 +186,19 @@ pub(super) struct Settings {
     pub(super) scale: f64,
     pub(super) quiet: bool,
     pub(super) half_space: bool,
+}
+
+/// The help of `--law`: the registered laws' names and summaries.
+fn law_help() -> String {
+    let laws = mdr_sim::laws::registry::NORMAL_LAWS
+        .iter()
+        .map(|e| format!("{} ({})", e.declaration.name, e.declaration.summary))
+        .collect::<Vec<_>>()
+        .join("; ");
+    format!(
+        "Normal law(s), by registered name (`mdr-dem sim laws`); several (comma-separated or \
+         repeated) give one comparison: {laws} [default: mdr]"
+    )
 }
 
 /// Map a law-crate parameter name to the flag it came from; `target` for the target material.
@@ -291,31 +288,48 @@ pub(crate) fn materials(a: &CommonArgs) -> anyhow::Result<(Material, Material)> 
     Ok((particle, target))
 }
 
-/// The MDR parameters and the normal laws (`--law`, `--elastic`, `--qc`, `--theta-ratio`,
-/// `--yield-stress`) of the merged flags for `pair`, in the order given, without repeats.
+/// The MDR parameters and the normal laws (`--law`, `--elastic` and the law-parameter flags
+/// each registered law declares, `--qc`, `--theta-ratio`, `--yield-stress`, …) of the merged
+/// flags for `pair`, in the order given, without repeats. The MDR parameters are resolved
+/// whatever the laws: they set Thornton's default yield pressure (the same yield speed) and the
+/// fit's start.
 pub(crate) fn normal_laws(
     a: &CommonArgs,
     pair: &ContactPair,
 ) -> anyhow::Result<(MdrElastoPlastic, Vec<NormalSpec>)> {
-    let mdr = MdrElastoPlastic::new(a.qc.unwrap_or(3.8e5), a.theta_ratio.unwrap_or(0.37))
-        .map_err(contact_error(false))?;
-    let default_yield_stress = mdr_impact::law::thornton_matched_yield_stress(
+    let params = &a.law_params;
+    let mdr =
+        MdrElastoPlastic::from_values(&params.values(&MdrElastoPlastic::DECLARATION, |_| None)?)
+            .map_err(contact_error(false))?;
+    let matched_yield_pressure = mdr_impact::law::thornton_matched_yield_stress(
         pair,
         mdr.bind(pair)
             .map_err(contact_error(false))?
             .yield_overlap(),
     );
     let adhesive = work_of_adhesion(a)? > 0.0;
+    let names = a.law.clone().unwrap_or_else(|| vec!["mdr".to_owned()]);
     let mut laws = Vec::new();
-    for name in a.law.clone().unwrap_or_else(|| vec![LawName::Mdr]) {
-        let spec = match (name, a.elastic) {
+    let mut declarations: Vec<&LawDeclaration> = vec![&MdrElastoPlastic::DECLARATION];
+    for name in &names {
+        let entry = registered_law(name)?;
+        declarations.push(&entry.declaration);
+        let spec = match (entry.declaration.name, a.elastic) {
             // Adhesion is the MDR law's: its elastic limit is JKR, not Hertz.
-            (LawName::Mdr, true) if adhesive => NormalSpec::Mdr(MdrElastoPlastic::elastic()),
-            (_, true) | (LawName::Hertz, _) => NormalSpec::Hertz,
-            (LawName::Mdr, false) => NormalSpec::Mdr(mdr),
-            (LawName::Thornton, false) => NormalSpec::Thornton(
-                Thornton::new(a.yield_stress.unwrap_or(default_yield_stress))
-                    .map_err(contact_error(false))?,
+            ("mdr", true) if adhesive => NormalSpec::Mdr(MdrElastoPlastic::elastic()),
+            (_, true) | ("hertz", _) => NormalSpec::Hertz,
+            ("mdr", false) => NormalSpec::Mdr(mdr),
+            ("thornton", false) => NormalSpec::Thornton(
+                Thornton::from_values(
+                    &params.values(&Thornton::DECLARATION, |_| Some(matched_yield_pressure))?,
+                )
+                .map_err(contact_error(false))?,
+            ),
+            (_, false) => NormalSpec::Declared(
+                entry
+                    .impact
+                    .with_values(&params.values(&entry.declaration, |_| None)?)
+                    .map_err(|e| anyhow!("invalid value for --law: {e}"))?,
             ),
         };
         if !laws.contains(&spec) {
@@ -324,7 +338,14 @@ pub(crate) fn normal_laws(
     }
     if laws.is_empty() {
         return Err(anyhow!(
-            "invalid value for --law: give at least one of mdr, thornton, hertz"
+            "invalid value for --law: give at least one of {}",
+            mdr_sim::laws::registry::normal_law_names().join(", ")
+        ));
+    }
+    if let Some(flag) = params.unused_by(&declarations).first() {
+        return Err(anyhow!(
+            "invalid value for {flag}: it is a parameter of none of the laws given with --law ({})",
+            names.join(", ")
         ));
     }
     if adhesive && laws.iter().any(|l| !matches!(l, NormalSpec::Mdr(_))) {

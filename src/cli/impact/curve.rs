@@ -108,6 +108,16 @@ fn law_label(law: &NormalSpec) -> String {
         }
         NormalSpec::Thornton(t) => format!("Thornton (p_y = {:.3e} Pa)", t.yield_pressure()),
         NormalSpec::Hertz => "Hertz".into(),
+        NormalSpec::Declared(law) => {
+            let values = law
+                .declaration()
+                .params
+                .iter()
+                .zip(law.values())
+                .map(|(p, v)| format!("{} = {v:.3e} {}", p.symbol, p.unit))
+                .collect::<Vec<_>>();
+            format!("{} ({})", law.name(), values.join(", "))
+        }
     }
 }
 

@@ -5,12 +5,14 @@
 //! may be given in a TOML file with `--config FILE.toml`, and flags override the file.
 //!
 //! One module per subcommand (`fig2`, `curve`, `trace`, `fit`, `oblique`); the shared flags,
-//! their checks and the output helpers are in `common`.
+//! their checks and the output helpers are in `common`; the law-parameter flags, derived from
+//! the registered laws' declarations, in `law_flags`.
 
 mod common;
 mod curve;
 mod fig2;
 mod fit;
+mod law_flags;
 mod oblique;
 mod trace;
 

@@ -4,6 +4,7 @@
 use super::{TangentialInput, TangentialLaw, TangentialModel, TangentialResponse};
 use crate::error::{non_negative, Result};
 use crate::material::ContactPair;
+use crate::params::{Declared, LawDeclaration, LawKind, Param, Range};
 use nalgebra::Vector3;
 
 /// Parameters: the Coulomb friction coefficient `μ`, and whether the stored displacement is
@@ -261,5 +262,27 @@ impl TangentialLaw for MindlinLaw {
         response.force = -k * xi;
         response.elastic_energy = 0.5 * k * stored2;
         response
+    }
+}
+
+/// `μ`, required: a frictional contact states its friction.
+impl Declared for Mindlin {
+    const DECLARATION: LawDeclaration = LawDeclaration {
+        name: "mindlin",
+        kind: LawKind::Tangential,
+        summary: "incremental Mindlin with a Coulomb cap, k_t = 2 G* a (docs/theory.md §5)",
+        params: &[Param::new(
+            "friction",
+            "μ",
+            "1",
+            Range::NON_NEGATIVE,
+            "Coulomb friction coefficient: |F_t| ≤ μ F_n",
+        )
+        .flag("mu")
+        .python("mu")],
+    };
+    fn from_values(values: &[f64]) -> Result<Self> {
+        crate::params::check_values::<Self>(values)?;
+        Self::new(values[0])
     }
 }

@@ -80,3 +80,17 @@ impl TangentialLaw for Frictionless {
         }
     }
 }
+
+/// Frictionless: no parameters.
+impl crate::params::Declared for Frictionless {
+    const DECLARATION: crate::params::LawDeclaration = crate::params::LawDeclaration {
+        name: "none",
+        kind: crate::params::LawKind::Tangential,
+        summary: "frictionless: no tangential force",
+        params: &[],
+    };
+    fn from_values(values: &[f64]) -> Result<Self> {
+        crate::params::check_values::<Self>(values)?;
+        Ok(Frictionless)
+    }
+}

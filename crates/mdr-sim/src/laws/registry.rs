@@ -6,6 +6,10 @@
 //! stepper compiled for that law. The pair loop is monomorphised per law; nothing is looked up
 //! per contact.
 //!
+//! Each entry also carries the law's validator entry ([`mdr_impact::DeclaredLaw`]), so the
+//! single-impact validator (`mdr-dem impact …`, Python's `curve`/`oblique`) runs every
+//! registered law by name too.
+//!
 //! Adding a normal law: write its file in `mdr-contact` (a [`NormalModel`] with a
 //! [`Declared`] declaration and a state with a checkpoint record,
 //! [`super::NormalHistoryRecord`]) and add `NormalEntry::of::<TheLaw>()` below
@@ -20,10 +24,11 @@ use crate::scene::{ContactSpec, DampingSpec};
 use mdr_contact::damping::{HertzianViscous, NoDamping, StiffnessViscous};
 use mdr_contact::model::ContactModel;
 use mdr_contact::normal::{Hertz, MdrElastoPlastic, NormalModel, Thornton};
-use mdr_contact::params::{Declared, LawDeclaration};
-use mdr_contact::rolling::EpsdRolling;
-use mdr_contact::tangential::Mindlin;
+use mdr_contact::params::{Declared, LawDeclaration, LawKind};
+use mdr_contact::rolling::{EpsdRolling, NoRolling};
+use mdr_contact::tangential::{Frictionless, Mindlin};
 use mdr_contact::Result;
+use mdr_impact::DeclaredLaw;
 use mdr_rapier::neighbour_list::Boundary;
 
 /// The normal laws of scenes, by name. The adhesive MDR law is declared
@@ -37,6 +42,26 @@ pub static NORMAL_LAWS: &[NormalEntry] = &[
     NormalEntry::of::<mdr_contact::normal::LinearSpring>(),
 ];
 
+/// The tangential laws of scenes (`[contact] tangential = "…"`), by name.
+pub static TANGENTIAL_LAWS: &[SubModelEntry] = &[
+    SubModelEntry::of::<Frictionless>(),
+    SubModelEntry::of::<Mindlin>(),
+];
+
+/// The damping laws of scenes (`[contact] damping = "…"`), by name.
+pub static DAMPING_LAWS: &[SubModelEntry] = &[
+    SubModelEntry::of::<NoDamping>(),
+    SubModelEntry::of::<HertzianViscous>(),
+    SubModelEntry::of::<StiffnessViscous>(),
+];
+
+/// The rolling-resistance laws of scenes: the elastic–plastic spring, on when its
+/// `rolling_friction` is above 0.
+pub static ROLLING_LAWS: &[SubModelEntry] = &[
+    SubModelEntry::of::<NoRolling>(),
+    SubModelEntry::of::<EpsdRolling>(),
+];
+
 /// The registered normal law named `name`.
 pub fn normal_law(name: &str) -> Option<&'static NormalEntry> {
     NORMAL_LAWS.iter().find(|e| e.declaration.name == name)
@@ -45,6 +70,55 @@ pub fn normal_law(name: &str) -> Option<&'static NormalEntry> {
 /// The names of the registered normal laws, in registry order.
 pub fn normal_law_names() -> Vec<&'static str> {
     NORMAL_LAWS.iter().map(|e| e.declaration.name).collect()
+}
+
+/// The registered sub-model of `kind` named `name` (tangential, damping or rolling).
+pub fn sub_model(kind: LawKind, name: &str) -> Option<&'static SubModelEntry> {
+    let laws = match kind {
+        LawKind::Tangential => TANGENTIAL_LAWS,
+        LawKind::Damping => DAMPING_LAWS,
+        LawKind::Rolling => ROLLING_LAWS,
+        LawKind::Normal => return None,
+    };
+    laws.iter().find(|e| e.declaration.name == name)
+}
+
+/// The declared default of the sub-model parameter with scene key `key`, whichever registered
+/// sub-model declares it: the value a scene takes when it omits the key.
+pub fn sub_model_default(key: &str) -> Option<f64> {
+    TANGENTIAL_LAWS
+        .iter()
+        .chain(DAMPING_LAWS)
+        .chain(ROLLING_LAWS)
+        .find_map(|e| e.declaration.param(key))
+        .and_then(|p| p.default)
+}
+
+/// A registered tangential, damping or rolling law: its declaration (name, parameters with
+/// units, ranges, defaults and equations) and its check. The scenes' steppers are compiled for
+/// the concrete combinations of these laws ([`SceneParts`]: Mindlin, the damping enum, rolling
+/// off or on), chosen once when a run is built (docs/architecture.md).
+#[derive(Debug, Clone, Copy)]
+pub struct SubModelEntry {
+    /// Name, kind, parameters.
+    pub declaration: LawDeclaration,
+    check: fn(&[f64]) -> Result<()>,
+}
+
+impl SubModelEntry {
+    /// The entry of sub-model `M`.
+    pub const fn of<M: Declared>() -> Self {
+        Self {
+            declaration: M::DECLARATION,
+            check: check::<M>,
+        }
+    }
+
+    /// Check parameter values given in declared order: the declared ranges, then whatever the
+    /// law's constructor checks beyond them.
+    pub fn check(&self, values: &[f64]) -> Result<()> {
+        (self.check)(values)
+    }
 }
 
 /// The sub-models of a scene other than the normal law, as its steppers take them.
@@ -112,6 +186,8 @@ pub struct NormalEntry {
     neighbour_list: NeighbourListBuilder,
     /// The rapier pipeline stepper compiled for the law.
     rapier_pipeline: RapierPipelineBuilder,
+    /// The single-impact validator's integrators compiled for the law.
+    pub impact: DeclaredLaw,
 }
 
 /// Builds the neighbour-list stepper of one law from its parameter values.
@@ -128,6 +204,7 @@ impl NormalEntry {
             check: check::<L>,
             neighbour_list: neighbour_list::<L>,
             rapier_pipeline: rapier_pipeline::<L>,
+            impact: DeclaredLaw::of::<L>(),
         }
     }
 

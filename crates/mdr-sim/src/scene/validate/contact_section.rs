@@ -106,7 +106,7 @@ impl Checker<'_, '_> {
                     None
                 }
             },
-            None => Some(0.0),
+            None => registry::sub_model_default("rolling_friction"),
         };
         let tangential_damping = match c.damping_tangential_ratio {
             Some(ratio) => {
@@ -118,7 +118,7 @@ impl Checker<'_, '_> {
                     }
                 }
             }
-            None => Some(0.0),
+            None => registry::sub_model_default("damping_tangential_ratio"),
         };
         Some(ContactSpec {
             normal: normal?,
