@@ -287,9 +287,13 @@ struct BlockPairs<'a, H> {
     deferred: &'a mut Vec<DeferredShare>,
 }
 
-/// One chunk of a block's pairs (`base` is its first pair's index in the list).
+/// One chunk of a block's pairs: its particles, images, histories, flags and wrenches, all
+/// sliced to the chunk's length (so that indexing them by a pair of the chunk needs no bounds
+/// check once the slices are made).
 struct ChunkPairs<'a, H> {
-    base: usize,
+    i: &'a [u32],
+    j: &'a [u32],
+    image: &'a [u8],
     history: &'a mut [H],
     active: &'a mut [bool],
     wrench: Option<&'a mut [PairWrench]>,
@@ -373,13 +377,22 @@ where
         let mut touching = 0;
         for sub in (0..history.len()).step_by(CHUNK) {
             let len = (history.len() - sub).min(CHUNK);
+            let base = self.bounds[b] + sub;
             let chunk = ChunkPairs {
-                base: self.bounds[b] + sub,
+                i: &self.i[base..base + len],
+                j: &self.j[base..base + len],
+                image: &self.image[base..base + len],
                 history: &mut history[sub..sub + len],
                 active: &mut active[sub..sub + len],
                 wrench: wrench.as_deref_mut().map(|w| &mut w[sub..sub + len]),
             };
-            touching += self.chunk(chunk, &mut window, &mut ended);
+            // The adhesive test once per chunk: each instance of `chunk` compiles its own
+            // overlap test and geometry.
+            touching += if self.adhesive {
+                self.chunk::<true, B>(chunk, &mut window, &mut ended)
+            } else {
+                self.chunk::<false, B>(chunk, &mut window, &mut ended)
+            };
         }
         BlockOutcome {
             block: b,
@@ -403,25 +416,22 @@ where
     }
 
     /// One chunk: the touching pairs (pass 1), then per group of them their geometry and law
-    /// (pass 2). Returns the number of touching pairs.
+    /// (pass 2). `HOLDS`: whether a law is adhesive (see [`PairPass::touching`]). Returns the
+    /// number of touching pairs.
     #[inline(always)]
-    fn chunk<B: WorkBooks>(
+    fn chunk<const HOLDS: bool, B: WorkBooks>(
         &self,
         mut chunk: ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
         window: &mut Window<'_>,
         ended: &mut Vec<EndedContact>,
     ) -> usize {
-        let touching = if self.adhesive {
-            self.touching::<true, B>(&mut chunk, ended)
-        } else {
-            self.touching::<false, B>(&mut chunk, ended)
-        };
+        let touching = self.touching::<HOLDS, B>(&mut chunk, ended);
         // Per group of touching pairs: first the geometry (a square root and a division per
         // pair, independent of each other, so they overlap instead of heading each pair's
         // dependency chain through the law), then the law.
-        let mut geometry: Vec<(f64, Vector3<f64>)> = Vec::with_capacity(BLOCK);
+        let mut geometry = [(0.0, Vector3::zeros()); BLOCK];
         for group in touching.pairs[..touching.len].chunks(BLOCK) {
-            self.geometry(chunk.base, group, &mut geometry);
+            self.geometry::<HOLDS, B>(&chunk, group, &mut geometry);
             for (&k, contact) in group.iter().zip(&geometry) {
                 self.evaluate(&mut chunk, k as usize, contact, window);
             }
@@ -431,11 +441,11 @@ where
 
     /// The particles and image offset of the chunk's pair `k`.
     #[inline(always)]
-    fn pair(&self, base: usize, k: usize) -> (usize, usize, &ImageOffset) {
+    fn pair<H>(&self, chunk: &ChunkPairs<'_, H>, k: usize) -> (usize, usize, &ImageOffset) {
         (
-            self.i[base + k] as usize,
-            self.j[base + k] as usize,
-            &self.offsets[self.image[base + k] as usize],
+            chunk.i[k] as usize,
+            chunk.j[k] as usize,
+            &self.offsets[chunk.image[k] as usize],
         )
     }
 
@@ -452,23 +462,26 @@ where
     /// touch/apart branch of a mixed list is not taken per pair. With `HOLDS` (adhesive laws)
     /// a live pair whose contact still holds ([`mdr_contact::normal::NormalLaw::holds`]) counts
     /// as touching and is evaluated at its negative overlap until its law lets go; without it
-    /// the hold test is compiled away.
-    #[inline(always)]
+    /// the hold test is compiled away. Not inlined: the loop then keeps its slices and
+    /// counters in registers instead of sharing them with the law's.
+    #[inline(never)]
     fn touching<const HOLDS: bool, B: WorkBooks>(
         &self,
         chunk: &mut ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
         ended: &mut Vec<EndedContact>,
     ) -> Touching {
-        let p = self.particles;
+        let (position, radius) = (&self.particles.position[..], &self.particles.radius[..]);
+        let offsets = &self.offsets;
+        let (pi, pj, image) = (chunk.i, chunk.j, chunk.image);
         let mut touching = Touching {
             pairs: [0u16; CHUNK],
             len: 0,
         };
-        for k in 0..chunk.history.len() {
-            let (i, j, offset) = self.pair(chunk.base, k);
-            let xj = p.position[j] + offset.position;
-            let dist2 = (p.position[i] - xj).norm_squared();
-            let reach = p.radius[i] + p.radius[j];
+        for (k, ((&i, &j), &image)) in pi.iter().zip(pj).zip(image).enumerate() {
+            let (i, j) = (i as usize, j as usize);
+            let xj = position[j] + offsets[image as usize].position;
+            let dist2 = (position[i] - xj).norm_squared();
+            let reach = radius[i] + radius[j];
             let touch = !(dist2 >= reach * reach || dist2 == 0.0);
             let held = HOLDS
                 && chunk.active[k]
@@ -498,7 +511,7 @@ where
         ended: &mut Vec<EndedContact>,
     ) {
         if self.record {
-            let (i, j, _) = self.pair(chunk.base, k);
+            let (i, j, _) = self.pair(chunk, k);
             ended.push(EndedContact::of(
                 i as u32,
                 ContactPartner::Sphere(j as u32),
@@ -509,22 +522,28 @@ where
         chunk.active[k] = false;
     }
 
-    /// Overlap and normal of the touching pairs `group` of the chunk starting at `base`.
+    /// Overlap and normal of the touching pairs `group` of the chunk (`HOLDS`: at any distance,
+    /// as a held pair may be apart), into the first `group.len()` entries of `out` (a local
+    /// array, so that its stores cannot alias the particles' data and force reloads).
     #[inline(always)]
-    fn geometry(&self, base: usize, group: &[u16], out: &mut Vec<(f64, Vector3<f64>)>) {
-        let p = self.particles;
-        out.clear();
-        out.extend(group.iter().map(|&k| {
-            let (i, j, offset) = self.pair(base, k as usize);
-            let xj = p.position[j] + offset.position;
+    fn geometry<const HOLDS: bool, B: WorkBooks>(
+        &self,
+        chunk: &ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
+        group: &[u16],
+        out: &mut [(f64, Vector3<f64>); BLOCK],
+    ) {
+        let (position, radius) = (&self.particles.position[..], &self.particles.radius[..]);
+        for (slot, &k) in out.iter_mut().zip(group) {
+            let (i, j, offset) = self.pair(chunk, k as usize);
+            let xj = position[j] + offset.position;
             // Always `Some`: pass 1 made the same test (and a held pair's centres differ).
-            let contact = if self.adhesive {
-                sphere_sphere_signed(&p.position[i], p.radius[i], &xj, p.radius[j])
+            let contact = if HOLDS {
+                sphere_sphere_signed(&position[i], radius[i], &xj, radius[j])
             } else {
-                sphere_sphere(&p.position[i], p.radius[i], &xj, p.radius[j])
+                sphere_sphere(&position[i], radius[i], &xj, radius[j])
             };
-            contact.map_or((0.0, Vector3::zeros()), |c| (c.overlap, c.normal))
-        }));
+            *slot = contact.map_or((0.0, Vector3::zeros()), |c| (c.overlap, c.normal));
+        }
     }
 
     /// The law on the chunk's touching pair `k` with overlap and normal `contact`, its wrench
@@ -538,7 +557,7 @@ where
         window: &mut Window<'_>,
     ) {
         let p = self.particles;
-        let (i, j, offset) = self.pair(chunk.base, k);
+        let (i, j, offset) = self.pair(chunk, k);
         if !chunk.active[k] {
             // A contact begins: from the default history (an inactive pair's entry is stale,
             // see `PairList::history`).
