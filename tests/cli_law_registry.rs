@@ -76,7 +76,18 @@ fn sim_laws_lists_every_registered_law_with_its_declared_parameters() {
     assert_eq!(mdr["parameters"][1]["flag"], "--theta-ratio");
     assert_eq!(mdr["parameters"][1]["python"], "theta_ratio");
     assert_eq!(json[2]["parameters"][0]["flag"], "--yield-stress");
-    let spring = &json[3]["parameters"][0];
+    let by_name = |name: &str| {
+        json.as_array()
+            .unwrap()
+            .iter()
+            .find(|l| l["name"] == name)
+            .unwrap_or_else(|| panic!("no law `{name}` in {json}"))
+    };
+    let spring = &by_name("linear_spring")["parameters"][0];
+    assert_eq!(
+        by_name("adhesive_mdr")["parameters"][2]["flag"],
+        "--work-of-adhesion"
+    );
     assert_eq!(spring["flag"], "--normal-stiffness-n-per-m");
     assert_eq!(spring["lammps"], "kn");
 }

@@ -88,6 +88,10 @@ pub struct RingArgs {
     /// MDR: hardening ratio Θ/E*, eq. (12).
     #[arg(long, default_value_t = 0.2)]
     pub theta_ratio: f64,
+    /// MDR: work of adhesion Δγ of ice on ice (J/m², ≥ 0; the scenes' `work_of_adhesion_j_per_m2`):
+    /// impacts pay the adhesive hysteresis, slow ones stick (docs/theory.md §9).
+    #[arg(long, default_value_t = 0.0)]
+    pub work_of_adhesion: f64,
     /// Print the summary as one JSON object on stdout.
     #[arg(long)]
     pub json: bool,
@@ -112,7 +116,9 @@ pub fn run_ring(args: &RingArgs) -> anyhow::Result<()> {
         RingLawArg::Mdr => {
             let ice = Material::new(args.youngs, args.poisson, 400.0)?;
             let model = MdrElastoPlastic::new(args.qc, args.theta_ratio)?;
-            LawChoice::Mdr(MdrRestitution::new(ice, model)?)
+            LawChoice::Mdr(
+                MdrRestitution::new(ice, model)?.with_work_of_adhesion(args.work_of_adhesion)?,
+            )
         }
     };
     let mut config = RingConfig::default()

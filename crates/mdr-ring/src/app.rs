@@ -5,13 +5,14 @@
 //! (`frames/sigma_NNNN.png`); the wake pitch angle and wavelength come from the surface density's
 //! autocorrelation averaged over the second half of the run (one snapshot per orbit).
 
+use crate::clusters::Clusters;
 use crate::diagnostics::{Sample, Summary};
 use crate::error::Result;
 use crate::gravity::GRAVITATIONAL_CONSTANT;
 use crate::law::{BridgesLaw, ConstantRestitution, ImpactPair, MdrRestitution, RestitutionLaw};
 use crate::output::{
     write_equilibration_svg, write_json, write_panels_svg, write_samples_csv,
-    write_surface_density_png, write_top_view_png, write_vtk_frame, Curve, Panel,
+    write_surface_density_png, write_top_view_png, write_vtk_frame_with_clusters, Curve, Panel,
 };
 use crate::particles::Population;
 use crate::run::{RingConfig, RingSimulation};
@@ -66,6 +67,8 @@ pub struct LawRecord {
     pub critical_line_load_n_per_m: Option<f64>,
     /// `Θ/E*` (MDR).
     pub hardening_ratio: Option<f64>,
+    /// Work of adhesion `Δγ` (J/m², MDR).
+    pub work_of_adhesion_j_per_m2: Option<f64>,
 }
 
 impl From<&LawChoice> for LawRecord {
@@ -77,12 +80,14 @@ impl From<&LawChoice> for LawRecord {
             poisson_ratio: None,
             critical_line_load_n_per_m: None,
             hardening_ratio: None,
+            work_of_adhesion_j_per_m2: None,
         };
         match law {
             LawChoice::Mdr(l) => {
                 record.youngs_modulus_pa = Some(l.material().youngs_modulus());
                 record.poisson_ratio = Some(l.material().poisson_ratio());
                 record.critical_line_load_n_per_m = Some(l.model().critical_line_load());
+                record.work_of_adhesion_j_per_m2 = Some(l.work_of_adhesion());
                 if let mdr_contact::normal::Hardening::Ratio(r) = l.model().hardening() {
                     record.hardening_ratio = Some(r);
                 }
@@ -140,6 +145,15 @@ pub struct RunReport {
     pub wake_wavelength_m: Option<f64>,
     /// Axis ratio of the autocorrelation's central ellipse (1: no preferred direction).
     pub wake_anisotropy: Option<f64>,
+    /// The clusters of touching particles at the end of the run (`clusters.distribution`:
+    /// `[size, count]` pairs by increasing size; [`crate::clusters`]).
+    pub clusters: Clusters,
+    /// Clusters of at least two particles at the end of the run.
+    pub agglomerates: u32,
+    /// Fraction of the particles in such clusters at the end of the run.
+    pub agglomerated_fraction: f64,
+    /// Particles in the largest cluster at the end of the run.
+    pub largest_cluster: u32,
     /// The time series (not serialised; written as CSV).
     #[serde(skip)]
     pub samples: Vec<Sample>,
@@ -182,9 +196,10 @@ fn run_with<L: RestitutionLaw>(options: &RunOptions, law: L) -> Result<RunReport
     let mut frame_error = None;
     let mut index = 0u64;
     if let (Some(dir), Some(_)) = (&frames_dir, frame_every) {
-        write_vtk_frame(
+        write_vtk_frame_with_clusters(
             &dir.join("ring_0000.vtk"),
             ring.particles(),
+            &Clusters::of(ring.domain(), ring.particles(), 0.0),
             "ring t = 0 orbits",
         )?;
     }
@@ -236,7 +251,8 @@ fn run_with<L: RestitutionLaw>(options: &RunOptions, law: L) -> Result<RunReport
                 let png = dir.join(format!("sigma_{:04}.png", index / every));
                 let top = dir.join(format!("top_{:04}.png", index / every));
                 let when = format!("t = {:.2} orbits", sample.t_orbits);
-                let written = write_vtk_frame(&path, particles, &title)
+                let clusters = Clusters::of(&domain, particles, sample.t_orbits * period);
+                let written = write_vtk_frame_with_clusters(&path, particles, &clusters, &title)
                     .and_then(|_| write_surface_density_png(&png, &grid, &when))
                     .and_then(|_| write_top_view_png(&top, &domain, particles, &when));
                 if let Err(e) = written {
@@ -250,7 +266,12 @@ fn run_with<L: RestitutionLaw>(options: &RunOptions, law: L) -> Result<RunReport
     }
     let surface_density = ring.particles().total_mass() / ring.domain().area();
     let wakes = Autocorrelation::average(&correlations).map(|c| c.wakes(WAKE_LEVEL));
+    let clusters = Clusters::of(ring.domain(), ring.particles(), ring.time());
     let report = RunReport {
+        agglomerates: clusters.agglomerates(),
+        agglomerated_fraction: clusters.agglomerated_fraction(),
+        largest_cluster: clusters.largest(),
+        clusters,
         summary: result.summary,
         law: LawRecord::from(&options.law),
         seed: options.config.seed,

@@ -29,6 +29,7 @@
 
 pub mod app;
 pub mod boundary;
+pub mod clusters;
 pub mod diagnostics;
 pub mod error;
 pub mod gravity;

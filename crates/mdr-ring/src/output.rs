@@ -43,6 +43,27 @@ pub fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<()> {
 /// The particles as legacy-VTK poly data: one vertex per particle with point data `radius`
 /// (m) and `velocity` (m/s, rotating frame, shear included).
 pub fn write_vtk_frame(path: &Path, particles: &Particles, title: &str) -> Result<()> {
+    write_vtk(path, particles, None, title)
+}
+
+/// [`write_vtk_frame`] with each particle's cluster of touching particles
+/// ([`crate::clusters::Clusters`]): the point fields `cluster` (the cluster's index) and
+/// `cluster_size` (its number of particles) besides `radius` and `velocity`.
+pub fn write_vtk_frame_with_clusters(
+    path: &Path,
+    particles: &Particles,
+    clusters: &crate::clusters::Clusters,
+    title: &str,
+) -> Result<()> {
+    write_vtk(path, particles, Some(clusters), title)
+}
+
+fn write_vtk(
+    path: &Path,
+    particles: &Particles,
+    clusters: Option<&crate::clusters::Clusters>,
+    title: &str,
+) -> Result<()> {
     use vtkio::model::*;
     let n = particles.len();
     let points: Vec<f64> = particles
@@ -68,10 +89,19 @@ pub fn write_vtk_frame(path: &Path, particles: &Particles, title: &str) -> Resul
                 vertices,
             }),
             data: Attributes {
-                point: vec![
-                    Attribute::scalars("radius", 1).with_data(particles.radius.clone()),
-                    Attribute::vectors("velocity").with_data(velocity),
-                ],
+                point: {
+                    let mut fields = vec![
+                        Attribute::scalars("radius", 1).with_data(particles.radius.clone()),
+                        Attribute::vectors("velocity").with_data(velocity),
+                    ];
+                    if let Some(c) = clusters {
+                        fields.push(Attribute::scalars("cluster", 1).with_data(c.label.clone()));
+                        fields.push(
+                            Attribute::scalars("cluster_size", 1).with_data(c.size_of.clone()),
+                        );
+                    }
+                    fields
+                },
                 cell: vec![],
             },
             ..Default::default()

@@ -24,8 +24,8 @@ pub const MAGIC: &[u8; 8] = b"MDRSIMCK";
 /// and rapier's world, 2 the springs' stiffness books and the spring states they start from, 3
 /// the neighbour-list path's particles and lists, 5 the removed spheres' energy, 6 the springs'
 /// stiffness energy in each contact's work books; 7 keeps the scene's fixed keys, to name what
-/// changed when a restart is refused).
-pub const FORMAT_VERSION: u32 = 7;
+/// changed when a restart is refused; 8 the adhesive MDR history and the adhesive work books).
+pub const FORMAT_VERSION: u32 = 8;
 const HEADER_LEN: usize = 24;
 
 /// Why a checkpoint was refused.

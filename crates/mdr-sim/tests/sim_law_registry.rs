@@ -224,7 +224,7 @@ fn demo_law_scene_keys_and_errors_come_from_its_declaration() {
 fn registry_declarations_reproduce_the_scene_keys() {
     assert_eq!(
         normal_law_names(),
-        ["mdr", "hertz", "thornton", "linear_spring"]
+        ["mdr", "hertz", "thornton", "adhesive_mdr", "linear_spring"]
     );
     let keys = |name: &str| -> Vec<&str> {
         normal_law(name)

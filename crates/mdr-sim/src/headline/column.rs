@@ -148,6 +148,10 @@ impl HeadlineTracker for ColumnTracker {
         r.push("at_rest", if rest.is_some() { 1.0 } else { 0.0 });
         r.push("rest_time_s", rest.unwrap_or(f64::NAN));
         r.push("rest_window_s", window);
+        let bond = bond_number(scene);
+        if let Some(bo) = bond {
+            r.push("bond_number", bo);
+        }
         let rest_text = match rest {
             Some(t) => format!(
                 "at rest from t = {t:.3} s (run-out and height within {:.1} % of R0 until the end \
@@ -173,8 +177,32 @@ impl HeadlineTracker for ColumnTracker {
                 "no height correlation for a ≥ 0.74 here".to_owned()
             }
         );
+        if let Some(bo) = bond {
+            r.text.push_str(&format!(
+                "\n  cohesive: Bond number Bo = F_c/(m g) = {bo:.3} (JKR pull-off of two mean spheres over \
+                 one's weight; the run-out shrinks as Bo grows, Abramian, Staron & Lagrée 2020)"
+            ));
+        }
         r
     }
+}
+
+/// The Bond number of a scene with the adhesive law and gravity: the JKR pull-off force of two
+/// spheres of the mean radius `R`, `F_c = (3/2) π Δγ R*` with `R* = R/2`, over the weight
+/// `m g` of one (the first particle's material): `Bo = 9 Δγ / (16 ρ g R²)`. `None` without
+/// adhesion or gravity.
+pub fn bond_number(scene: &Scene) -> Option<f64> {
+    let gamma = scene.contact.normal.value("work_of_adhesion_j_per_m2")?;
+    let g = scene.gravity.norm();
+    let first = scene.particles.first()?;
+    if gamma <= 0.0 || g <= 0.0 {
+        return None;
+    }
+    let n = scene.particles.len() as f64;
+    let radius = scene.particles.iter().map(|p| p.radius).sum::<f64>() / n;
+    let mass = scene.materials[first.material].1.sphere_mass(radius);
+    let pull_off = 1.5 * std::f64::consts::PI * gamma * 0.5 * radius;
+    Some(pull_off / (mass * g))
 }
 
 #[cfg(test)]

@@ -1,9 +1,11 @@
 //! Drop: the coefficient of restitution of a sphere's first bounce, compared with the law's
-//! energy route (`MdrLaw::impact`, docs/theory.md §4).
+//! energy route (`MdrLaw::impact`, docs/theory.md §4; with adhesion
+//! `mdr_rapier::restitution_law::adhesive_impact`, §9). With the adhesive law a sphere that
+//! still holds to the wall at the end of the run stuck: `e_n = 0`.
 
 use super::{up, HeadlineReport, HeadlineSample, HeadlineTracker, ParticleView};
 use crate::scene::Scene;
-use mdr_contact::normal::{MdrElastoPlastic, MdrState, NormalModel};
+use mdr_contact::normal::{AdhesiveMdr, MdrElastoPlastic, MdrState, NormalModel};
 use mdr_contact::params::Declared;
 use mdr_contact::ContactPair;
 use serde::{Deserialize, Serialize};
@@ -38,7 +40,8 @@ impl HeadlineTracker for DropTracker {
                 // Restitution mode: the impulse reverses the velocity within one step.
                 self.touched = true;
                 self.rebound = Some(vn);
-            } else {
+            } else if vn < 0.0 {
+                // Approaching: a sphere that stuck (restitution mode) keeps its approach speed.
                 self.before = -vn;
             }
         } else if self.rebound.is_none() && !touching {
@@ -54,21 +57,43 @@ impl HeadlineTracker for DropTracker {
         ]
     }
 
-    fn report(&self, scene: &Scene, _samples: &[HeadlineSample]) -> HeadlineReport {
+    fn report(&self, scene: &Scene, samples: &[HeadlineSample]) -> HeadlineReport {
         let mut r = HeadlineReport::default();
         let Self {
-            before, rebound, ..
+            before,
+            rebound,
+            touched,
         } = *self;
-        let e = rebound.map_or(f64::NAN, |v| v / before);
+        let law = scene.contact.normal.law;
+        let (mdr, work_of_adhesion) = if law == MdrElastoPlastic::DECLARATION.name {
+            (
+                MdrElastoPlastic::from_values(&scene.contact.normal.values).ok(),
+                0.0,
+            )
+        } else if law == AdhesiveMdr::DECLARATION.name {
+            AdhesiveMdr::from_values(&scene.contact.normal.values)
+                .ok()
+                .map_or((None, 0.0), |a| (Some(*a.params()), a.work_of_adhesion()))
+        } else {
+            (None, 0.0)
+        };
+        // Restitution mode resolves a stuck impact within a step, with no contact left to see:
+        // the sphere is then at rest at the end.
+        let at_rest = samples
+            .last()
+            .and_then(|s| s.values.get(1))
+            .is_some_and(|v| v.abs() < 1e-3 * before);
+        let stuck = work_of_adhesion > 0.0 && rebound.is_none() && (touched || at_rest);
+        let e = rebound.map_or(if stuck { 0.0 } else { f64::NAN }, |v| v / before);
         r.push("impact_speed_m_per_s", before);
         r.push("restitution", e);
-        let mut text = format!(
-            "drop: impact speed {before:.4} m/s, rebound {} m/s, e_n = {e:.5}",
-            rebound.map_or("(none yet)".to_owned(), |v| format!("{v:.4}"))
-        );
-        let mdr = (scene.contact.normal.law == MdrElastoPlastic::DECLARATION.name)
-            .then(|| MdrElastoPlastic::from_values(&scene.contact.normal.values).ok())
-            .flatten();
+        let rebound_text = match rebound {
+            Some(v) => format!("{v:.4}"),
+            None if stuck => "0 (stuck: the contact holds at the end of the run)".to_owned(),
+            None => "(none yet)".to_owned(),
+        };
+        let mut text =
+            format!("drop: impact speed {before:.4} m/s, rebound {rebound_text} m/s, e_n = {e:.5}");
         if let (Some(model), Some(wall)) = (mdr, scene.walls.first()) {
             let p = &scene.particles[0];
             let m = scene.materials[p.material].1;
@@ -78,15 +103,22 @@ impl HeadlineTracker for DropTracker {
                     .zip(Some(model))
                     .and_then(|(pair, model)| model.bind(&pair).ok().map(|law| (pair, law)))
                     .and_then(|(pair, law)| {
-                        law.impact(&MdrState::default(), pair.reduced_mass(), before)
-                            .ok()
-                            .map(|impact| impact.restitution)
+                        mdr_rapier::restitution_law::adhesive_impact(
+                            &law,
+                            work_of_adhesion,
+                            &MdrState::default(),
+                            pair.reduced_mass(),
+                            before,
+                        )
+                        .ok()
+                        .map(|impact| impact.restitution)
                     });
             if let Some(reference) = reference {
                 r.push("law_energy_route_restitution", reference);
                 text.push_str(&format!(
-                    "\n  law's energy route (closed form, docs/theory.md §4) at that speed: e_n = {reference:.5} \
+                    "\n  law's energy route (closed form, docs/theory.md §{}) at that speed: e_n = {reference:.5} \
                      (difference {:.3} %)",
+                    if work_of_adhesion > 0.0 { 9 } else { 4 },
                     100.0 * (e / reference - 1.0)
                 ));
             }

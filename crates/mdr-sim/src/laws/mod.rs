@@ -8,7 +8,9 @@ pub mod registry;
 use mdr_contact::damping::{
     DampingLaw, DampingModel, HertzianViscous, NoDamping, StiffnessViscous,
 };
-use mdr_contact::normal::{MdrState, NormalLaw, NormalModel, NormalResponse, ThorntonState};
+use mdr_contact::normal::{
+    AdhesiveMdrState, MdrState, NormalLaw, NormalModel, NormalResponse, ThorntonState,
+};
 use mdr_contact::rolling::{
     EpsdRolling, EpsdRollingState, NoRolling, RollingInput, RollingLaw, RollingModel,
     RollingResponse,
@@ -26,16 +28,27 @@ pub struct AnyNormalState {
     pub hertz: f64,
     /// Thornton's history.
     pub thornton: ThorntonState,
+    /// The adhesive MDR history.
+    pub adhesive_mdr: AdhesiveMdrState,
 }
 
 /// A normal law's per-contact history as a checkpoint writes it: its field of
 /// [`AnyNormalState`]. A registered law whose history is one of these types needs nothing
 /// more; a new kind of history adds a field (and a checkpoint format version).
 pub trait NormalHistoryRecord: Sized {
+    /// Whether the history books adhesive work ([`NormalHistoryRecord::adhesive_work`]): the
+    /// energy books then take it apart from the plastic work.
+    const ADHESIVE: bool = false;
     /// The record of this history.
     fn record(&self) -> AnyNormalState;
     /// The history a record restores.
     fn restore(record: &AnyNormalState) -> Self;
+    /// The adhesive work of the history so far (J): the part of
+    /// [`NormalLaw::dissipated_work`] that the springs held when they let go; zero for a
+    /// non-adhesive law.
+    fn adhesive_work(&self) -> f64 {
+        0.0
+    }
 }
 
 impl NormalHistoryRecord for MdrState {
@@ -60,6 +73,22 @@ impl NormalHistoryRecord for f64 {
     }
     fn restore(record: &AnyNormalState) -> Self {
         record.hertz
+    }
+}
+
+impl NormalHistoryRecord for AdhesiveMdrState {
+    const ADHESIVE: bool = true;
+    fn record(&self) -> AnyNormalState {
+        AnyNormalState {
+            adhesive_mdr: *self,
+            ..AnyNormalState::default()
+        }
+    }
+    fn restore(record: &AnyNormalState) -> Self {
+        record.adhesive_mdr
+    }
+    fn adhesive_work(&self) -> f64 {
+        self.adhesive_work
     }
 }
 
@@ -178,10 +207,14 @@ impl RollingLaw for AnyRollingLaw {
 /// and the pair loop takes no branch on the law (docs/performance.md). Every normal model whose
 /// history has a checkpoint record ([`NormalHistoryRecord`]) is one.
 pub trait SceneNormal: NormalModel<Law: Clone> + 'static {
+    /// Whether a contact's history books adhesive work.
+    const ADHESIVE: bool;
     /// The history to write for a contact.
     fn record(state: &<Self::Law as NormalLaw>::State) -> AnyNormalState;
     /// The history a written one restores.
     fn restore(record: &AnyNormalState) -> <Self::Law as NormalLaw>::State;
+    /// The adhesive work a contact's history booked so far (J; part of its dissipated work).
+    fn adhesive_work(state: &<Self::Law as NormalLaw>::State) -> f64;
 }
 
 impl<N> SceneNormal for N
@@ -189,11 +222,15 @@ where
     N: NormalModel<Law: Clone> + 'static,
     <N::Law as NormalLaw>::State: NormalHistoryRecord,
 {
+    const ADHESIVE: bool = <<N::Law as NormalLaw>::State as NormalHistoryRecord>::ADHESIVE;
     fn record(state: &<N::Law as NormalLaw>::State) -> AnyNormalState {
         state.record()
     }
     fn restore(record: &AnyNormalState) -> <N::Law as NormalLaw>::State {
         NormalHistoryRecord::restore(record)
+    }
+    fn adhesive_work(state: &<N::Law as NormalLaw>::State) -> f64 {
+        state.adhesive_work()
     }
 }
 

@@ -23,7 +23,7 @@ use crate::run::coupling::{
 use crate::scene::{ContactSpec, DampingSpec};
 use mdr_contact::damping::{HertzianViscous, NoDamping, StiffnessViscous};
 use mdr_contact::model::ContactModel;
-use mdr_contact::normal::{Hertz, MdrElastoPlastic, NormalModel, Thornton};
+use mdr_contact::normal::{AdhesiveMdr, Hertz, MdrElastoPlastic, NormalModel, Thornton};
 use mdr_contact::params::{Declared, LawDeclaration, LawKind};
 use mdr_contact::rolling::{EpsdRolling, NoRolling};
 use mdr_contact::tangential::{Frictionless, Mindlin};
@@ -31,13 +31,12 @@ use mdr_contact::Result;
 use mdr_impact::DeclaredLaw;
 use mdr_rapier::neighbour_list::Boundary;
 
-/// The normal laws of scenes, by name. The adhesive MDR law is declared
-/// ([`mdr_contact::normal::AdhesiveMdr`]) but not listed: the rapier paths apply compressive
-/// contact forces only.
+/// The normal laws of scenes, by name.
 pub static NORMAL_LAWS: &[NormalEntry] = &[
     NormalEntry::of::<MdrElastoPlastic>(),
     NormalEntry::of::<Hertz>(),
     NormalEntry::of::<Thornton>(),
+    NormalEntry::of::<AdhesiveMdr>(),
     #[cfg(feature = "demo-laws")]
     NormalEntry::of::<mdr_contact::normal::LinearSpring>(),
 ];

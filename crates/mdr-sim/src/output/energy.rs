@@ -8,7 +8,9 @@
 //! without work, because their stiffness follows the contact while they carry a fixed
 //! displacement (Mindlin) or torque (rolling); docs/theory.md, "Energy books of the incremental
 //! springs". Spheres that leave the run (`delete_below_m`) take their energy with them into
-//! `removed_j`, which the balance counts as well.
+//! `removed_j`, which the balance counts as well. With an adhesive law the energy the springs
+//! held when they let go is booked in `adhesive_j`, apart from `plastic_j` (docs/theory.md §9):
+//! the elastic energy then includes the stretched springs of the contacts that hold apart.
 
 use mdr_output::write_atomic;
 use serde::{Deserialize, Serialize};
@@ -63,6 +65,11 @@ pub struct EnergyRow {
     /// gravitational energy when `delete_below_m` parks them, less what they have on their spot.
     #[serde(default)]
     pub removed_j: f64,
+    /// Adhesive work since the start (J): the energy the adhesive springs held when they let go
+    /// (the adhesive hysteresis). The CSV has this column only when some row books adhesive
+    /// work.
+    #[serde(default)]
+    pub adhesive_j: f64,
 }
 
 impl EnergyRow {
@@ -81,6 +88,7 @@ impl EnergyRow {
             + self.stiffness_tangential_j
             + self.stiffness_rolling_j
             + self.removed_j
+            + self.adhesive_j
             - self.wall_work_j;
         self
     }
@@ -110,7 +118,8 @@ impl BalanceDrift {
     pub fn between(first: &EnergyRow, now: &EnergyRow) -> Self {
         // A drum turning a bed that starts at rest near the origin has little initial energy but
         // dissipates all the work the drum does: the dissipated and wall work count too.
-        let dissipated = now.plastic_j + now.friction_j + now.damping_j + now.rolling_j;
+        let dissipated =
+            now.plastic_j + now.friction_j + now.damping_j + now.rolling_j + now.adhesive_j;
         let scale_j = first
             .kinetic()
             .abs()
@@ -154,7 +163,8 @@ impl BalanceDrift {
     }
 }
 
-/// Write the rows as CSV atomically.
+/// Write the rows as CSV atomically; the `adhesive_j` column only when a row books adhesive
+/// work.
 pub fn write_csv(path: &Path, rows: &[EnergyRow]) -> std::io::Result<()> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     for row in rows {
@@ -183,9 +193,18 @@ pub fn write_csv(path: &Path, rows: &[EnergyRow]) -> std::io::Result<()> {
             ])
             .map_err(std::io::Error::other)?;
     }
-    let bytes = writer
+    let mut bytes = writer
         .into_inner()
         .map_err(|e| std::io::Error::other(e.to_string()))?;
+    if !rows.is_empty() && rows.iter().all(|r| r.adhesive_j == 0.0) {
+        // `adhesive_j` is the last field, a plain number: drop it from every line.
+        let text = String::from_utf8(bytes).map_err(std::io::Error::other)?;
+        bytes = text
+            .lines()
+            .map(|line| format!("{}\n", &line[..line.rfind(',').unwrap_or(line.len())]))
+            .collect::<String>()
+            .into_bytes();
+    }
     write_atomic(path, &bytes)
 }
 

@@ -168,7 +168,7 @@ pub fn axis_label(names: &[&str]) -> String {
 /// The energy books against time.
 pub fn write_energy_plot(path: &Path, title: &str, rows: &[EnergyRow]) -> std::io::Result<()> {
     let col = |f: fn(&EnergyRow) -> f64| rows.iter().map(|r| (r.time_s, f(r))).collect::<Vec<_>>();
-    let series = vec![
+    let mut series = vec![
         ("kinetic (transl.)", col(|r| r.kinetic_translational_j)),
         ("kinetic (rot.)", col(|r| r.kinetic_rotational_j)),
         ("gravitational", col(|r| r.gravitational_j)),
@@ -187,6 +187,9 @@ pub fn write_energy_plot(path: &Path, title: &str, rows: &[EnergyRow]) -> std::i
         ("wall work", col(|r| r.wall_work_j)),
         ("balance", col(|r| r.balance_j)),
     ];
+    if rows.iter().any(|r| r.adhesive_j != 0.0) {
+        series.insert(5, ("adhesive", col(|r| r.adhesive_j)));
+    }
     write_lines(path, title, "time (s)", "energy (J)", &series)
 }
 

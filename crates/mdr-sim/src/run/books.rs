@@ -45,6 +45,13 @@ pub struct Books {
     pub stiffness_rolling: f64,
     /// Kinetic and gravitational energy removed spheres took out of the run (J).
     pub removed: f64,
+    /// Adhesive work since the start (J): the energy the adhesive springs held when they let go
+    /// (`AdhesiveMdrState::adhesive_work`). The contacts' dissipated work, which `plastic`
+    /// totals, includes it: the plastic work alone is `plastic − adhesive`.
+    pub adhesive: f64,
+    /// Neighbour-list path, adhesive law: the adhesive work of each live contact that had
+    /// booked some at the last step, by contact, sorted.
+    pub adhesive_last: Vec<(AdhesiveKey, f64)>,
     /// Rapier path: every touching pair at the last update, sorted by key, with its books then.
     pub last: Vec<PairBooks>,
     /// Plastic work per particle (J; on the neighbour-list path, of the contacts that ended).
@@ -53,6 +60,10 @@ pub struct Books {
     #[serde(skip)]
     ended: Vec<EndedContact>,
 }
+
+/// A contact of the neighbour-list path: particle, 0 for a surface and 1 for a sphere, and the
+/// surface's or the other sphere's index.
+pub type AdhesiveKey = (u32, u8, u32);
 
 /// What the rapier path's books keep of one touching pair between updates: the pair's books
 /// at the last update.
@@ -74,6 +85,8 @@ pub struct PairBooks {
     pub tangential_stiffness: f64,
     /// Energy the rolling spring gained without work (J).
     pub rolling_stiffness: f64,
+    /// Adhesive work of the pair so far (J; part of `plastic`).
+    pub adhesive: f64,
 }
 
 impl Books {
@@ -112,10 +125,10 @@ impl Books {
                 _ => PairBooks::default(),
             };
             let h = &e.history;
-            // The plastic work is a function of the largest overlap
+            // Without adhesion the dissipated work is a function of the largest overlap
             // (`NormalLaw::dissipated_work`): the same as at the last update unless that grew.
             let max_overlap = e.law.normal.max_overlap(&h.contact.normal);
-            let plastic = if max_overlap == prev.max_overlap && prev.key == key {
+            let plastic = if !N::ADHESIVE && max_overlap == prev.max_overlap && prev.key == key {
                 prev.plastic
             } else {
                 e.law.normal.dissipated_work(&h.contact.normal)
@@ -130,9 +143,13 @@ impl Books {
                 rolling: e.rolling.dissipated_work(&h.rolling),
                 tangential_stiffness: books.tangential_stiffness_energy(),
                 rolling_stiffness: books.rolling_stiffness_energy(),
+                adhesive: N::adhesive_work(&h.contact.normal),
             };
-            let dp = now.plastic - prev.plastic;
-            self.plastic += dp;
+            let da = now.adhesive - prev.adhesive;
+            self.adhesive += da;
+            self.plastic += now.plastic - prev.plastic;
+            // The particles' plastic work leaves the adhesive work out.
+            let dp = now.plastic - prev.plastic - da;
             self.friction += now.friction - prev.friction;
             self.damping += now.damping - prev.damping;
             self.rolling += now.rolling - prev.rolling;
@@ -174,6 +191,9 @@ impl Books {
         dt: f64,
     ) {
         stepper.take_ended_contacts(&mut self.ended);
+        if N::ADHESIVE {
+            self.take_adhesive(stepper);
+        }
         for e in self.ended.drain(..) {
             let w = &e.works;
             self.plastic += w.plastic;
@@ -209,6 +229,42 @@ impl Books {
                 self.wall_work += wall_power(b2, &sp.contact[q].point, &sp.wrench[q].force) * dt;
             }
         }
+    }
+
+    /// Neighbour-list path: book the adhesive work the live contacts added since the last step
+    /// (a contact's adhesive work only grows while it lives; once it ends it books no more, and
+    /// a contact found with less than its key had at the last step is a new one).
+    fn take_adhesive<N: SceneNormal, R: SceneRolling>(
+        &mut self,
+        stepper: &NeighbourListSceneStepper<N, R>,
+    ) {
+        let mut now: Vec<(AdhesiveKey, f64)> = Vec::new();
+        let p = stepper.particles();
+        let pairs = stepper.pairs();
+        let sp = stepper.surface_pairs();
+        for i in 0..p.len() {
+            for q in sp.start[i] as usize..sp.start[i + 1] as usize {
+                let w = N::adhesive_work(&sp.history[q].contact.normal);
+                if sp.active[q] && w > 0.0 {
+                    now.push(((i as u32, 0, sp.surface[q]), w));
+                }
+            }
+            for q in pairs.first[i] as usize..pairs.first[i + 1] as usize {
+                let w = N::adhesive_work(&pairs.history[q].contact.normal);
+                if pairs.active[q] && w > 0.0 {
+                    now.push(((i as u32, 1, pairs.j[q]), w));
+                }
+            }
+        }
+        now.sort_unstable_by_key(|&(k, _)| k);
+        for &(key, w) in &now {
+            let before = match self.adhesive_last.binary_search_by_key(&key, |&(k, _)| k) {
+                Ok(k) if self.adhesive_last[k].1 <= w => self.adhesive_last[k].1,
+                _ => 0.0,
+            };
+            self.adhesive += w - before;
+        }
+        self.adhesive_last = now;
     }
 
     /// The books of the contacts alive on the neighbour-list path, to add to the totals

@@ -13,7 +13,7 @@ use crate::error::SimError;
 use crate::laws::registry;
 use crate::scene::{CouplingMode, ForcePath, Scene};
 use crate::walls::WallPiece;
-use mdr_contact::normal::MdrElastoPlastic;
+use mdr_contact::normal::{AdhesiveMdr, MdrElastoPlastic};
 use mdr_contact::params::Declared;
 use mdr_rapier::convert::to_glam;
 use mdr_rapier::geometry::SurfaceOfRevolution;
@@ -140,16 +140,26 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
             )?)
         }
         CouplingMode::Restitution => {
-            if scene.contact.normal.law != MdrElastoPlastic::DECLARATION.name {
+            let law = scene.contact.normal.law;
+            let (model, work_of_adhesion) = if law == MdrElastoPlastic::DECLARATION.name {
+                (
+                    MdrElastoPlastic::from_values(&scene.contact.normal.values)?,
+                    0.0,
+                )
+            } else if law == AdhesiveMdr::DECLARATION.name {
+                let adhesive = AdhesiveMdr::from_values(&scene.contact.normal.values)?;
+                (*adhesive.params(), adhesive.work_of_adhesion())
+            } else {
                 return Err(SimError::Build(
-                    "restitution mode needs normal = \"mdr\"".to_owned(),
+                    "restitution mode needs normal = \"mdr\" or \"adhesive_mdr\"".to_owned(),
                 ));
-            }
-            let model = MdrElastoPlastic::from_values(&scene.contact.normal.values)?;
-            Coupling::Restitution(Box::new(RestitutionHooks::new(
-                model,
-                scene.contact.friction,
-            )?))
+            };
+            let hooks = RestitutionHooks::new(model, scene.contact.friction)?;
+            Coupling::Restitution(Box::new(if work_of_adhesion > 0.0 {
+                hooks.with_work_of_adhesion(work_of_adhesion)?
+            } else {
+                hooks
+            }))
         }
     };
     let materials: Vec<MaterialHandle> = scene

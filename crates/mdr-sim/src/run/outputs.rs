@@ -43,7 +43,8 @@ impl Sim<'_> {
             Coupling::NeighbourList(stepper) => stepper.live_works(None),
             _ => ContactWorks::default(),
         };
-        row.plastic_j = self.books.plastic + live.plastic;
+        row.plastic_j = self.books.plastic + live.plastic - self.books.adhesive;
+        row.adhesive_j = self.books.adhesive;
         row.friction_j = self.books.friction + live.friction;
         row.damping_j = self.books.damping + live.damping;
         row.rolling_j = self.books.rolling + live.rolling;

@@ -178,6 +178,11 @@ pub struct MaterialSection {
     pub poisson_ratio: f64,
     /// Density `ρ` (kg/m³).
     pub density_kg_per_m3: f64,
+    /// Work of adhesion `Δγ` of the material against itself (J/m², ≥ 0, default 0): a pair
+    /// of materials adheres with `√(Δγ_i Δγ_j)` through the adhesive MDR law. Left out of the
+    /// serialisation when absent, as `force_path`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub work_of_adhesion_j_per_m2: Option<f64>,
 }
 
 /// Tangential law name.

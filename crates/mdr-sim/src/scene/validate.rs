@@ -13,7 +13,7 @@ use crate::laws::registry;
 use crate::placement::{self, ParticleInit, RadiusLaw};
 use crate::walls::{self, Wall, WallPiece};
 use mdr_contact::damping::{HertzianViscous, StiffnessViscous};
-use mdr_contact::normal::MdrElastoPlastic;
+use mdr_contact::normal::{AdhesiveMdr, MdrElastoPlastic};
 use mdr_contact::params::{Declared, ParamProblem};
 use mdr_contact::rolling::EpsdRolling;
 use mdr_contact::tangential::Mindlin;
@@ -23,6 +23,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::path::{Path, PathBuf};
 
+mod adhesion;
 mod contact_section;
 mod particle_section;
 mod wall_section;
@@ -41,6 +42,8 @@ pub const MIN_STEPS_HARD: f64 = 5.0;
 pub const DEFAULT_MAX_ENERGY_DRIFT: f64 = 0.05;
 /// Initial overlaps above this fraction of the smaller radius are refused.
 pub const OVERLAP_TOLERANCE: f64 = 0.01;
+
+pub use adhesion::mixed_work_of_adhesion;
 
 /// Read and check a scene file. Every problem is reported with its file, line and key; warnings
 /// are returned inside the [`Scene`].
@@ -431,10 +434,12 @@ impl Checker<'_, '_> {
         };
         if r.coupling == CouplingMode::Restitution {
             let c = &file.contact;
-            if c.normal != MdrElastoPlastic::DECLARATION.name {
+            if c.normal != MdrElastoPlastic::DECLARATION.name
+                && c.normal != AdhesiveMdr::DECLARATION.name
+            {
                 self.error(
                     &root.key("contact").key("normal"),
-                    "restitution coupling needs normal = \"mdr\" (its restitution comes from the MDR energy route)",
+                    "restitution coupling needs normal = \"mdr\" or \"adhesive_mdr\" (its restitution comes from the MDR energy route)",
                 );
             }
             if c.damping != DampingLawName::None || c.rolling_friction.is_some_and(|m| m > 0.0) {
@@ -564,7 +569,8 @@ impl Checker<'_, '_> {
             i
         };
 
-        let contact = self.contact(&file.contact);
+        let mut contact = self.contact(&file.contact);
+        let gammas = self.works_of_adhesion(&file);
 
         // Particles.
         let mut rng = ChaCha8Rng::seed_from_u64(r.seed);
@@ -618,6 +624,10 @@ impl Checker<'_, '_> {
                     ..wall_out
                 });
             }
+        }
+
+        if let Some(contact) = &mut contact {
+            self.adhesion(&file, &gammas, &particles, &walls_out, contact);
         }
 
         // Placement against placement and walls, within each group's allowance.
