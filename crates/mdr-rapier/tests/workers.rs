@@ -14,10 +14,26 @@ fn cpu_while_sleeping(ms: u64) -> Option<f64> {
     Some(process_cpu_seconds()? - before)
 }
 
+/// CPU seconds the process uses while the current thread sleeps until it has used `cpu_s` or
+/// `limit_ms` milliseconds have passed: a spinning thread reaches `cpu_s` however loaded the
+/// machine is, a sleeping one never does.
+fn cpu_while_sleeping_until(cpu_s: f64, limit_ms: u64) -> Option<f64> {
+    let before = process_cpu_seconds()?;
+    let start = std::time::Instant::now();
+    loop {
+        std::thread::sleep(Duration::from_millis(20));
+        let used = process_cpu_seconds()? - before;
+        if used > cpu_s || start.elapsed() >= Duration::from_millis(limit_ms) {
+            return Some(used);
+        }
+    }
+}
+
 #[test]
 fn workers_wait_busily_while_the_closure_runs_and_stop_after() {
     let pool = ThreadPoolBuilder::new().num_threads(2).build().unwrap();
-    let (during, value) = pool.install(|| with_workers_awake(|| (cpu_while_sleeping(200), 42)));
+    let (during, value) =
+        pool.install(|| with_workers_awake(|| (cpu_while_sleeping_until(0.1, 10_000), 42)));
     assert_eq!(value, 42, "the closure's value comes back");
     let after = pool.install(|| cpu_while_sleeping(200));
     // A panic inside stops the waiting threads too, and the pool stays usable.
@@ -41,8 +57,9 @@ fn workers_wait_busily_while_the_closure_runs_and_stop_after() {
         eprintln!("no process CPU clock here: the CPU checks are skipped");
         return;
     };
-    println!("CPU s in 0.2 s: awake {during:.3}, after {after:.3}, after a panic {after_panic:.3}, one thread {lone:.3}");
-    // The other thread spins through the 0.2 s sleep (about 0.2 CPU s); asleep, a pool uses none.
+    println!("CPU s: awake {during:.3} (until 0.1 or 10 s), in 0.2 s after {after:.3}, after a panic {after_panic:.3}, one thread {lone:.3}");
+    // The other thread spins through the sleep, so the process gathers 0.1 CPU s however
+    // loaded the machine is; asleep, a pool uses none in 0.2 s.
     assert!(
         during > 0.1,
         "the other thread did not wait busily: {during} CPU s"
