@@ -287,7 +287,7 @@ impl AdhesiveMdrLaw {
             (d, crater.inv_radius)
         };
         let eps = self.detach_coefficient * touching.sqrt() / excess;
-        if !(eps <= 0.5) {
+        if eps > 0.5 {
             return None;
         }
         let e2 = eps * eps;
