@@ -245,16 +245,10 @@ impl AdhesiveMdrLaw {
         d: f64,
         touching: f64,
     ) -> (f64, Option<Retreat>) {
-        // The edge holds while `0 ≤ h(a₀) − d ≤ c √a₀` (A4; `h(a₀) ≥ d` outside the touching
-        // radius), squared to spare a root.
-        let c = self.detach_coefficient;
-        let stretch = crater.height(previous) - d;
-        if stretch * stretch <= c * c * previous {
-            return (previous, None);
-        }
         if touching > 0.0 {
             if let Some(retreat) = self.retreated_edge(crater, touching, d) {
-                // Between the touching radius and the edge that did not hold (round-off).
+                // δ is convex in √a and below d at the touching radius: the edge holds while it
+                // lies inside the root, and retreats to it otherwise.
                 let edge = touching + retreat.retreat;
                 if edge < previous {
                     return (edge, Some(retreat));
