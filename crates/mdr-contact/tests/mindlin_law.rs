@@ -138,3 +138,33 @@ fn radius_rescale_in_both_forms() {
         );
     }
 }
+
+/// Coulomb's law with no compressive load: `|F_t| ≤ μ max(F_N, 0) = 0`. A contact whose springs
+/// still touch (`a > 0`) but carry no normal load (`F_N = 0`) or a tensile one (`F_N < 0`)
+/// transmits no tangential force, and the energy the springs held leaves the books as released
+/// (`stiffness_energy = −½k|ξ|²`, nothing dissipated): the balance `ΔE = W + stiffness_energy −
+/// dissipated` with `W = 0` (no force).
+#[test]
+fn no_compressive_load_carries_no_tangential_force() {
+    let pair = ContactPair::paper_fig2();
+    let law = Mindlin::new(MU).unwrap().bind(&pair).unwrap();
+    let (a, f_n) = (1e-4, 50.0);
+    let k = law.stiffness(a);
+    for load in [0.0, -0.2 * f_n] {
+        let mut state = MindlinState::default();
+        let xi = 0.5 * MU * f_n / k;
+        let held = law.update(&mut state, &input(xi, f_n, a)).elastic_energy;
+        assert!(close(held, 0.5 * k * xi * xi));
+        let r = law.update(&mut state, &input(0.1 * xi, load, a));
+        assert_eq!(r.force, Vector3::zeros(), "F_N = {load}");
+        assert_eq!(r.elastic_energy, 0.0);
+        assert_eq!(r.dissipated, 0.0);
+        assert!(
+            close(r.stiffness_energy, -held),
+            "F_N = {load}: {} vs {}",
+            r.stiffness_energy,
+            -held
+        );
+        assert_eq!(state, MindlinState::default());
+    }
+}
