@@ -634,6 +634,13 @@ mod tests {
                 );
                 let kappa = if on_inner { theta / r } else { 1.0 / r };
                 assert_eq!(retreat.kappa, kappa);
+                // (A5): an edge outside the root retreats to it, one inside holds.
+                for (previous, expected) in [(1.01 * a, a), (0.99 * a, 0.99 * a)] {
+                    let (edge, on_branch) =
+                        law.unloaded_radius(&crater, max_overlap, previous, d, touching);
+                    assert_eq!(edge, expected, "ε = {eps}, from {previous}");
+                    assert_eq!(on_branch.is_some(), previous > a);
+                }
             }
         }
     }
