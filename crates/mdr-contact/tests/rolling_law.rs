@@ -28,8 +28,9 @@ fn input(rotation: Vector3<f64>, normal_force: f64, normal_stiffness: f64) -> Ro
     }
 }
 
+/// Equal to 1e-12, both finite (an infinite value would otherwise pass its own tolerance).
 fn close(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 1e-12 * a.abs().max(b.abs()) + 1e-300
+    a.is_finite() && b.is_finite() && (a - b).abs() <= 1e-12 * a.abs().max(b.abs()) + 1e-300
 }
 
 #[test]
