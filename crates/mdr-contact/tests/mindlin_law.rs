@@ -168,3 +168,41 @@ fn no_compressive_load_carries_no_tangential_force() {
         assert_eq!(state, MindlinState::default());
     }
 }
+
+/// Only the tangential part of the relative displacement loads the springs (§5: `Δu_t = Δu −
+/// n (n·Δu)`); a displacement stored along what becomes the new normal has no part in the new
+/// contact plane and is dropped, so only the step's own tangential increment remains.
+#[test]
+fn only_the_tangential_displacement_loads_the_springs() {
+    let pair = ContactPair::paper_fig2();
+    let law = Mindlin::new(MU).unwrap().bind(&pair).unwrap();
+    let (a, f_n) = (1e-4, 50.0);
+    let k = law.stiffness(a);
+    let dx = 0.1 * MU * f_n / k;
+    // A normal component of the increment (here 100 dx) is not a tangential displacement.
+    let mut state = MindlinState::default();
+    let mut along = input(dx, f_n, a);
+    along.displacement_increment.z = 100.0 * dx;
+    let r = law.update(&mut state, &along);
+    assert!(close(r.force.x, -k * dx), "{:?}", r.force);
+    assert_eq!((r.force.y, r.force.z), (0.0, 0.0));
+    assert!(close(r.elastic_energy, 0.5 * k * dx * dx));
+    // The plane turns by 90° about y: the stored ξ (along x) lies along the new normal.
+    let step = 0.5 * dx;
+    let r = law.update(
+        &mut state,
+        &TangentialInput {
+            normal: Vector3::x(),
+            displacement_increment: Vector3::new(0.0, step, 0.0),
+            normal_response: NormalResponse {
+                force: f_n,
+                contact_radius: a,
+                stiffness: 0.0,
+            },
+        },
+    );
+    assert_eq!(r.force.x, 0.0);
+    assert!(close(r.force.y, -k * step), "{:?}", r.force);
+    assert_eq!(r.force.z, 0.0);
+    assert!(close(r.elastic_energy, 0.5 * k * step * step));
+}
