@@ -400,3 +400,42 @@ fn jkr_check_rejects_a_wrong_work_of_adhesion() {
     let a = law.update(&mut state, 0.0).contact_radius;
     assert!((0.0 - jkr_overlap(a, r, e, GAMMA)).abs() > 1e-4 * 2e-8);
 }
+
+#[test]
+fn closed_form_unloads_along_jkr_for_a_large_contact() {
+    // The paper's steel ball (R = 6.35 mm) with Δγ = 1 J/m²: the attached edge retreats by
+    // about 1 % of its radius beyond the touching radius (ε = c√a_t/d ≈ 0.01–0.1), the regime of
+    // the edge's series solution; the JKR branch (A8) holds there to the same 1e-9.
+    let pair = ContactPair::paper_fig2();
+    let (r, e) = (pair.effective_radius(), pair.effective_modulus());
+    let gamma = 1.0;
+    let law = elastic_law(&pair, gamma);
+    let mut state = AdhesiveMdrState::default();
+    let d0 = 1e-5;
+    law.update(&mut state, d0);
+    let scale = 1.5 * PI * gamma * r;
+    let mut checked = 0;
+    for k in 1..200 {
+        let d = d0 * (1.0 - 0.005 * k as f64);
+        let previous = state.contact_radius;
+        let response = law.update(&mut state, d);
+        let a = response.contact_radius;
+        // On the retreating front (the edge moved in, and lies outside the touching radius).
+        if a < previous && a > (r * d).sqrt() * (1.0 + 1e-6) {
+            assert!(
+                (d - jkr_overlap(a, r, e, gamma)).abs() < 1e-9 * d0,
+                "d={d} a={a}"
+            );
+            assert!(
+                (response.force - jkr_force(a, r, e, gamma)).abs() < 1e-9 * scale,
+                "d={d}: {} vs {}",
+                response.force,
+                jkr_force(a, r, e, gamma)
+            );
+            assert_eq!(response.stiffness, 2.0 * e * a);
+            checked += 1;
+        }
+    }
+    assert!(checked > 150, "{checked}");
+    assert!(law.holds(&state));
+}

@@ -138,3 +138,71 @@ fn radius_rescale_in_both_forms() {
         );
     }
 }
+
+/// Coulomb's law with no compressive load: `|F_t| ≤ μ max(F_N, 0) = 0`. A contact whose springs
+/// still touch (`a > 0`) but carry no normal load (`F_N = 0`) or a tensile one (`F_N < 0`)
+/// transmits no tangential force, and the energy the springs held leaves the books as released
+/// (`stiffness_energy = −½k|ξ|²`, nothing dissipated): the balance `ΔE = W + stiffness_energy −
+/// dissipated` with `W = 0` (no force).
+#[test]
+fn no_compressive_load_carries_no_tangential_force() {
+    let pair = ContactPair::paper_fig2();
+    let law = Mindlin::new(MU).unwrap().bind(&pair).unwrap();
+    let (a, f_n) = (1e-4, 50.0);
+    let k = law.stiffness(a);
+    for load in [0.0, -0.2 * f_n] {
+        let mut state = MindlinState::default();
+        let xi = 0.5 * MU * f_n / k;
+        let held = law.update(&mut state, &input(xi, f_n, a)).elastic_energy;
+        assert!(close(held, 0.5 * k * xi * xi));
+        let r = law.update(&mut state, &input(0.1 * xi, load, a));
+        assert_eq!(r.force, Vector3::zeros(), "F_N = {load}");
+        assert_eq!(r.elastic_energy, 0.0);
+        assert_eq!(r.dissipated, 0.0);
+        assert!(
+            close(r.stiffness_energy, -held),
+            "F_N = {load}: {} vs {}",
+            r.stiffness_energy,
+            -held
+        );
+        assert_eq!(state, MindlinState::default());
+    }
+}
+
+/// Only the tangential part of the relative displacement loads the springs (§5: `Δu_t = Δu −
+/// n (n·Δu)`); a displacement stored along what becomes the new normal has no part in the new
+/// contact plane and is dropped, so only the step's own tangential increment remains.
+#[test]
+fn only_the_tangential_displacement_loads_the_springs() {
+    let pair = ContactPair::paper_fig2();
+    let law = Mindlin::new(MU).unwrap().bind(&pair).unwrap();
+    let (a, f_n) = (1e-4, 50.0);
+    let k = law.stiffness(a);
+    let dx = 0.1 * MU * f_n / k;
+    // A normal component of the increment (here 100 dx) is not a tangential displacement.
+    let mut state = MindlinState::default();
+    let mut along = input(dx, f_n, a);
+    along.displacement_increment.z = 100.0 * dx;
+    let r = law.update(&mut state, &along);
+    assert!(close(r.force.x, -k * dx), "{:?}", r.force);
+    assert_eq!((r.force.y, r.force.z), (0.0, 0.0));
+    assert!(close(r.elastic_energy, 0.5 * k * dx * dx));
+    // The plane turns by 90° about y: the stored ξ (along x) lies along the new normal.
+    let step = 0.5 * dx;
+    let r = law.update(
+        &mut state,
+        &TangentialInput {
+            normal: Vector3::x(),
+            displacement_increment: Vector3::new(0.0, step, 0.0),
+            normal_response: NormalResponse {
+                force: f_n,
+                contact_radius: a,
+                stiffness: 0.0,
+            },
+        },
+    );
+    assert_eq!(r.force.x, 0.0);
+    assert!(close(r.force.y, -k * step), "{:?}", r.force);
+    assert_eq!(r.force.z, 0.0);
+    assert!(close(r.elastic_energy, 0.5 * k * step * step));
+}

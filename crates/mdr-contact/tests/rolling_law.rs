@@ -28,8 +28,9 @@ fn input(rotation: Vector3<f64>, normal_force: f64, normal_stiffness: f64) -> Ro
     }
 }
 
+/// Equal to 1e-12, both finite (an infinite value would otherwise pass its own tolerance).
 fn close(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 1e-12 * a.abs().max(b.abs()) + 1e-300
+    a.is_finite() && b.is_finite() && (a - b).abs() <= 1e-12 * a.abs().max(b.abs()) + 1e-300
 }
 
 #[test]
@@ -183,4 +184,31 @@ fn no_rolling_resistance_adds_nothing() {
         (law.elastic_energy(&()), law.dissipated_work(&())),
         (0.0, 0.0)
     );
+}
+
+#[test]
+fn a_torque_along_the_new_normal_is_dropped_as_twist() {
+    // The contact plane turns by 90° about y: the stored rolling torque (about x) now lies along
+    // the normal, where it would be a twisting torque, which the model does not resist. It has
+    // no part in the new plane, so only this step's rolling remains: M = −k_r Δθ, finite.
+    let law = EpsdRolling::new(MU_R).unwrap().bind(&pair()).unwrap();
+    let k_r = 2.25 * K_N * MU_R * MU_R * R * R;
+    let f_n = 2.0;
+    let theta = 0.3 * MU_R * R * f_n / k_r;
+    let mut state = EpsdRollingState::default();
+    law.update(&mut state, &input(Vector3::new(theta, 0.0, 0.0), f_n, K_N));
+    let step = 0.1 * theta;
+    let r = law.update(
+        &mut state,
+        &RollingInput {
+            normal: Vector3::x(),
+            rotation_increment: Vector3::new(0.0, step, 0.0),
+            normal_force: f_n,
+            normal_stiffness: K_N,
+        },
+    );
+    assert_eq!(r.torque.x, 0.0);
+    assert!(close(r.torque.y, -k_r * step), "{:?}", r.torque);
+    assert_eq!(r.torque.z, 0.0);
+    assert!(close(r.elastic_energy, 0.5 * k_r * step * step));
 }
