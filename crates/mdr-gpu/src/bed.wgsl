@@ -493,64 +493,103 @@ fn thornton_law(law: Law, state: ptr<function, vec3<f64>>, d: f64) -> NormalOut 
 
 // The crater of the adhesive MDR law after loading to `max_overlap` (`AdhesiveMdrLaw::crater`).
 struct Crater {
-    radius: f64,
+    inv_radius: f64,
     theta: f64,
+    plastic_overlap: f64,
+    volume_coefficient: f64,
     depth: f64,
     plastic_radius_sq: f64,
 }
 
 fn crater_of(law: Law, max_overlap: f64) -> Crater {
-    let s = max(max_overlap - law.yield_displacement, 0.0lf);
+    let excess = max_overlap - law.yield_displacement;
+    var s = 0.0lf;
+    if excess > 0.0lf {
+        s = excess;
+    }
     let theta = law.hardening_ratio;
-    return Crater(law.effective_radius, theta, (1.0lf - theta) * s, law.effective_radius * s);
+    let r = law.effective_radius;
+    return Crater(
+        1.0lf / r,
+        theta,
+        s,
+        2.0lf / 3.0lf * (1.0lf - theta) * sqrt(r),
+        (1.0lf - theta) * s,
+        r * s,
+    );
 }
 
 fn crater_height(c: Crater, a: f64) -> f64 {
     if a * a < c.plastic_radius_sq {
-        return c.theta * a * a / c.radius + c.depth;
+        return c.theta * a * a * c.inv_radius + c.depth;
     }
-    return a * a / c.radius;
+    return a * a * c.inv_radius;
 }
 
 fn crater_slope(c: Crater, a: f64) -> f64 {
     if a * a < c.plastic_radius_sq {
-        return 2.0lf * c.theta * a / c.radius;
+        return 2.0lf * c.theta * a * c.inv_radius;
     }
-    return 2.0lf * a / c.radius;
+    return 2.0lf * a * c.inv_radius;
 }
 
 fn crater_integral(c: Crater, a: f64) -> f64 {
-    let r = c.radius;
+    let cube = a * a * a * c.inv_radius * (1.0lf / 3.0lf);
     if a * a <= c.plastic_radius_sq {
-        return c.theta * a * a * a / (3.0lf * r) + c.depth * a;
+        return c.theta * cube + c.depth * a;
     }
-    let b = sqrt(c.plastic_radius_sq);
-    return a * a * a / (3.0lf * r) + 2.0lf / 3.0lf * (1.0lf - c.theta) * b * b * b / r;
+    if c.plastic_overlap > 0.0lf {
+        return cube + c.volume_coefficient * c.plastic_overlap * sqrt(c.plastic_overlap);
+    }
+    return cube;
 }
 
-fn crater_touching_radius(c: Crater, d: f64) -> f64 {
-    if d <= c.depth {
-        return 0.0lf;
-    }
-    let outer = c.radius * d;
-    if outer >= c.plastic_radius_sq {
-        return sqrt(outer);
-    }
-    return sqrt(c.radius * (d - c.depth) / c.theta);
-}
-
-// `φ(t) = h(t²) − c t − d` of `AdhesiveMdrLaw::attached_radius`.
+// `φ(t) = h(t²) − c t − d` of `AdhesiveMdrLaw::retreat_by_halley`.
 fn edge_phi(c: Crater, detach: f64, t: f64, d: f64) -> f64 {
     return crater_height(c, t * t) - detach * t - d;
 }
 
-// `AdhesiveMdrLaw::attached_radius`: the touching radius while the contact grows; otherwise
-// the outermost spring still within its limit (Halley's method from the right, as on the CPU).
-fn attached_radius(law: Law, c: Crater, previous: f64, d: f64) -> f64 {
-    let touching = crater_touching_radius(c, d);
-    if touching >= previous {
-        return touching;
+// An edge that retreated on the branch `h = κx² + h₀` the springs touch (`Retreat`);
+// `found` is false where `AdhesiveMdrLaw::retreated_edge` returns `None`.
+struct Retreat {
+    found: bool,
+    retreat: f64,
+    kappa: f64,
+}
+
+// `AdhesiveMdrLaw::retreated_edge`: the series root of the edge quartic (eq. A12) and one
+// Halley step, for `ε ≤ 1/2` on the branch of the touching radius.
+fn retreated_edge(law: Law, c: Crater, touching: f64, d: f64) -> Retreat {
+    var none = Retreat(false, 0.0lf, 0.0lf);
+    let inner = touching * touching < c.plastic_radius_sq;
+    var excess = d;
+    var kappa = c.inv_radius;
+    if inner {
+        excess = d - c.depth;
+        kappa = c.theta * c.inv_radius;
     }
+    let eps = law.detach_coefficient * sqrt(touching) / excess;
+    if eps > 0.5lf {
+        return none;
+    }
+    let e2 = eps * eps;
+    let x0 = eps * (0.25lf - eps * (1.0lf / 32.0lf))
+        + e2 * e2 * (7.0lf / 2048.0lf - eps * (1.0lf / 512.0lf) + 39.0lf / 65536.0lf * e2);
+    let f = x0 * (4.0lf + x0 * (6.0lf + x0 * (4.0lf + x0))) - eps * (1.0lf + x0);
+    let u = 1.0lf + x0;
+    let u2 = u * u;
+    let slope = 4.0lf * u2 * u - eps;
+    let x = x0 - 2.0lf * f * slope / (2.0lf * slope * slope - 12.0lf * f * u2);
+    let retreat = touching * x * (2.0lf + x);
+    if inner && (touching + retreat) * (touching + retreat) >= c.plastic_radius_sq {
+        return none;
+    }
+    return Retreat(true, retreat, kappa);
+}
+
+// `AdhesiveMdrLaw::retreat_by_halley`: Halley's method from the right, for the cases the
+// series does not cover; zero when the contact lets go.
+fn retreat_by_halley(law: Law, c: Crater, previous: f64, d: f64, touching: f64) -> f64 {
     let k = law.detach_coefficient;
     var t = sqrt(previous);
     var value = edge_phi(c, k, t, d);
@@ -591,7 +630,9 @@ fn attached_radius(law: Law, c: Crater, previous: f64, d: f64) -> f64 {
 
 // `AdhesiveMdrLaw::update` (docs/theory.md, "Adhesion: Heß's rule on the plastic springs"):
 // `state` is the largest overlap and the attached radius (the adhesive work, a book, is not
-// kept on the device).
+// kept on the device). While the springs touch out to the attached edge the law is the MDR
+// law itself; with stretched springs at the edge, the edge holds or retreats (eqs. A4, A5,
+// A12) and the force is (A13) on the touching branch, (A3) otherwise.
 fn adhesive_mdr_law(law: Law, state: ptr<function, vec3<f64>>, d: f64) -> NormalOut {
     var out = NormalOut(0.0lf, 0.0lf, 0.0lf);
     if law.detach_coefficient == 0.0lf {
@@ -599,29 +640,46 @@ fn adhesive_mdr_law(law: Law, state: ptr<function, vec3<f64>>, d: f64) -> Normal
         (*state).y = out.radius;
         return out;
     }
-    let loading = d > (*state).x;
-    let residual = law.plastic_fraction * max((*state).x - law.yield_displacement, 0.0lf);
-    if (*state).y == 0.0lf && d <= residual {
-        return out;
-    }
-    if loading {
-        (*state).x = d;
-    }
-    let c = crater_of(law, (*state).x);
+    var plain = vec3<f64>((*state).x, 0.0lf, 0.0lf);
+    let touching = mdr_law(law, &plain, d);
+    (*state).x = plain.x;
     let previous = (*state).y;
-    let a = attached_radius(law, c, previous, d);
+    if touching.radius >= previous {
+        (*state).y = touching.radius;
+        return touching;
+    }
+    let c = crater_of(law, plain.x);
+    let a_t = touching.radius;
+    var a = previous;
+    var retreat = Retreat(false, 0.0lf, 0.0lf);
+    var series = false;
+    if a_t > 0.0lf {
+        let r = retreated_edge(law, c, a_t, d);
+        if r.found {
+            series = true;
+            let edge = a_t + r.retreat;
+            if edge < previous {
+                a = edge;
+                retreat = r;
+            }
+        }
+    }
+    if !series {
+        a = retreat_by_halley(law, c, previous, d, a_t);
+    }
     (*state).y = a;
     if a == 0.0lf {
         return out;
     }
-    let modulus = law.effective_modulus;
-    out.force = 2.0lf * modulus * (a * d - crater_integral(c, a));
-    var softening = 0.0lf;
-    if loading && c.plastic_radius_sq > 0.0lf {
-        softening = (1.0lf - c.theta) * sqrt(c.plastic_radius_sq);
+    let two_modulus = 2.0lf * law.effective_modulus;
+    if retreat.found {
+        out.force = touching.force
+            - two_modulus * retreat.kappa / 3.0lf * retreat.retreat * retreat.retreat * (a + 2.0lf * a_t);
+    } else {
+        out.force = two_modulus * (a * d - crater_integral(c, a));
     }
     out.radius = a;
-    out.stiffness = 2.0lf * modulus * (a - softening);
+    out.stiffness = two_modulus * a;
     return out;
 }
 
