@@ -3,7 +3,7 @@
 //! (`hertzhist`), or with the MDR law (the loop is `mdr_rapier::neighbour_list::bed::bench_bed`, which
 //! Python's `mdr_dem.bench_bed` runs too); see `docs/performance.md`.
 
-use anyhow::{bail, Context};
+use anyhow::{anyhow, bail, Context};
 use clap::{Args, Subcommand, ValueEnum};
 use mdr_rapier::neighbour_list::bed::{
     bench_bed, peak_rss_mb, process_cpu_seconds, reference_data, settled_bed, Bed, BedSpec,
@@ -97,17 +97,17 @@ pub struct BedArgs {
     pub tile: usize,
     /// MDR critical line load `q_c` (force/length, reduced units) for `--law mdr` and
     /// `--law adhesive-mdr`.
-    #[arg(long, default_value_t = 10.0)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 10.0)]
     pub qc: f64,
     /// Thornton's limiting contact pressure `p_y` (reduced units) for `--law thornton`.
-    #[arg(long, default_value_t = 1000.0)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 1000.0)]
     pub yield_stress: f64,
     /// Work of adhesion `Δγ` (energy per area, reduced units) for `--law adhesive-mdr`.
-    #[arg(long, default_value_t = 2.0)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 2.0)]
     pub work_of_adhesion: f64,
     /// Rolling resistance coefficient `μ_r` (elastic–plastic spring rolling resistance,
     /// `EpsdRolling`), with any law.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub rolling: Option<f64>,
     /// Neighbour skin (as LAMMPS `neighbor 0.1 bin`).
     #[arg(long, default_value_t = 0.1)]
@@ -195,6 +195,7 @@ fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
         orientation: !args.no_orientation,
         work_books: !args.no_work_books,
     };
+    check_law_flags(&settings)?;
     settings.validate()?;
     let bed = Bed::read_lammps(&path).with_context(|| format!("reading {}", path.display()))?;
     if args.device == DeviceArg::Gpu {
@@ -264,6 +265,31 @@ fn bench_law(args: &BedArgs) -> BenchLaw {
             work_of_adhesion: args.work_of_adhesion,
         },
     }
+}
+
+/// Check the law's and the rolling resistance's parameters, naming the flag that set a bad one.
+fn check_law_flags(settings: &BenchSettings) -> anyhow::Result<()> {
+    let named = |flag: &str, law: BenchLaw| law.validate().map_err(|e| anyhow!("{flag}: {e}"));
+    match settings.law {
+        BenchLaw::Hertz => {}
+        BenchLaw::Mdr { .. } => named("--qc", settings.law)?,
+        BenchLaw::Thornton { .. } => named("--yield-stress", settings.law)?,
+        BenchLaw::AdhesiveMdr { qc, .. } => {
+            named("--qc", BenchLaw::Mdr { qc })?;
+            named("--work-of-adhesion", settings.law)?;
+        }
+    }
+    if let Some(mu) = settings.rolling {
+        let rolling_only = BenchSettings {
+            law: BenchLaw::Hertz,
+            rolling: Some(mu),
+            ..BenchSettings::default()
+        };
+        rolling_only
+            .validate()
+            .map_err(|e| anyhow!("--rolling: {e}"))?;
+    }
+    Ok(())
 }
 
 /// `bench bed --device gpu`: the bed on the device, optionally compared with the CPU path.

@@ -9,12 +9,12 @@ use mdr_contact::normal::{NormalLaw, NormalModel};
 use mdr_contact::rolling::{RollingLaw, RollingModel};
 use mdr_contact::tangential::Mindlin;
 use mdr_rapier::neighbour_list::bed::{
-    peak_rss_mb, run_reference_system, Bed, BenchFigures, BenchSettings, BenchValue,
-    ReferenceRun, RollingTorque,
+    peak_rss_mb, run_reference_system, Bed, BenchFigures, BenchSettings, BenchValue, ReferenceRun,
+    RollingTorque,
 };
 use mdr_rapier::neighbour_list::{Boundary, NeighbourListStepper};
-use nalgebra::Vector3;
 use mdr_rapier::rapier::prelude::PhysicsWorld;
+use nalgebra::Vector3;
 
 /// Figures of one GPU bed run: the CPU benchmark's ([`BenchFigures`]; `threads` is 0,
 /// `cpu_seconds` the host's, `stepper_bytes_per_particle` the device buffers', `work_books`
