@@ -86,9 +86,7 @@ pub fn bench_bed<'py>(
         other => {
             return Err(invalid(
                 "law",
-                format!(
-                    "`{other}` (allowed: \"hertz\", \"mdr\", \"thornton\", \"adhesive-mdr\")"
-                ),
+                format!("`{other}` (allowed: \"hertz\", \"mdr\", \"thornton\", \"adhesive-mdr\")"),
             ))
         }
     };
