@@ -281,6 +281,32 @@ mod tests {
                     ..base
                 },
             ),
+            (
+                "yield_stress",
+                BenchSettings {
+                    law: BenchLaw::Thornton {
+                        yield_pressure: f64::NAN,
+                    },
+                    ..base
+                },
+            ),
+            (
+                "work_of_adhesion",
+                BenchSettings {
+                    law: BenchLaw::AdhesiveMdr {
+                        qc: 10.0,
+                        work_of_adhesion: -1.0,
+                    },
+                    ..base
+                },
+            ),
+            (
+                "mu_r",
+                BenchSettings {
+                    rolling: Some(-1.0),
+                    ..base
+                },
+            ),
         ] {
             let message = bench_bed(&bed, &settings).unwrap_err().to_string();
             assert!(message.contains(name), "{name}: {message}");
