@@ -156,10 +156,6 @@ fn bench_bed_runs_thornton_adhesion_and_rolling_on_the_cpu_independent_of_thread
         let contacts = one["contacts_per_particle"].as_f64().unwrap();
         assert!(contacts > 4.0, "{law}: {contacts} contacts per particle");
     }
-    // The work of adhesion reaches the law: another value, another final state.
-    let weaker = bench_json(bed, "adhesive-mdr", 1, &["--work-of-adhesion", "0.5"]);
-    let default = bench_json(bed, "adhesive-mdr", 1, &[]);
-    assert_ne!(weaker["state_checksum"], default["state_checksum"]);
 }
 
 #[test]
