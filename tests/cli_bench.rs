@@ -126,22 +126,63 @@ fn bench_bed_json_contract_and_same_trajectories_for_one_and_two_threads() {
     }
 }
 
+/// Thornton, the adhesive law and rolling resistance on the CPU bench: each gives the same final
+/// state on 1 and 2 threads, reports its own name, and ends elsewhere than the MDR law alone
+/// (the law or sub-model is applied, not silently replaced by another).
+#[test]
+fn bench_bed_runs_thornton_adhesion_and_rolling_on_the_cpu_independent_of_threads() {
+    let bed = small_bed();
+    let mdr = bench_json(bed, "mdr", 1, &[]);
+    let mdr_checksum = mdr["state_checksum"].as_str().unwrap();
+    for (law, extra, name) in [
+        ("adhesive-mdr", &[][..], "adhesive-mdr"),
+        ("thornton", &[][..], "thornton"),
+        ("mdr", &["--rolling", "0.1"][..], "mdr"),
+    ] {
+        let one = bench_json(bed, law, 1, extra);
+        let two = bench_json(bed, law, 2, extra);
+        assert_eq!(one["law"].as_str(), Some(name), "{one}");
+        assert_eq!(one["device"].as_str(), Some("cpu"), "{one}");
+        let checksum = one["state_checksum"].as_str().unwrap();
+        assert_eq!(
+            Some(checksum),
+            two["state_checksum"].as_str(),
+            "{law} {extra:?}: 1 and 2 threads must give the same final state"
+        );
+        assert_ne!(
+            checksum, mdr_checksum,
+            "{law} {extra:?} ends where the MDR law alone does"
+        );
+        let contacts = one["contacts_per_particle"].as_f64().unwrap();
+        assert!(contacts > 4.0, "{law}: {contacts} contacts per particle");
+    }
+}
+
 #[test]
 fn bench_bed_refuses_bad_values_by_name() {
     let data = small_bed().to_str().unwrap();
-    for (flag, value) in [
-        ("--threads", "0"),
-        ("--tile", "0"),
+    for (flag, value, law) in [
+        ("--threads", "0", "hertz"),
+        ("--tile", "0", "hertz"),
         // tile² × spheres beyond MAX_BED_SPHERES, and a tile whose square overflows.
-        ("--tile", "100000"),
-        ("--tile", "18446744073709551615"),
-        ("--skin", "-0.1"),
-        ("--skin", "0"),
-        ("--steps", "0"),
-        ("--law", "thornton"),
+        ("--tile", "100000", "hertz"),
+        ("--tile", "18446744073709551615", "hertz"),
+        ("--skin", "-0.1", "hertz"),
+        ("--skin", "0", "hertz"),
+        ("--steps", "0", "hertz"),
+        ("--qc", "-1", "mdr"),
+        ("--qc", "nan", "adhesive-mdr"),
+        ("--work-of-adhesion", "-1", "adhesive-mdr"),
+        ("--work-of-adhesion", "nan", "adhesive-mdr"),
+        ("--yield-stress", "-1", "thornton"),
+        ("--yield-stress", "nan", "thornton"),
+        ("--rolling", "-1", "mdr"),
+        ("--rolling", "nan", "hertz"),
     ] {
         let setting = format!("{flag}={value}");
-        let output = mdr_dem(&["bench", "bed", "--data", data, "--warmup", "1", &setting]);
+        let output = mdr_dem(&[
+            "bench", "bed", "--data", data, "--warmup", "1", "--law", law, &setting,
+        ]);
         assert!(!output.status.success(), "{flag} {value} was accepted");
         let stderr = String::from_utf8_lossy(&output.stderr);
         let name = flag.trim_start_matches("--");

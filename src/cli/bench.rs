@@ -3,7 +3,7 @@
 //! (`hertzhist`), or with the MDR law (the loop is `mdr_rapier::neighbour_list::bed::bench_bed`, which
 //! Python's `mdr_dem.bench_bed` runs too); see `docs/performance.md`.
 
-use anyhow::{bail, Context};
+use anyhow::{anyhow, bail, Context};
 use clap::{Args, Subcommand, ValueEnum};
 use mdr_rapier::neighbour_list::bed::{
     bench_bed, peak_rss_mb, process_cpu_seconds, reference_data, settled_bed, Bed, BedSpec,
@@ -57,11 +57,10 @@ pub enum LawArg {
     Hertz,
     /// The MDR elasto-plastic law (`q_c` from `--qc`, `Θ = 0.37 E*`).
     Mdr,
-    /// Thornton's elastic–perfectly-plastic law (`p_y` from `--yield-stress`); `--device gpu`
-    /// only.
+    /// Thornton's elastic–perfectly-plastic law (`p_y` from `--yield-stress`).
     Thornton,
     /// The adhesive MDR law (`q_c` from `--qc`, `Θ = 0.37 E*`, `Δγ` from
-    /// `--work-of-adhesion`); `--device gpu` only.
+    /// `--work-of-adhesion`).
     AdhesiveMdr,
 }
 
@@ -96,18 +95,19 @@ pub struct BedArgs {
     /// Repeat the bed `tile × tile` times in x and y (scaling runs; at most 10⁸ spheres in all).
     #[arg(long, default_value_t = 1)]
     pub tile: usize,
-    /// MDR critical line load `q_c` (force/length, reduced units) for `--law mdr`.
-    #[arg(long, default_value_t = 10.0)]
+    /// MDR critical line load `q_c` (force/length, reduced units) for `--law mdr` and
+    /// `--law adhesive-mdr`.
+    #[arg(long, allow_negative_numbers = true, default_value_t = 10.0)]
     pub qc: f64,
     /// Thornton's limiting contact pressure `p_y` (reduced units) for `--law thornton`.
-    #[arg(long, default_value_t = 1000.0)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 1000.0)]
     pub yield_stress: f64,
     /// Work of adhesion `Δγ` (energy per area, reduced units) for `--law adhesive-mdr`.
-    #[arg(long, default_value_t = 2.0)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = 2.0)]
     pub work_of_adhesion: f64,
     /// Rolling resistance coefficient `μ_r` (elastic–plastic spring rolling resistance,
-    /// `EpsdRolling`); `--device gpu` only.
-    #[arg(long)]
+    /// `EpsdRolling`), with any law.
+    #[arg(long, allow_negative_numbers = true)]
     pub rolling: Option<f64>,
     /// Neighbour skin (as LAMMPS `neighbor 0.1 bin`).
     #[arg(long, default_value_t = 0.1)]
@@ -185,10 +185,8 @@ fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
             .map_err(|e| anyhow::anyhow!("{e}; pass --data PATH"))?,
     };
     let settings = BenchSettings {
-        law: match args.law {
-            LawArg::Mdr | LawArg::AdhesiveMdr => BenchLaw::Mdr { qc: args.qc },
-            LawArg::Hertz | LawArg::Thornton => BenchLaw::Hertz,
-        },
+        law: bench_law(args),
+        rolling: args.rolling,
         steps: args.steps,
         warmup: args.warmup,
         threads: args.threads,
@@ -197,6 +195,7 @@ fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
         orientation: !args.no_orientation,
         work_books: !args.no_work_books,
     };
+    check_law_flags(&settings)?;
     settings.validate()?;
     let bed = Bed::read_lammps(&path).with_context(|| format!("reading {}", path.display()))?;
     if args.device == DeviceArg::Gpu {
@@ -204,12 +203,6 @@ fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
     }
     if args.compare_cpu {
         bail!("--compare-cpu compares the GPU path with the CPU path: it needs --device gpu");
-    }
-    if let Some(refused) = gpu_only(args) {
-        bail!(
-            "bench bed: {refused} runs on the GPU path only (--device gpu); the CPU bench has \
-             --law hertz and --law mdr without rolling resistance"
-        );
     }
     let figures = bench_bed(&bed, &settings)?;
     if args.json {
@@ -244,9 +237,9 @@ fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
             "  {:.3} contacts per particle (sphere-sphere, as LAMMPS contact/atom), {} floor contacts",
             figures.contacts_per_particle, figures.floor_contacts
         );
-        if figures.law == "mdr" {
+        if figures.law != "hertz" {
             println!(
-                "  {:.1} % of sphere-sphere contacts plastic (d_max > u_c)",
+                "  {:.1} % of sphere-sphere contacts plastic (largest overlap beyond the yield overlap)",
                 100.0 * figures.plastic_contact_fraction
             );
         }
@@ -259,44 +252,49 @@ fn run_bed(args: &BedArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The flags of `bench bed` that only the GPU path has, named, or `None`.
-fn gpu_only(args: &BedArgs) -> Option<String> {
-    let law = match args.law {
-        LawArg::Thornton => Some("--law thornton"),
-        LawArg::AdhesiveMdr => Some("--law adhesive-mdr"),
-        LawArg::Hertz | LawArg::Mdr => None,
-    };
-    match (law, args.rolling) {
-        (Some(law), Some(_)) => Some(format!("{law} with --rolling")),
-        (Some(law), None) => Some(law.to_owned()),
-        (None, Some(_)) => Some("--rolling".to_owned()),
-        (None, None) => None,
+/// The normal law `bench bed` runs, with its parameters from the flags.
+fn bench_law(args: &BedArgs) -> BenchLaw {
+    match args.law {
+        LawArg::Hertz => BenchLaw::Hertz,
+        LawArg::Mdr => BenchLaw::Mdr { qc: args.qc },
+        LawArg::Thornton => BenchLaw::Thornton {
+            yield_pressure: args.yield_stress,
+        },
+        LawArg::AdhesiveMdr => BenchLaw::AdhesiveMdr {
+            qc: args.qc,
+            work_of_adhesion: args.work_of_adhesion,
+        },
     }
 }
 
-/// The contact model of `bench bed --device gpu`.
-fn gpu_laws(args: &BedArgs) -> mdr_gpu::GpuLaws {
-    use mdr_gpu::GpuNormalLaw;
-    mdr_gpu::GpuLaws {
-        normal: match args.law {
-            LawArg::Hertz => GpuNormalLaw::Hertz,
-            LawArg::Mdr => GpuNormalLaw::Mdr { qc: args.qc },
-            LawArg::Thornton => GpuNormalLaw::Thornton {
-                yield_pressure: args.yield_stress,
-            },
-            LawArg::AdhesiveMdr => GpuNormalLaw::AdhesiveMdr {
-                qc: args.qc,
-                work_of_adhesion: args.work_of_adhesion,
-            },
-        },
-        rolling: args.rolling,
+/// Check the law's and the rolling resistance's parameters, naming the flag that set a bad one.
+fn check_law_flags(settings: &BenchSettings) -> anyhow::Result<()> {
+    let named = |flag: &str, law: BenchLaw| law.validate().map_err(|e| anyhow!("{flag}: {e}"));
+    match settings.law {
+        BenchLaw::Hertz => {}
+        BenchLaw::Mdr { .. } => named("--qc", settings.law)?,
+        BenchLaw::Thornton { .. } => named("--yield-stress", settings.law)?,
+        BenchLaw::AdhesiveMdr { qc, .. } => {
+            named("--qc", BenchLaw::Mdr { qc })?;
+            named("--work-of-adhesion", settings.law)?;
+        }
     }
+    if let Some(mu) = settings.rolling {
+        let rolling_only = BenchSettings {
+            law: BenchLaw::Hertz,
+            rolling: Some(mu),
+            ..BenchSettings::default()
+        };
+        rolling_only
+            .validate()
+            .map_err(|e| anyhow!("--rolling: {e}"))?;
+    }
+    Ok(())
 }
 
 /// `bench bed --device gpu`: the bed on the device, optionally compared with the CPU path.
 fn run_bed_gpu(args: &BedArgs, bed: &Bed, settings: &BenchSettings) -> anyhow::Result<()> {
-    let laws = gpu_laws(args);
-    laws.validate()?;
+    let laws = mdr_gpu::GpuLaws::of(settings);
     let ctx = mdr_gpu::GpuContext::new()?;
     let options = mdr_gpu::GpuOptions {
         max_neighbours: args.max_neighbours,

@@ -2,7 +2,7 @@
 //! read-back ([`GpuBed`]).
 
 use crate::device::{GpuContext, GpuError};
-use crate::law::{BoundLaws, GpuLaws, LawConstants};
+use crate::law::{BoundLaws, DeviceLaw, GpuLaws, LawConstants};
 use mdr_rapier::neighbour_list::bed::{Bed, BedError, BenchSettings};
 use mdr_rapier::neighbour_list::boundary::Boundary;
 use nalgebra::Vector3;
@@ -293,7 +293,7 @@ impl GpuBed {
             bed
         };
         let n = bed.len();
-        let laws = options.laws.unwrap_or_else(|| GpuLaws::from(settings.law));
+        let laws = options.laws.unwrap_or_else(|| GpuLaws::of(settings));
         let bound = BoundLaws::of_reference_system(bed, settings, &laws)?;
         // f64 words per slot: the normal law's state and the rolling law's (torque, stiffness).
         let normal_words = laws.normal.state_words();

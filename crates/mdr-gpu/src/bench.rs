@@ -3,16 +3,17 @@
 
 use crate::bed::{GpuBed, GpuOptions, GpuState};
 use crate::device::{GpuContext, GpuError};
-use crate::law::{GpuLaws, GpuNormalLaw, BENCH_THETA_RATIO};
+use crate::law::GpuLaws;
 use mdr_contact::damping::HertzianViscous;
-use mdr_contact::model::Books;
-use mdr_contact::normal::{AdhesiveMdr, Hertz, MdrElastoPlastic, NormalLaw, NormalModel, Thornton};
-use mdr_contact::rolling::{EpsdRolling, EpsdRollingState, NoRolling, RollingModel};
+use mdr_contact::normal::{NormalLaw, NormalModel};
+use mdr_contact::rolling::{RollingLaw, RollingModel};
 use mdr_contact::tangential::Mindlin;
 use mdr_rapier::neighbour_list::bed::{
-    peak_rss_mb, reference_system, Bed, BedError, BenchFigures, BenchSettings, BenchValue,
+    peak_rss_mb, run_reference_system, Bed, BenchFigures, BenchSettings, BenchValue, ReferenceRun,
+    RollingTorque,
 };
 use mdr_rapier::neighbour_list::{Boundary, NeighbourListStepper};
+use mdr_rapier::rapier::prelude::PhysicsWorld;
 use nalgebra::Vector3;
 
 /// Figures of one GPU bed run: the CPU benchmark's ([`BenchFigures`]; `threads` is 0,
@@ -181,103 +182,50 @@ pub fn cpu_reference_run(
     settings: &BenchSettings,
     steps: usize,
 ) -> Result<CpuState, GpuError> {
-    cpu_reference_run_with(bed, settings, &GpuLaws::from(settings.law), steps)
+    cpu_reference_run_with(bed, settings, &GpuLaws::of(settings), steps)
 }
 
 /// [`cpu_reference_run`] with the contact model `laws` (as [`crate::GpuOptions::laws`] gives
 /// the GPU path): the reference system with that normal law, Mindlin, damping and, where
-/// `laws.rolling` is set, `EpsdRolling`.
+/// `laws.rolling` is set, `EpsdRolling`, bound by the CPU benchmark's own
+/// [`run_reference_system`].
 pub fn cpu_reference_run_with(
     bed: &Bed,
     settings: &BenchSettings,
     laws: &GpuLaws,
     steps: usize,
 ) -> Result<CpuState, GpuError> {
-    settings.validate()?;
     laws.validate()?;
-    let tiled;
-    let bed = if settings.tile > 1 {
-        tiled = bed.tiled(settings.tile, settings.tile)?;
-        &tiled
-    } else {
-        bed
-    };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(settings.threads)
-        .build()
-        .map_err(|e| BedError::ThreadPool(e.to_string()))?;
-    let rolling = laws.rolling;
-    pool.install(|| match laws.normal {
-        GpuNormalLaw::Hertz => cpu_run_rolling(Hertz, rolling, bed, settings, steps),
-        GpuNormalLaw::Mdr { qc } => cpu_run_rolling(
-            MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)?,
-            rolling,
-            bed,
-            settings,
-            steps,
-        ),
-        GpuNormalLaw::Thornton { yield_pressure } => cpu_run_rolling(
-            Thornton::new(yield_pressure)?,
-            rolling,
-            bed,
-            settings,
-            steps,
-        ),
-        GpuNormalLaw::AdhesiveMdr {
-            qc,
-            work_of_adhesion,
-        } => cpu_run_rolling(
-            AdhesiveMdr::new(
-                MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)?,
-                work_of_adhesion,
-            )?,
-            rolling,
-            bed,
-            settings,
-            steps,
-        ),
-    })
+    run_reference_system(bed, &laws.in_settings(settings), CpuRun { steps })?
 }
 
-/// The torque of a rolling law's state (zero without one).
-trait RollingTorque {
-    fn torque(&self) -> Vector3<f64>;
-}
-
-impl RollingTorque for () {
-    fn torque(&self) -> Vector3<f64> {
-        Vector3::zeros()
-    }
-}
-
-impl RollingTorque for EpsdRollingState {
-    fn torque(&self) -> Vector3<f64> {
-        self.torque
-    }
-}
-
-fn cpu_run_rolling<N>(
-    normal: N,
-    rolling: Option<f64>,
-    bed: &Bed,
-    settings: &BenchSettings,
+/// [`cpu_reference_run_with`]'s steps and read-back.
+struct CpuRun {
     steps: usize,
-) -> Result<CpuState, GpuError>
-where
-    N: NormalModel,
-    N::Law: Clone,
-{
-    match rolling {
-        None => cpu_run(normal, NoRolling, bed, settings, steps),
-        Some(mu) => cpu_run(normal, EpsdRolling::new(mu)?, bed, settings, steps),
+}
+
+impl ReferenceRun for CpuRun {
+    type Output = Result<CpuState, GpuError>;
+
+    fn run<N, R>(
+        self,
+        mut stepper: NeighbourListStepper<N, Mindlin, HertzianViscous, R>,
+        mut world: PhysicsWorld,
+    ) -> Self::Output
+    where
+        N: NormalModel,
+        N::Law: Clone,
+        R: RollingModel,
+        R::Law: Clone,
+        <R::Law as RollingLaw>::State: RollingTorque,
+    {
+        cpu_run(&mut stepper, &mut world, self.steps)
     }
 }
 
 fn cpu_run<N, R>(
-    normal: N,
-    rolling: R,
-    bed: &Bed,
-    settings: &BenchSettings,
+    stepper: &mut NeighbourListStepper<N, Mindlin, HertzianViscous, R>,
+    world: &mut PhysicsWorld,
     steps: usize,
 ) -> Result<CpuState, GpuError>
 where
@@ -285,16 +233,11 @@ where
     N::Law: Clone,
     R: RollingModel,
     R::Law: Clone,
-    <R::Law as mdr_contact::rolling::RollingLaw>::State: RollingTorque,
+    <R::Law as RollingLaw>::State: RollingTorque,
 {
-    let (stepper, mut world) = reference_system(normal, bed)?;
-    let mut stepper: NeighbourListStepper<N, Mindlin, HertzianViscous, R, Books> = stepper
-        .skin(settings.skin)?
-        .with_rolling(rolling)
-        .track_orientation(settings.orientation);
     mdr_rapier::neighbour_list::with_workers_awake(|| -> Result<(), GpuError> {
         for _ in 0..steps {
-            stepper.step(&mut world)?;
+            stepper.step(world)?;
         }
         Ok(())
     })?;

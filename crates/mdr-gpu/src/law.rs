@@ -14,73 +14,46 @@ use mdr_contact::normal::{
 use mdr_contact::rolling::{EpsdRolling, RollingInput, RollingLaw};
 use mdr_contact::tangential::{TangentialInput, TangentialLaw};
 use mdr_contact::ContactPair;
-use mdr_rapier::neighbour_list::bed::{reference_system, Bed, BenchLaw, BenchSettings};
+use mdr_rapier::neighbour_list::bed::{
+    reference_system, Bed, BenchLaw, BenchSettings, BENCH_THETA_RATIO,
+};
 use mdr_rapier::neighbour_list::boundary::Boundary;
 use mdr_rapier::neighbour_list::particles::Species;
 use nalgebra::Vector3;
 
-/// `Θ / E*` of [`BenchLaw::Mdr`] (as `mdr-dem bench bed` documents it: `Θ = 0.37 E*`).
-pub const BENCH_THETA_RATIO: f64 = 0.37;
 /// The reference system's Coulomb friction coefficient (`μ = 0.5`, LAMMPS `in.bench`); checked
 /// against the bound Mindlin law, which has no accessor for it.
 const FRICTION: f64 = 0.5;
 
-/// The normal law of a GPU system.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum GpuNormalLaw {
-    /// Hertz (`HertzLaw`).
-    Hertz,
-    /// The MDR elasto-plastic law (`MdrLaw`) with critical line load `q_c = qc` and
-    /// `Θ = 0.37 E*` ([`BENCH_THETA_RATIO`]).
-    Mdr {
-        /// Critical line load `q_c`.
-        qc: f64,
-    },
-    /// Thornton's elastic–perfectly-plastic law (`ThorntonLaw`, the 1997 unloading branch)
-    /// with limiting contact pressure `p_y`.
-    Thornton {
-        /// Limiting contact pressure `p_y`.
-        yield_pressure: f64,
-    },
-    /// The adhesive MDR law (`AdhesiveMdrLaw`: MDR with `q_c`, `Θ = 0.37 E*`, and Heß's rule
-    /// with work of adhesion `Δγ`): a contact holds at negative overlap until its neck lets go.
-    AdhesiveMdr {
-        /// Critical line load `q_c`.
-        qc: f64,
-        /// Work of adhesion `Δγ` (energy per area).
-        work_of_adhesion: f64,
-    },
-}
+/// The normal law of a GPU system: the CPU benchmark's ([`BenchLaw`]), so that both paths
+/// name and bind the same laws.
+pub type GpuNormalLaw = BenchLaw;
 
-impl GpuNormalLaw {
-    /// The law's name in the figures and on the command line.
-    pub fn name(&self) -> &'static str {
-        match self {
-            GpuNormalLaw::Hertz => "hertz",
-            GpuNormalLaw::Mdr { .. } => "mdr",
-            GpuNormalLaw::Thornton { .. } => "thornton",
-            GpuNormalLaw::AdhesiveMdr { .. } => "adhesive-mdr",
-        }
-    }
-
+/// What the device needs to know of a normal law beyond its constants.
+pub(crate) trait DeviceLaw {
     /// The law's code in `bed.wgsl` (`Params::law`).
-    pub(crate) fn code(&self) -> u32 {
-        match self {
-            GpuNormalLaw::Hertz => 0,
-            GpuNormalLaw::Mdr { .. } => 1,
-            GpuNormalLaw::Thornton { .. } => 2,
-            GpuNormalLaw::AdhesiveMdr { .. } => 3,
-        }
-    }
-
+    fn code(&self) -> u32;
     /// f64 words of the law's per-contact state on the device: the largest overlap (Hertz,
     /// MDR); with Thornton's unloading coefficient and residual overlap; with the adhesive
     /// law's attached radius.
-    pub(crate) fn state_words(&self) -> u32 {
+    fn state_words(&self) -> u32;
+}
+
+impl DeviceLaw for BenchLaw {
+    fn code(&self) -> u32 {
         match self {
-            GpuNormalLaw::Hertz | GpuNormalLaw::Mdr { .. } => 1,
-            GpuNormalLaw::Thornton { .. } => 3,
-            GpuNormalLaw::AdhesiveMdr { .. } => 2,
+            BenchLaw::Hertz => 0,
+            BenchLaw::Mdr { .. } => 1,
+            BenchLaw::Thornton { .. } => 2,
+            BenchLaw::AdhesiveMdr { .. } => 3,
+        }
+    }
+
+    fn state_words(&self) -> u32 {
+        match self {
+            BenchLaw::Hertz | BenchLaw::Mdr { .. } => 1,
+            BenchLaw::Thornton { .. } => 3,
+            BenchLaw::AdhesiveMdr { .. } => 2,
         }
     }
 }
@@ -99,36 +72,33 @@ pub struct GpuLaws {
 impl From<BenchLaw> for GpuLaws {
     fn from(law: BenchLaw) -> Self {
         Self {
-            normal: match law {
-                BenchLaw::Hertz => GpuNormalLaw::Hertz,
-                BenchLaw::Mdr { qc } => GpuNormalLaw::Mdr { qc },
-            },
+            normal: law,
             rolling: None,
         }
     }
 }
 
 impl GpuLaws {
+    /// The contact model the settings name: their law and rolling resistance.
+    pub fn of(settings: &BenchSettings) -> Self {
+        Self {
+            normal: settings.law,
+            rolling: settings.rolling,
+        }
+    }
+
+    /// `settings` with this contact model in place of theirs.
+    pub fn in_settings(&self, settings: &BenchSettings) -> BenchSettings {
+        BenchSettings {
+            law: self.normal,
+            rolling: self.rolling,
+            ..*settings
+        }
+    }
+
     /// Check every parameter as the law crate does (the error names it).
     pub fn validate(&self) -> Result<(), GpuError> {
-        match self.normal {
-            GpuNormalLaw::Hertz => {}
-            GpuNormalLaw::Mdr { qc } => {
-                MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)?;
-            }
-            GpuNormalLaw::Thornton { yield_pressure } => {
-                Thornton::new(yield_pressure)?;
-            }
-            GpuNormalLaw::AdhesiveMdr {
-                qc,
-                work_of_adhesion,
-            } => {
-                AdhesiveMdr::new(
-                    MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)?,
-                    work_of_adhesion,
-                )?;
-            }
-        }
+        self.normal.validate()?;
         if let Some(mu) = self.rolling {
             EpsdRolling::new(mu)?;
         }

@@ -30,4 +30,5 @@ pub use bench::{
     Differences, GpuBenchFigures,
 };
 pub use device::{GpuContext, GpuError};
-pub use law::{GpuLaws, GpuNormalLaw, BENCH_THETA_RATIO};
+pub use law::{GpuLaws, GpuNormalLaw};
+pub use mdr_rapier::neighbour_list::bed::BENCH_THETA_RATIO;

@@ -32,7 +32,10 @@ fn bed_error(e: BedError) -> PyErr {
 /// Throughput of the neighbour-list path on a settled bed, the run of `mdr-dem bench bed`: the
 /// LAMMPS data file `data` (default: the repository's 10,000-sphere reference bed), or, with
 /// `count`, a bed of `count` spheres poured and settled with `settle_steps` steps first
-/// (untimed). `law`: "hertz" or "mdr" (`q_c = qc` in reduced units, Θ = 0.37 E*); `steps` timed
+/// (untimed). `law`: "hertz", "mdr" (`q_c = qc` in reduced units, Θ = 0.37 E*), "thornton"
+/// (limiting contact pressure `yield_stress`) or "adhesive-mdr" (the MDR law with work of
+/// adhesion `work_of_adhesion`, reduced units); `rolling`: the rolling resistance coefficient
+/// `μ_r` (elastic–plastic spring rolling resistance), or None; `steps` timed
 /// steps after `warmup`; `threads` worker threads; `tile`: repeat the bed tile × tile times;
 /// `skin`: neighbour skin (reduced length).
 ///
@@ -47,7 +50,8 @@ fn bed_error(e: BedError) -> PyErr {
 /// is released during the run.
 #[pyfunction]
 #[pyo3(signature = (data = None, *, law = "hertz", steps = 10_000, warmup = 2_000, threads = 1,
-    tile = 1, qc = 10.0, skin = 0.1, no_orientation = false, no_work_books = false, count = None,
+    tile = 1, qc = 10.0, yield_stress = 1000.0, work_of_adhesion = 2.0, rolling = None,
+    skin = 0.1, no_orientation = false, no_work_books = false, count = None,
     settle_steps = 40_000, seed = 1))]
 #[allow(clippy::too_many_arguments)]
 pub fn bench_bed<'py>(
@@ -59,6 +63,9 @@ pub fn bench_bed<'py>(
     threads: usize,
     tile: usize,
     qc: f64,
+    yield_stress: f64,
+    work_of_adhesion: f64,
+    rolling: Option<f64>,
     skin: f64,
     no_orientation: bool,
     no_work_books: bool,
@@ -69,15 +76,31 @@ pub fn bench_bed<'py>(
     let law = match law {
         "hertz" => BenchLaw::Hertz,
         "mdr" => BenchLaw::Mdr { qc },
+        "thornton" => BenchLaw::Thornton {
+            yield_pressure: yield_stress,
+        },
+        "adhesive-mdr" => BenchLaw::AdhesiveMdr {
+            qc,
+            work_of_adhesion,
+        },
         other => {
             return Err(invalid(
                 "law",
-                format!("`{other}` (allowed: \"hertz\", \"mdr\")"),
+                format!("`{other}` (allowed: \"hertz\", \"mdr\", \"thornton\", \"adhesive-mdr\")"),
             ))
         }
     };
+    if let Some(mu) = rolling {
+        BenchSettings {
+            rolling,
+            ..BenchSettings::default()
+        }
+        .validate()
+        .map_err(|e| invalid("rolling", format!("{mu}: {e}")))?;
+    }
     let settings = BenchSettings {
         law,
+        rolling,
         steps,
         warmup,
         threads,

@@ -182,6 +182,23 @@ def test_bench_bed_on_a_small_generated_bed():
         mdr_dem.bench_bed(count=200, threads=0)
 
 
+def test_bench_bed_runs_thornton_adhesion_and_rolling_independent_of_threads(tmp_path):
+    bed = small_bed_file(tmp_path)
+    mdr = mdr_dem.bench_bed(bed, law="mdr", steps=50, warmup=10)
+    for kw, name in [
+        (dict(law="adhesive-mdr"), "adhesive-mdr"),
+        (dict(law="thornton"), "thornton"),
+        (dict(law="mdr", rolling=0.1), "mdr"),
+    ]:
+        one = mdr_dem.bench_bed(bed, steps=50, warmup=10, threads=1, **kw)
+        two = mdr_dem.bench_bed(bed, steps=50, warmup=10, threads=2, **kw)
+        assert one["law"] == name
+        assert one["state_checksum"] == two["state_checksum"], kw
+        if name != "mdr":
+            # The law is applied: the bed ends elsewhere than with the MDR law.
+            assert one["state_checksum"] != mdr["state_checksum"], kw
+
+
 # The keys of `mdr-dem bench bed --json` (the CLI's contract), in its order.
 CLI_BENCH_BED_KEYS = [
     "particle_steps_per_s",
@@ -269,7 +286,11 @@ def test_bench_bed_names_bad_values(tmp_path):
         (dict(skin=-0.1), "skin"),
         (dict(skin=float("nan")), "skin"),
         (dict(law="mdr", qc=-1.0), "qc"),
-        (dict(law="thornton"), "law"),
+        (dict(law="granite"), "law"),
+        (dict(law="thornton", yield_stress=-1.0), "yield_stress"),
+        (dict(law="adhesive-mdr", work_of_adhesion=-1.0), "work_of_adhesion"),
+        (dict(law="adhesive-mdr", work_of_adhesion=float("nan")), "work_of_adhesion"),
+        (dict(rolling=-1.0), "rolling"),
         (dict(count=0), "count"),
         (dict(count=10**12), "count"),
     ]:

@@ -9,9 +9,10 @@ use crate::neighbour_list::stepper::NeighbourListStepper;
 use crate::neighbour_list::workers::with_workers_awake;
 use mdr_contact::damping::HertzianViscous;
 use mdr_contact::model::WorkBooks;
-use mdr_contact::normal::{Hertz, MdrElastoPlastic, NormalLaw, NormalModel};
-use mdr_contact::rolling::NoRolling;
+use mdr_contact::normal::{AdhesiveMdr, Hertz, MdrElastoPlastic, NormalLaw, NormalModel, Thornton};
+use mdr_contact::rolling::{EpsdRolling, EpsdRollingState, RollingLaw, RollingModel};
 use mdr_contact::tangential::Mindlin;
+use nalgebra::Vector3;
 use rapier3d_f64::prelude::PhysicsWorld;
 use std::path::{Path, PathBuf};
 
@@ -22,20 +23,62 @@ pub enum BenchLaw {
     /// Hertz (`E* = 1.5e5` ⇔ `kn = 2e5`).
     Hertz,
     /// The MDR elasto-plastic law with critical line load `q_c = qc` (force/length, reduced
-    /// units) and `Θ = 0.37 E*`.
+    /// units) and `Θ = 0.37 E*` ([`BENCH_THETA_RATIO`]).
     Mdr {
         /// Critical line load `q_c`.
         qc: f64,
     },
+    /// Thornton's elastic–perfectly-plastic law (the 1997 unloading branch) with limiting
+    /// contact pressure `p_y` (reduced units).
+    Thornton {
+        /// Limiting contact pressure `p_y`.
+        yield_pressure: f64,
+    },
+    /// The adhesive MDR law: MDR with `q_c`, `Θ = 0.37 E*`, and Heß's detachment rule with
+    /// work of adhesion `Δγ` (energy per area, reduced units); a contact holds at negative
+    /// overlap until its neck lets go.
+    AdhesiveMdr {
+        /// Critical line load `q_c`.
+        qc: f64,
+        /// Work of adhesion `Δγ`.
+        work_of_adhesion: f64,
+    },
 }
 
 impl BenchLaw {
-    /// The law's name in the figures: `"hertz"` or `"mdr"`.
+    /// The law's name in the figures and on the command line: `"hertz"`, `"mdr"`,
+    /// `"thornton"` or `"adhesive-mdr"`.
     pub fn name(&self) -> &'static str {
         match self {
             BenchLaw::Hertz => "hertz",
             BenchLaw::Mdr { .. } => "mdr",
+            BenchLaw::Thornton { .. } => "thornton",
+            BenchLaw::AdhesiveMdr { .. } => "adhesive-mdr",
         }
+    }
+
+    /// Check the law's parameters as the law crate does; the error names the parameter
+    /// (`q_c`, `yield_stress`, `work_of_adhesion`).
+    pub fn validate(&self) -> Result<(), CouplingError> {
+        match *self {
+            BenchLaw::Hertz => {}
+            BenchLaw::Mdr { qc } => {
+                MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)?;
+            }
+            BenchLaw::Thornton { yield_pressure } => {
+                Thornton::new(yield_pressure)?;
+            }
+            BenchLaw::AdhesiveMdr {
+                qc,
+                work_of_adhesion,
+            } => {
+                AdhesiveMdr::new(
+                    MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)?,
+                    work_of_adhesion,
+                )?;
+            }
+        }
+        Ok(())
     }
 }
 
@@ -44,6 +87,9 @@ impl BenchLaw {
 pub struct BenchSettings {
     /// Normal law.
     pub law: BenchLaw,
+    /// Rolling resistance coefficient `μ_r` of the elastic–plastic spring rolling resistance
+    /// (`EpsdRolling`), or none.
+    pub rolling: Option<f64>,
     /// Timed steps (at least 1).
     pub steps: usize,
     /// Untimed steps before the timed ones (the first neighbour-list build, allocations; as
@@ -67,6 +113,7 @@ impl Default for BenchSettings {
     fn default() -> Self {
         Self {
             law: BenchLaw::Hertz,
+            rolling: None,
             steps: 10_000,
             warmup: 2_000,
             threads: 1,
@@ -80,8 +127,9 @@ impl Default for BenchSettings {
 
 impl BenchSettings {
     /// Check every setting without running anything: `steps`, `threads` and `tile` at least 1,
-    /// `skin` finite and positive, the law's parameters as the law crate accepts them. The
-    /// error names the setting (`steps`, `threads`, `tile`, `skin`, `q_c`).
+    /// `skin` finite and positive, the law's and the rolling resistance's parameters as the law
+    /// crate accepts them. The error names the setting (`steps`, `threads`, `tile`, `skin`,
+    /// `q_c`, `yield_stress`, `work_of_adhesion`, `mu_r`).
     pub fn validate(&self) -> Result<(), CouplingError> {
         for (name, value) in [
             ("steps", self.steps),
@@ -97,20 +145,21 @@ impl BenchSettings {
             }
         }
         positive("skin", self.skin)?;
-        if let BenchLaw::Mdr { qc } = self.law {
-            MdrElastoPlastic::new(qc, BENCH_THETA_RATIO)?;
+        self.law.validate()?;
+        if let Some(mu) = self.rolling {
+            EpsdRolling::new(mu)?;
         }
         Ok(())
     }
 }
 
-/// `Θ / E*` of [`BenchLaw::Mdr`].
-const BENCH_THETA_RATIO: f64 = 0.37;
+/// `Θ / E*` of [`BenchLaw::Mdr`] and [`BenchLaw::AdhesiveMdr`].
+pub const BENCH_THETA_RATIO: f64 = 0.37;
 
 /// Figures of one [`bench_bed`] run. Rates count particle-steps: particles × timed steps.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BenchFigures {
-    /// `"hertz"` or `"mdr"`.
+    /// The law's name ([`BenchLaw::name`]).
     pub law: &'static str,
     /// Spheres (after tiling).
     pub particles: usize,
@@ -135,8 +184,8 @@ pub struct BenchFigures {
     pub contacts_per_particle: f64,
     /// Sphere–floor contacts at the last step.
     pub floor_contacts: usize,
-    /// Fraction of the touching sphere–sphere pairs that have yielded (`d_max > u_c`; 0 for
-    /// Hertz).
+    /// Fraction of the touching sphere–sphere pairs that have yielded (`d_max` beyond the law's
+    /// yield overlap; 0 for Hertz).
     pub plastic_contact_fraction: f64,
     /// Neighbour-list builds during the timed steps.
     pub rebuilds: u64,
@@ -205,7 +254,8 @@ impl BenchFigures {
 }
 
 /// Throughput of the neighbour-list path on `bed` (the program's `mdr-dem bench bed`): the
-/// [`reference_system`] with the settings' law and skin on the bed tiled `tile × tile` times,
+/// [`reference_system`] with the settings' law, rolling resistance and skin on the bed tiled
+/// `tile × tile` times ([`run_reference_system`]),
 /// `warmup` untimed steps, then `steps` timed ones, in a pool of `threads` worker threads.
 /// The bed must be the reference one (every sphere of diameter 1 and density 1), as the
 /// reference system's material is.
@@ -220,6 +270,58 @@ pub fn bench_bed(bed: &Bed, settings: &BenchSettings) -> Result<BenchFigures, Be
             density: bed.density[i],
         });
     }
+    run_reference_system(bed, settings, TimedRun(settings))?
+}
+
+/// The torque a rolling law's per-contact state stores (zero without rolling resistance).
+pub trait RollingTorque {
+    /// The stored torque on body 1.
+    fn torque(&self) -> Vector3<f64>;
+}
+
+impl RollingTorque for () {
+    fn torque(&self) -> Vector3<f64> {
+        Vector3::zeros()
+    }
+}
+
+impl RollingTorque for EpsdRollingState {
+    fn torque(&self) -> Vector3<f64> {
+        self.torque
+    }
+}
+
+/// What to do with the reference system once [`run_reference_system`] has bound its laws: the
+/// models are type parameters, so a run is a trait rather than a closure.
+pub trait ReferenceRun: Send {
+    /// What the run returns.
+    type Output: Send;
+    /// Step `stepper` (the reference system with the settings' law, rolling resistance, skin
+    /// and orientation tracking) in `world`.
+    fn run<N, R>(
+        self,
+        stepper: NeighbourListStepper<N, Mindlin, HertzianViscous, R>,
+        world: PhysicsWorld,
+    ) -> Self::Output
+    where
+        N: NormalModel,
+        N::Law: Clone,
+        R: RollingModel,
+        R::Law: Clone,
+        <R::Law as RollingLaw>::State: RollingTorque;
+}
+
+/// The [`reference_system`] of `bed` tiled `settings.tile × settings.tile` times, with the
+/// settings' normal law, rolling resistance (`EpsdRolling` where set), skin and orientation
+/// tracking, handed to `run` inside a pool of `settings.threads` worker threads. The one place
+/// where a [`BenchLaw`] becomes a contact model: the CPU benchmark and the GPU path's CPU
+/// reference both run through it.
+pub fn run_reference_system<V: ReferenceRun>(
+    bed: &Bed,
+    settings: &BenchSettings,
+    run: V,
+) -> Result<V::Output, BedError> {
+    settings.validate()?;
     let tiled;
     let bed = if settings.tile > 1 {
         tiled = bed.tiled(settings.tile, settings.tile)?;
@@ -231,39 +333,100 @@ pub fn bench_bed(bed: &Bed, settings: &BenchSettings) -> Result<BenchFigures, Be
         .num_threads(settings.threads)
         .build()
         .map_err(|e| BedError::ThreadPool(e.to_string()))?;
+    let theta = BENCH_THETA_RATIO;
     pool.install(|| match settings.law {
-        BenchLaw::Hertz => bench_law(Hertz, bed, settings),
-        BenchLaw::Mdr { qc } => bench_law(
-            MdrElastoPlastic::new(qc, BENCH_THETA_RATIO).map_err(CouplingError::from)?,
+        BenchLaw::Hertz => with_rolling(Hertz, bed, settings, run),
+        BenchLaw::Mdr { qc } => with_rolling(
+            MdrElastoPlastic::new(qc, theta).map_err(CouplingError::from)?,
             bed,
             settings,
+            run,
+        ),
+        BenchLaw::Thornton { yield_pressure } => with_rolling(
+            Thornton::new(yield_pressure).map_err(CouplingError::from)?,
+            bed,
+            settings,
+            run,
+        ),
+        BenchLaw::AdhesiveMdr {
+            qc,
+            work_of_adhesion,
+        } => with_rolling(
+            AdhesiveMdr::new(
+                MdrElastoPlastic::new(qc, theta).map_err(CouplingError::from)?,
+                work_of_adhesion,
+            )
+            .map_err(CouplingError::from)?,
+            bed,
+            settings,
+            run,
         ),
     })
 }
 
-fn bench_law<N>(normal: N, bed: &Bed, s: &BenchSettings) -> Result<BenchFigures, BedError>
+/// The reference system with `normal` and the settings' rolling resistance, handed to `run`.
+fn with_rolling<N, V>(
+    normal: N,
+    bed: &Bed,
+    s: &BenchSettings,
+    run: V,
+) -> Result<V::Output, BedError>
 where
     N: NormalModel,
     N::Law: Clone,
+    V: ReferenceRun,
 {
     let (stepper, world) = reference_system(normal, bed)?;
-    let stepper = stepper.skin(s.skin)?.track_orientation(s.orientation);
-    if s.work_books {
-        bench_steps(stepper, world, s)
-    } else {
-        bench_steps(stepper.without_work_books(), world, s)
+    let stepper = stepper.skin(s.skin)?;
+    Ok(match s.rolling {
+        None => run.run(stepper.track_orientation(s.orientation), world),
+        Some(mu) => {
+            let rolling = EpsdRolling::new(mu).map_err(CouplingError::from)?;
+            let stepper = stepper
+                .with_rolling(rolling)
+                .track_orientation(s.orientation);
+            run.run(stepper, world)
+        }
+    })
+}
+
+/// The timed run of [`bench_bed`].
+struct TimedRun<'a>(&'a BenchSettings);
+
+impl ReferenceRun for TimedRun<'_> {
+    type Output = Result<BenchFigures, BedError>;
+
+    fn run<N, R>(
+        self,
+        stepper: NeighbourListStepper<N, Mindlin, HertzianViscous, R>,
+        world: PhysicsWorld,
+    ) -> Self::Output
+    where
+        N: NormalModel,
+        N::Law: Clone,
+        R: RollingModel,
+        R::Law: Clone,
+        <R::Law as RollingLaw>::State: RollingTorque,
+    {
+        if self.0.work_books {
+            bench_steps(stepper, world, self.0)
+        } else {
+            bench_steps(stepper.without_work_books(), world, self.0)
+        }
     }
 }
 
 /// Warm-up, then the timed steps, then the figures.
-fn bench_steps<N, B>(
-    mut stepper: NeighbourListStepper<N, Mindlin, HertzianViscous, NoRolling, B>,
+fn bench_steps<N, R, B>(
+    mut stepper: NeighbourListStepper<N, Mindlin, HertzianViscous, R, B>,
     mut world: PhysicsWorld,
     s: &BenchSettings,
 ) -> Result<BenchFigures, BedError>
 where
     N: NormalModel,
     N::Law: Clone,
+    R: RollingModel,
+    R::Law: Clone,
     B: WorkBooks,
 {
     // The pool's other threads wait for each pass awake (`workers`), as a scene run's do.

@@ -12,7 +12,8 @@ pub mod lammps_data;
 pub use clock::{peak_rss_mb, process_cpu_seconds};
 pub use generate::{lattice_bed, reference_system, settled_bed, BedSpec};
 pub use harness::{
-    bench_bed, reference_data, BenchFigures, BenchLaw, BenchSettings, BenchValue, REFERENCE_DATA,
+    bench_bed, reference_data, run_reference_system, BenchFigures, BenchLaw, BenchSettings,
+    BenchValue, ReferenceRun, RollingTorque, BENCH_THETA_RATIO, REFERENCE_DATA,
 };
 
 use crate::error::CouplingError;
@@ -277,6 +278,32 @@ mod tests {
                 "q_c",
                 BenchSettings {
                     law: BenchLaw::Mdr { qc: -1.0 },
+                    ..base
+                },
+            ),
+            (
+                "yield_stress",
+                BenchSettings {
+                    law: BenchLaw::Thornton {
+                        yield_pressure: f64::NAN,
+                    },
+                    ..base
+                },
+            ),
+            (
+                "work_of_adhesion",
+                BenchSettings {
+                    law: BenchLaw::AdhesiveMdr {
+                        qc: 10.0,
+                        work_of_adhesion: -1.0,
+                    },
+                    ..base
+                },
+            ),
+            (
+                "mu_r",
+                BenchSettings {
+                    rolling: Some(-1.0),
                     ..base
                 },
             ),
