@@ -57,6 +57,62 @@ fn curve_marks_stuck_impacts() {
     assert!(rows[1][1].parse::<f64>().unwrap() > 0.9);
 }
 
+/// `--law adhesive_mdr` (or `adhesive-mdr`) runs the adhesive law with `--work-of-adhesion` as
+/// its Δγ: the same curve as `--law mdr --work-of-adhesion`, plastic and elastic, with the slow
+/// impact stuck (so Δγ reached the law); without the flag it is refused naming it.
+#[test]
+fn adhesive_mdr_by_name_takes_the_work_of_adhesion() {
+    let curve = |law: &str, elastic: bool| {
+        let mut args = vec![
+            "impact",
+            "curve",
+            "--law",
+            law,
+            "--work-of-adhesion",
+            "0.1",
+            "--velocities",
+            "0.01,0.3,1,20",
+            "--csv",
+            "-",
+            "--quiet",
+        ];
+        if elastic {
+            args.push("--elastic");
+        }
+        stdout(&mdr_dem(&with_glass(&args)))
+    };
+    for elastic in [false, true] {
+        let mdr = curve("mdr", elastic);
+        let rows: Vec<&str> = mdr.lines().skip(1).collect();
+        assert_eq!(rows.len(), 4);
+        assert!(
+            rows[0].starts_with("0.01,0,") && rows[0].ends_with(",1"),
+            "{mdr}"
+        );
+        for name in ["adhesive_mdr", "adhesive-mdr"] {
+            assert_eq!(curve(name, elastic), mdr, "--law {name}, elastic {elastic}");
+        }
+    }
+    let output = mdr_dem(&with_glass(&["impact", "curve", "--law", "adhesive_mdr"]));
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("`adhesive_mdr` needs --work-of-adhesion"),
+        "{stderr}"
+    );
+    // Adhesion stays the MDR laws': another law beside them is refused.
+    let output = mdr_dem(&with_glass(&[
+        "impact",
+        "curve",
+        "--law",
+        "adhesive_mdr,hertz",
+        "--work-of-adhesion",
+        "0.1",
+    ]));
+    assert!(!output.status.success());
+    assert!(String::from_utf8_lossy(&output.stderr).contains("--law adhesive_mdr"));
+}
+
 #[test]
 fn trace_json_reports_pull_off_and_release() {
     let dir = std::env::temp_dir().join(format!("mdr-dem-cli-adhesion-{}", std::process::id()));

@@ -5,7 +5,7 @@
 use crate::arrays::{array1, Values};
 use crate::errors::{self, invalid};
 use crate::law::{check_steps, declared_values, parse_method, MdrLaw, Params, Setup, PARAM_NAMES};
-use mdr_contact::normal::{NormalLaw, Thornton};
+use mdr_contact::normal::{AdhesiveMdr, NormalLaw, Thornton};
 use mdr_contact::params::{Declared, Param};
 use mdr_impact::fit::{fit as fit_law, predict, FitParameter, FitValues};
 use mdr_impact::output::Measurement;
@@ -84,13 +84,30 @@ fn normal_spec(
         ));
     }
     let given = |p: &Param| keywords.get(p.python_name()).copied();
+    // The adhesive MDR law is the MDR law with the material's `work_of_adhesion` (its Δγ, which
+    // the impact integrates with Heß's rule), as the CLI's `--law adhesive_mdr`: it needs it.
+    let adhesive_law = entry.declaration.name == AdhesiveMdr::DECLARATION.name;
+    if adhesive_law && setup.params.work_of_adhesion.is_none() {
+        return Err(invalid(
+            "work_of_adhesion",
+            format!(
+                "law=\"{}\" needs it ({})",
+                entry.declaration.name,
+                AdhesiveMdr::DECLARATION.params[2].help()
+            ),
+        ));
+    }
     Ok(match (entry.declaration.name, elastic) {
         // Adhesion is the MDR law's: its elastic limit is JKR, not Hertz.
         ("mdr", true) if setup.work_of_adhesion() > 0.0 => {
             NormalSpec::Mdr(mdr_contact::normal::MdrElastoPlastic::elastic())
         }
+        (_, true) if adhesive_law => {
+            NormalSpec::Mdr(mdr_contact::normal::MdrElastoPlastic::elastic())
+        }
         (_, true) | ("hertz", false) => NormalSpec::Hertz,
         ("mdr", false) => NormalSpec::Mdr(setup.model),
+        (_, false) if adhesive_law => NormalSpec::Mdr(setup.model),
         ("thornton", false) => {
             // The CLI's default p_y: the same yield overlap as the MDR law.
             let matched = mdr_impact::law::thornton_matched_yield_stress(

@@ -91,6 +91,19 @@ def test_curve_reports_stuck():
     assert result["e_n"][0] == 0.0
 
 
+@pytest.mark.parametrize("name", ["adhesive_mdr", "adhesive-mdr"])
+@pytest.mark.parametrize("elastic", [False, True])
+def test_adhesive_mdr_by_name_takes_the_work_of_adhesion(name, elastic):
+    speeds = [0.01, 0.3, 1.0, 20.0]
+    mdr = mdr_dem.curve(speeds, law="mdr", work_of_adhesion=GAMMA, elastic=elastic, **GLASS)
+    adhesive = mdr_dem.curve(speeds, law=name, work_of_adhesion=GAMMA, elastic=elastic, **GLASS)
+    assert mdr["stuck"][0] == 1.0 and mdr["e_n"][0] == 0.0
+    for column in ("e_n", "stuck"):
+        assert list(adhesive[column]) == list(mdr[column])
+    with pytest.raises(ValueError, match="work_of_adhesion"):
+        mdr_dem.curve(speeds, law=name, **GLASS)
+
+
 @pytest.mark.parametrize("bad", [-0.1, float("nan"), float("inf")])
 def test_bad_work_of_adhesion_is_refused_by_name(bad):
     with pytest.raises(ValueError, match="work_of_adhesion"):

@@ -1,7 +1,9 @@
 //! Checkpoint files: a fixed header (magic, format version, payload length, CRC-32 of the
 //! payload) followed by the payload in `postcard` (exact little-endian `f64`s, so a restart is
 //! bit-identical). A file is checked completely — magic, version, length, checksum, decoding —
-//! before anything of it is used: a bad file is refused whole, never loaded half-way.
+//! before anything of it is used: a bad file is refused whole, never loaded half-way. The
+//! payload of the previous format version ([`PREVIOUS_FORMAT_VERSION`]) is still read: the
+//! run's checkpoint turns it into the present one (`mdr_sim::run::CheckpointData::read`).
 //!
 //! ```text
 //! offset  size  field
@@ -26,6 +28,9 @@ pub const MAGIC: &[u8; 8] = b"MDRSIMCK";
 /// stiffness energy in each contact's work books; 7 keeps the scene's fixed keys, to name what
 /// changed when a restart is refused; 8 the adhesive MDR history and the adhesive work books).
 pub const FORMAT_VERSION: u32 = 8;
+/// The previous format version, which [`check`] accepts as well: its payload lacks the adhesive
+/// MDR history and the adhesive work books, which are zero for a run that had no adhesion.
+pub const PREVIOUS_FORMAT_VERSION: u32 = 7;
 const HEADER_LEN: usize = 24;
 
 /// Why a checkpoint was refused.
@@ -45,18 +50,20 @@ pub enum CheckpointError {
         /// File.
         path: PathBuf,
     },
-    /// Written by another format version.
+    /// Written by a format version this program does not read.
     #[error(
-        "checkpoint {path} has format version {found}; this program reads version {expected} only: \
-         rerun from the scene file with this version"
+        "checkpoint {path} has format version {found}; this program reads versions {oldest} to \
+         {expected} only: rerun from the scene file with this version"
     )]
     Version {
         /// File.
         path: PathBuf,
         /// Version in the file.
         found: u32,
-        /// Version this program writes and reads.
+        /// Version this program writes (the newest it reads).
         expected: u32,
+        /// Oldest version this program reads.
+        oldest: u32,
     },
     /// Shorter or longer than its header says.
     #[error("checkpoint {path} is truncated or padded: header says {expected} payload bytes, file has {found}")]
@@ -116,19 +123,36 @@ pub fn encode<T: Serialize>(payload: &T) -> Vec<u8> {
     out
 }
 
-/// Check and decode a checkpoint held in memory; `path` is only used in messages.
+/// Check and decode a checkpoint of the present format version held in memory; `path` is only
+/// used in messages.
 pub fn decode<T: DeserializeOwned>(path: &Path, bytes: &[u8]) -> Result<T, CheckpointError> {
+    match check(path, bytes)? {
+        (FORMAT_VERSION, body) => decode_payload(path, body),
+        (found, _) => Err(CheckpointError::Version {
+            path: path.to_path_buf(),
+            found,
+            expected: FORMAT_VERSION,
+            oldest: FORMAT_VERSION,
+        }),
+    }
+}
+
+/// Check a checkpoint held in memory — magic, a format version this program reads
+/// ([`PREVIOUS_FORMAT_VERSION`] or [`FORMAT_VERSION`]), length, checksum — and give its format
+/// version and payload; `path` is only used in messages.
+pub fn check<'a>(path: &Path, bytes: &'a [u8]) -> Result<(u32, &'a [u8]), CheckpointError> {
     let path = path.to_path_buf();
     if bytes.len() < HEADER_LEN || &bytes[..8] != MAGIC {
         return Err(CheckpointError::NotACheckpoint { path });
     }
     let u32_at = |o: usize| u32::from_le_bytes(bytes[o..o + 4].try_into().expect("4 bytes"));
     let version = u32_at(8);
-    if version != FORMAT_VERSION {
+    if !(PREVIOUS_FORMAT_VERSION..=FORMAT_VERSION).contains(&version) {
         return Err(CheckpointError::Version {
             path,
             found: version,
             expected: FORMAT_VERSION,
+            oldest: PREVIOUS_FORMAT_VERSION,
         });
     }
     let len = u64::from_le_bytes(bytes[12..20].try_into().expect("8 bytes"));
@@ -149,8 +173,13 @@ pub fn decode<T: DeserializeOwned>(path: &Path, bytes: &[u8]) -> Result<T, Check
             found,
         });
     }
+    Ok((version, body))
+}
+
+/// Decode a checked payload ([`check`]) as `T`, the type of its format version.
+pub fn decode_payload<T: DeserializeOwned>(path: &Path, body: &[u8]) -> Result<T, CheckpointError> {
     postcard::from_bytes(body).map_err(|e| CheckpointError::Decode {
-        path,
+        path: path.to_path_buf(),
         reason: e.to_string(),
     })
 }
@@ -163,13 +192,17 @@ pub fn write<T: Serialize>(path: &Path, payload: &T) -> Result<(), CheckpointErr
     })
 }
 
-/// Read and check a checkpoint.
+/// Read and check a checkpoint of the present format version.
 pub fn read<T: DeserializeOwned>(path: &Path) -> Result<T, CheckpointError> {
-    let bytes = std::fs::read(path).map_err(|source| CheckpointError::Io {
+    decode(path, &read_bytes(path)?)
+}
+
+/// The bytes of a checkpoint file, unchecked ([`check`] checks them).
+pub fn read_bytes(path: &Path) -> Result<Vec<u8>, CheckpointError> {
+    std::fs::read(path).map_err(|source| CheckpointError::Io {
         path: path.to_path_buf(),
         source,
-    })?;
-    decode(path, &bytes)
+    })
 }
 
 #[cfg(test)]

@@ -314,11 +314,22 @@ pub(crate) fn normal_laws(
     for name in &names {
         let entry = registered_law(name)?;
         declarations.push(&entry.declaration);
+        // The adhesive MDR law is the MDR law with the validator's `--work-of-adhesion`
+        // (its Δγ, which the impact integrates with Heß's rule): it needs the flag.
+        let adhesive_law = entry.declaration.name == AdhesiveMdr::DECLARATION.name;
+        if adhesive_law && a.work_of_adhesion.is_none() {
+            return Err(anyhow!(
+                "invalid value for --law: `{name}` needs --work-of-adhesion ({})",
+                AdhesiveMdr::DECLARATION.params[2].help()
+            ));
+        }
         let spec = match (entry.declaration.name, a.elastic) {
             // Adhesion is the MDR law's: its elastic limit is JKR, not Hertz.
             ("mdr", true) if adhesive => NormalSpec::Mdr(MdrElastoPlastic::elastic()),
+            (_, true) if adhesive_law => NormalSpec::Mdr(MdrElastoPlastic::elastic()),
             (_, true) | ("hertz", _) => NormalSpec::Hertz,
             ("mdr", false) => NormalSpec::Mdr(mdr),
+            (_, false) if adhesive_law => NormalSpec::Mdr(mdr),
             ("thornton", false) => NormalSpec::Thornton(
                 Thornton::from_values(
                     &params.values(&Thornton::DECLARATION, |_| Some(matched_yield_pressure))?,
@@ -351,7 +362,7 @@ pub(crate) fn normal_laws(
     if adhesive && laws.iter().any(|l| !matches!(l, NormalSpec::Mdr(_))) {
         return Err(anyhow!(
             "invalid value for --law: --work-of-adhesion is part of the MDR law; use it with \
-             --law mdr"
+             --law mdr or --law adhesive_mdr"
         ));
     }
     Ok((mdr, laws))

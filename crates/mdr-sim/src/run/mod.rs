@@ -320,7 +320,7 @@ impl<'a> Sim<'a> {
     }
 
     fn resume(scene: &'a Scene, path: &Path) -> Result<Self, SimError> {
-        let data: CheckpointData = checkpoint::read(path)?;
+        let data = CheckpointData::read(path)?;
         let incompatible = |reason: String| CheckpointError::Incompatible {
             path: path.to_path_buf(),
             reason,

@@ -1,11 +1,15 @@
 //! The checkpoint payload: everything needed to continue a run bit-identically (bodies,
 //! contacts, neighbour-list histories, random-number state, the energy books, the headline
-//! tracker), and the scene keys a checkpoint must agree with.
+//! tracker), and the scene keys a checkpoint must agree with. A checkpoint of the previous
+//! format version is read into the present payload ([`CheckpointData::read`]).
+
+mod format7;
 
 use super::books::Books;
 use super::build::Coupling;
 use super::coupling::NeighbourListSceneStepper;
 use super::Sim;
+use crate::checkpoint::{self, CheckpointError};
 use crate::headline::{HeadlineSample, Tracker};
 use crate::laws::{AnyDamping, AnyNormalState, SceneNormal, SceneRolling};
 use crate::output::energy::EnergyRow;
@@ -25,6 +29,7 @@ use nalgebra::Vector3;
 use rand_chacha::ChaCha8Rng;
 use rapier3d_f64::prelude::*;
 use serde::{Deserialize, Serialize};
+use std::path::Path;
 
 /// The composed law of a scene's pairs, with normal model `N`.
 pub(crate) type SceneLaw<N> = ContactLaw<
@@ -314,6 +319,20 @@ pub struct CheckpointData {
 }
 
 impl CheckpointData {
+    /// Read and check a checkpoint file of the present format version or of the previous one
+    /// ([`checkpoint::PREVIOUS_FORMAT_VERSION`], decoded into the present payload with no
+    /// adhesive history and no adhesive work); other versions are refused
+    /// ([`CheckpointError::Version`]).
+    pub fn read(path: &Path) -> Result<Self, CheckpointError> {
+        let bytes = checkpoint::read_bytes(path)?;
+        match checkpoint::check(path, &bytes)? {
+            (checkpoint::PREVIOUS_FORMAT_VERSION, body) => {
+                checkpoint::decode_payload::<format7::Payload>(path, body).map(Into::into)
+            }
+            (_, body) => checkpoint::decode_payload(path, body),
+        }
+    }
+
     /// Everything of `sim`; fails only if rapier's world does not encode (then nothing is
     /// written).
     pub(crate) fn capture(sim: &Sim<'_>) -> Result<Self, String> {
