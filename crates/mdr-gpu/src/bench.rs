@@ -105,7 +105,7 @@ pub fn bench_bed_gpu(
         stepper_bytes_per_particle: system.device_bytes() as f64 / n as f64,
         orientation: settings.orientation,
         work_books: false,
-        state_checksum: format!("{:016x}", fnv1a(vectors.flat_map(|v| [v.x, v.y, v.z]))),
+        state_checksum: mdr_rapier::neighbour_list::bed::state_checksum(vectors),
     };
     Ok((
         GpuBenchFigures {
@@ -117,19 +117,6 @@ pub fn bench_bed_gpu(
         },
         state,
     ))
-}
-
-/// FNV-1a (64 bit) over the bit patterns of `values`: the `state_checksum` of the CPU
-/// benchmark's figures, so that the two are comparable.
-fn fnv1a(values: impl Iterator<Item = f64>) -> u64 {
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
-    for v in values {
-        for byte in v.to_bits().to_le_bytes() {
-            hash ^= u64::from(byte);
-            hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
-        }
-    }
-    hash
 }
 
 /// A pair of the CPU path's list with its history, in the form of [`crate::GpuPair`].

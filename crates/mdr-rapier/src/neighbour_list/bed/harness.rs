@@ -486,20 +486,23 @@ where
         stepper_bytes_per_particle: stepper.memory_bytes() as f64 / n as f64,
         orientation: s.orientation,
         work_books: s.work_books,
-        state_checksum: format!("{:016x}", fnv1a(vectors.flat_map(|v| [v.x, v.y, v.z]))),
+        state_checksum: state_checksum(vectors),
     })
 }
 
-/// FNV-1a (64 bit) over the bit patterns of `values`.
-fn fnv1a(values: impl Iterator<Item = f64>) -> u64 {
+/// `state_checksum` of [`BenchFigures`]: FNV-1a (64 bit) over the bit patterns of the vectors'
+/// components, in order (the GPU path hashes its state with it too, so the two compare).
+pub fn state_checksum<'a>(vectors: impl Iterator<Item = &'a Vector3<f64>>) -> String {
     let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
-    for v in values {
-        for byte in v.to_bits().to_le_bytes() {
-            hash ^= u64::from(byte);
-            hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
+    for v in vectors {
+        for c in [v.x, v.y, v.z] {
+            for byte in c.to_bits().to_le_bytes() {
+                hash ^= u64::from(byte);
+                hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
+            }
         }
     }
-    hash
+    format!("{hash:016x}")
 }
 
 /// The reference bed of the benchmark, relative to a checkout of the repository.

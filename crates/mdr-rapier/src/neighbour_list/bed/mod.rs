@@ -12,8 +12,8 @@ pub mod lammps_data;
 pub use clock::{peak_rss_mb, process_cpu_seconds};
 pub use generate::{lattice_bed, reference_system, settled_bed, BedSpec};
 pub use harness::{
-    bench_bed, reference_data, run_reference_system, BenchFigures, BenchLaw, BenchSettings,
-    BenchValue, ReferenceRun, RollingTorque, BENCH_THETA_RATIO, REFERENCE_DATA,
+    bench_bed, reference_data, run_reference_system, state_checksum, BenchFigures, BenchLaw,
+    BenchSettings, BenchValue, ReferenceRun, RollingTorque, BENCH_THETA_RATIO, REFERENCE_DATA,
 };
 
 use crate::error::CouplingError;
