@@ -84,7 +84,7 @@ impl HistoryLayout {
     }
 
     /// Values per contact.
-    pub fn size(&self) -> usize {
+    pub const fn size(&self) -> usize {
         let base = if self.rolling {
             ROLLING_SIZE
         } else {
@@ -115,6 +115,8 @@ pub type PairLaw<N> = ContactLaw<N, MindlinLaw, HertzianViscousLaw>;
 /// a contact's history values. The loops are monomorphised per law (no call through a pointer
 /// per contact).
 pub trait PluginNormalLaw: NormalLaw + Copy {
+    /// Whether the law keeps the attached-radius slot ([`HistoryLayout::adhesion`]).
+    const ADHESIVE: bool;
     /// Bind the pair's model (with its work of adhesion) to one pair of bodies.
     fn bind(
         model: &PairModel,
@@ -127,6 +129,7 @@ pub trait PluginNormalLaw: NormalLaw + Copy {
 }
 
 impl PluginNormalLaw for MdrLaw {
+    const ADHESIVE: bool = false;
     #[inline(always)]
     fn bind(
         model: &PairModel,
@@ -147,6 +150,7 @@ impl PluginNormalLaw for MdrLaw {
 }
 
 impl PluginNormalLaw for AdhesiveMdrLaw {
+    const ADHESIVE: bool = true;
     #[inline(always)]
     fn bind(
         model: &PairModel,
