@@ -25,9 +25,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cp "$repo/benches/lammps/in.bench" "$repo/benches/lammps/settled.data" "$work/"
 cd "$work"
-# the plugin variant of in.bench: same bed, warm-up, neighbour settings and floor
-sed -e '/^if "${model} == hertzhist"/i if "${model} == plugin" then \&\n  "plugin load '"$plugin"'" \&\n  "pair_style mdrdem" \&\n  "pair_coeff * * youngs ${E} poisson ${nu} qc 10.0 theta 0.37 friction 0.5 damping 50.0 tangential_damping 0.5 estar 1.5e5 gstar $(2.0e5/7.0)" \&\n  "fix floor all wall/gran hertz/history 2.0e5 NULL 50.0 NULL 0.5 0 zplane 0.0 NULL"' -e '/^if "${model} == hertzhist"/i if "${model} == pluginwall" then \&\n  "plugin load '"$plugin"'" \&\n  "pair_style mdrdem" \&\n  "pair_coeff * * youngs ${E} poisson ${nu} qc 10.0 theta 0.37 friction 0.5 damping 50.0 tangential_damping 0.5 estar 1.5e5 gstar $(2.0e5/7.0)" \&\n  "fix floor all wall/mdrdem youngs ${E} poisson ${nu} qc 10.0 theta 0.37 friction 0.5 damping 50.0 tangential_damping 0.5 estar 1.5e5 gstar $(2.0e5/7.0) zplane 0.0 NULL"' \
-  in.bench > in.plugin
+"$repo/benches/lammps/plugin-input.sh" "$plugin" > in.plugin
 # LAMMPS's Performance line gives the rate in Matom-step/s, or in katom-step/s below 1 M (as for
 # the slower granular mdr model): both as M particle-steps/s.
 rate() {

@@ -589,3 +589,226 @@ fn evaluate_with<N: PluginNormalLaw, const ROLLING: bool>(
     );
     Ok((out.force, out.normal_force, overlap))
 }
+
+#[cfg(all(test, target_arch = "x86_64"))]
+mod tests {
+    use super::*;
+    use crate::coeffs::CoeffLine;
+    use mdr_contact::normal::{AdhesiveMdrLaw, MdrLaw};
+
+    /// A jittered cubic cluster of 27 overlapping spheres of two radii and two types (so the law
+    /// is bound again and again), moving and spinning, each pair listed once, with every
+    /// per-atom and per-contact array the loop writes.
+    struct Cluster {
+        x: Vec<f64>,
+        v: Vec<f64>,
+        omega: Vec<f64>,
+        f: Vec<f64>,
+        torque: Vec<f64>,
+        radius: Vec<f64>,
+        rmass: Vec<f64>,
+        types: Vec<i32>,
+        rows: Vec<Vec<i32>>,
+        offset: Vec<i64>,
+        touch: Vec<i32>,
+        history: Vec<f64>,
+        eatom: Vec<f64>,
+        vatom: Vec<f64>,
+        energy: f64,
+        virial: [f64; 6],
+    }
+
+    impl Cluster {
+        fn new(dnum: usize) -> Self {
+            // A fixed linear congruential sequence in [-1, 1): the same cluster every run.
+            let mut seed = 0x2545_f491_4f6c_dd1d_u64;
+            let mut next = move || {
+                seed = seed
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                (seed >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+            };
+            let n = 27;
+            let mut c = Cluster {
+                x: Vec::new(),
+                v: Vec::new(),
+                omega: Vec::new(),
+                f: vec![0.0; 3 * n],
+                torque: vec![0.0; 3 * n],
+                radius: Vec::new(),
+                rmass: Vec::new(),
+                types: Vec::new(),
+                rows: vec![Vec::new(); n],
+                offset: Vec::new(),
+                touch: Vec::new(),
+                history: Vec::new(),
+                eatom: vec![0.0; n],
+                vatom: vec![0.0; 6 * n],
+                energy: 0.0,
+                virial: [0.0; 6],
+            };
+            for a in 0..n {
+                let cell = [a % 3, (a / 3) % 3, a / 9];
+                for axis in cell {
+                    c.x.push(0.93 * axis as f64 + 0.02 * next());
+                }
+                for _ in 0..3 {
+                    c.v.push(0.5 * next());
+                }
+                for _ in 0..3 {
+                    c.omega.push(2.0 * next());
+                }
+                let big = a % 2 == 0;
+                let r = if big { 0.5 } else { 0.47 };
+                c.radius.push(r);
+                c.rmass.push(r * r * r);
+                c.types.push(if big { 1 } else { 2 });
+            }
+            let mut k = 0;
+            for a in 0..n {
+                c.offset.push(k);
+                for b in a + 1..n {
+                    c.rows[a].push(b as i32);
+                    k += 1;
+                }
+            }
+            c.touch = vec![0; k as usize];
+            c.history = vec![0.0; k as usize * dnum];
+            c
+        }
+
+        /// `steps` calls of the loop (`avx2`: its AVX2 copy), moving the spheres between calls
+        /// and pulling sphere 0 out of the cluster half-way (its contacts are released).
+        fn run<N: PluginNormalLaw, const ROLLING: bool>(
+            &mut self,
+            table: &CoeffTable,
+            avx2: bool,
+            steps: usize,
+        ) {
+            let dnum = HistoryLayout::for_table(table).size();
+            let dt = 2e-3;
+            for step in 0..steps {
+                if step == steps / 2 {
+                    self.x[0] -= 5.0;
+                }
+                let first: Vec<*const i32> = self.rows.iter().map(|r| r.as_ptr()).collect();
+                let numneigh: Vec<i32> = self.rows.iter().map(|r| r.len() as i32).collect();
+                let ilist: Vec<i32> = (0..self.rows.len() as i32).collect();
+                let n = ilist.len() as i32;
+                let atoms = MdrdemAtoms {
+                    x: self.x.as_ptr(),
+                    v: self.v.as_ptr(),
+                    omega: self.omega.as_ptr(),
+                    f: self.f.as_mut_ptr(),
+                    torque: self.torque.as_mut_ptr(),
+                    radius: self.radius.as_ptr(),
+                    rmass: self.rmass.as_ptr(),
+                    atom_type: self.types.as_ptr(),
+                    nlocal: n,
+                    nall: n,
+                };
+                let list = MdrdemNeighbours {
+                    inum: n,
+                    ilist: ilist.as_ptr(),
+                    numneigh: numneigh.as_ptr(),
+                    firstneigh: first.as_ptr(),
+                    neighmask: 0x1fff_ffff,
+                    offset: self.offset.as_ptr(),
+                    touch: self.touch.as_mut_ptr(),
+                    history: self.history.as_mut_ptr(),
+                    dnum: dnum as i32,
+                    history_update: 1,
+                };
+                let tally = MdrdemTally {
+                    newton_pair: 1,
+                    eflag_global: 1,
+                    vflag_global: 1,
+                    eng_vdwl: &mut self.energy,
+                    virial: self.virial.as_mut_ptr(),
+                    eatom: self.eatom.as_mut_ptr(),
+                    vatom: self.vatom.as_mut_ptr(),
+                };
+                // SAFETY: every array has the size the structs document.
+                unsafe {
+                    if avx2 {
+                        compute_avx2::<N, ROLLING, true>(table, &atoms, &list, &tally, dt)
+                    } else {
+                        compute_rows::<N, ROLLING, true>(table, &atoms, &list, &tally, dt)
+                    }
+                }
+                .expect("the cluster's laws bind");
+                for (x, v) in self.x.iter_mut().zip(&self.v) {
+                    *x += v * dt;
+                }
+            }
+        }
+
+        /// Every value the loop wrote, as bits.
+        fn bits(&self) -> Vec<u64> {
+            let floats = [
+                &self.f[..],
+                &self.torque,
+                &self.history,
+                &self.eatom,
+                &self.vatom,
+                &self.virial,
+                &[self.energy],
+            ];
+            floats
+                .iter()
+                .flat_map(|a| a.iter().map(|v| v.to_bits()))
+                .chain(self.touch.iter().map(|&t| t as u64))
+                .collect()
+        }
+    }
+
+    fn table(extra: &str) -> CoeffTable {
+        let words: Vec<String> = format!(
+            "youngs 2.73e5 poisson 0.3 qc 10.0 theta 0.37 friction 0.5 damping 50.0 \
+             tangential_damping 0.5 {extra}"
+        )
+        .split_whitespace()
+        .map(String::from)
+        .collect();
+        let mut table = CoeffTable::new(2);
+        table
+            .set(
+                (1, 2),
+                (1, 2),
+                CoeffLine::parse(&words).expect("a valid line"),
+            )
+            .expect("types 1 and 2");
+        for (i, j) in [(1, 1), (1, 2), (2, 2)] {
+            table.init_one(i, j).expect("set above");
+        }
+        table
+    }
+
+    /// The loop's AVX2 copy and its copy for the CPU the crate is built for write the same bits:
+    /// forces, torques, histories, touch flags, per-atom and global energy and virial, through
+    /// loading, unloading, sliding, rebinding and release, for each normal law and history
+    /// layout. Fails if either copy reorders or fuses the floating-point operations.
+    #[test]
+    fn the_avx2_loop_gives_the_same_bits() {
+        if !std::arch::is_x86_feature_detected!("avx2") {
+            eprintln!("this CPU has no AVX2: the AVX2 copy is never run, nothing to compare");
+            return;
+        }
+        fn compare<N: PluginNormalLaw, const ROLLING: bool>(extra: &str) {
+            let table = table(extra);
+            let dnum = HistoryLayout::for_table(&table).size();
+            let mut portable = Cluster::new(dnum);
+            let mut avx2 = Cluster::new(dnum);
+            portable.run::<N, ROLLING>(&table, false, 60);
+            avx2.run::<N, ROLLING>(&table, true, 60);
+            let touched = portable.touch.iter().filter(|&&t| t != 0).count();
+            assert!(touched > 20, "{extra}: {touched} contacts");
+            assert!(portable.f.iter().all(|f| f.is_finite()), "{extra}");
+            assert_eq!(portable.bits(), avx2.bits(), "{extra}");
+        }
+        compare::<MdrLaw, false>("");
+        compare::<MdrLaw, true>("rolling 0.1");
+        compare::<AdhesiveMdrLaw, false>("adhesion 5.0");
+        compare::<AdhesiveMdrLaw, true>("rolling 0.1 adhesion 5.0");
+    }
+}
