@@ -433,8 +433,9 @@ normal = [0.0, 0.0, -1.0]
 /// Each material pair runs its own mixed work of adhesion, on both force paths. In one scene of
 /// powder spheres (`Δγ`), spheres of another material (`4Δγ`), a steel floor (0) and a sticky
 /// ceiling (`4Δγ`), compared with the validator `mdr-impact` at each pair's `Δγ_ij`:
-/// - a powder sphere on the steel floor (`Δγ_ij = 0`) rebounds with the validator's
-///   non-adhesive `e_n` to 1 %, at a speed where the powder–ceiling pair (`2Δγ`) sticks;
+/// - powder spheres on the steel floor (`Δγ_ij = 0`) rebound with the validator's
+///   non-adhesive `e_n` to 1 %, slowly (elastic) at a speed where the powder–ceiling pair
+///   (`2Δγ`) sticks, and fast (plastic);
 /// - a powder sphere thrown as slowly at the ceiling sticks, and one thrown at twice that
 ///   pair's sticking speed rebounds with the validator's `e_n` at `2Δγ` to 1 %;
 /// - a powder sphere and a sphere of the other material (`√(Δγ · 4Δγ) = 2Δγ`) thrown at each
@@ -455,18 +456,29 @@ fn each_material_pair_runs_its_own_work_of_adhesion_on_both_force_paths() {
     let slow = 0.5 * v_wall;
     let fast = 2.0 * v_wall;
     let (e_floor, stuck_floor) = validator_of(wall, slow, 0.0);
+    let (e_floor_fast, _) = validator_of(wall, fast, 0.0);
     let (e_ceiling, _) = validator_of(wall, fast, mixed);
     let (e_pair, _) = validator_of(spheres, 2.0 * v_pair, mixed);
     eprintln!(
         "validator: sticking speeds {v_wall:.4} m/s (wall, Δγ_ij = {mixed}), {v_pair:.4} m/s \
-         (sphere pair); e_n floor {e_floor:.5}, ceiling {e_ceiling:.5}, pair {e_pair:.5}"
+         (sphere pair); e_n floor {e_floor:.5} and {e_floor_fast:.5}, ceiling {e_ceiling:.5}, pair {e_pair:.5}"
     );
     // The references tell the pairs' values apart.
     assert!(!stuck_floor && e_floor > 0.3);
-    assert!(validator_of(wall, slow, mixed).1, "the ceiling pair sticks at `slow`");
+    assert!(
+        (e_floor_fast / e_ceiling - 1.0).abs() > 0.1,
+        "the fast throws tell Δγ_ij apart"
+    );
+    assert!(
+        validator_of(wall, slow, mixed).1,
+        "the ceiling pair sticks at `slow`"
+    );
     for wrong in [POWDER, OTHER] {
         let (e_wrong, _) = validator_of(spheres, 2.0 * v_pair, wrong);
-        assert!((e_wrong / e_pair - 1.0).abs() > 0.03, "{e_wrong} vs {e_pair}");
+        assert!(
+            (e_wrong / e_pair - 1.0).abs() > 0.03,
+            "{e_wrong} vs {e_pair}"
+        );
     }
 
     // Each throw starts `t0` before touching; the run lasts 20 contact times more.
@@ -485,15 +497,41 @@ fn each_material_pair_runs_its_own_work_of_adhesion_on_both_force_paths() {
     let u_slow = 0.5 * v_pair;
     let balls = [
         // 0: down on the floor.
-        sphere("powder", [x(0.0), 0.0, RADIUS + slow * t0], [0.0, 0.0, -slow]),
+        sphere(
+            "powder",
+            [x(0.0), 0.0, RADIUS + slow * t0],
+            [0.0, 0.0, -slow],
+        ),
         // 1, 2: up at the ceiling, slowly and fast.
-        sphere("powder", [x(1.0), 0.0, CEILING - RADIUS - slow * t0], [0.0, 0.0, slow]),
-        sphere("powder", [x(2.0), 0.0, CEILING - RADIUS - fast * t0], [0.0, 0.0, fast]),
+        sphere(
+            "powder",
+            [x(1.0), 0.0, CEILING - RADIUS - slow * t0],
+            [0.0, 0.0, slow],
+        ),
+        sphere(
+            "powder",
+            [x(2.0), 0.0, CEILING - RADIUS - fast * t0],
+            [0.0, 0.0, fast],
+        ),
         // 3, 4 and 5, 6: head on in x, fast and slowly.
         sphere("powder", [x(3.0), 0.0, mid], [0.5 * u_fast, 0.0, 0.0]),
-        sphere("other", [x(3.0) + pair_gap(u_fast), 0.0, mid], [-0.5 * u_fast, 0.0, 0.0]),
+        sphere(
+            "other",
+            [x(3.0) + pair_gap(u_fast), 0.0, mid],
+            [-0.5 * u_fast, 0.0, 0.0],
+        ),
         sphere("powder", [x(3.0), x(1.0), mid], [0.5 * u_slow, 0.0, 0.0]),
-        sphere("other", [x(3.0) + pair_gap(u_slow), x(1.0), mid], [-0.5 * u_slow, 0.0, 0.0]),
+        sphere(
+            "other",
+            [x(3.0) + pair_gap(u_slow), x(1.0), mid],
+            [-0.5 * u_slow, 0.0, 0.0],
+        ),
+        // 7: down on the floor fast (plastic).
+        sphere(
+            "powder",
+            [x(4.0), 0.0, RADIUS + fast * t0],
+            [0.0, 0.0, -fast],
+        ),
     ];
     let max_speed = fast.max(u_fast);
     for force_path in ["", "force_path = \"rapier\""] {
@@ -504,23 +542,44 @@ fn each_material_pair_runs_its_own_work_of_adhesion_on_both_force_paths() {
         let z = |i: usize| p[i].translation[2];
         let vz = |i: usize| p[i].linvel[2];
         let e0 = vz(0) / slow;
+        let e7 = vz(7) / fast;
         let e2 = -vz(2) / fast;
         let e34 = (p[4].linvel[0] - p[3].linvel[0]) / u_fast;
         eprintln!(
-            "{force_path}: floor e_n {e0:.5} (validator {e_floor:.5}), ceiling e_n {e2:.5} \
+            "{force_path}: floor e_n {e0:.5} (validator {e_floor:.5}) and {e7:.5} \
+             ({e_floor_fast:.5}), ceiling e_n {e2:.5} \
              ({e_ceiling:.5}), pair e_n {e34:.5} ({e_pair:.5})"
         );
-        assert!((e0 / e_floor - 1.0).abs() < 0.01, "{force_path}: floor {e0}");
-        assert!((e2 / e_ceiling - 1.0).abs() < 0.01, "{force_path}: ceiling {e2}");
-        assert!((e34 / e_pair - 1.0).abs() < 0.01, "{force_path}: pair {e34}");
+        assert!(
+            (e0 / e_floor - 1.0).abs() < 0.01,
+            "{force_path}: floor {e0}"
+        );
+        assert!(
+            (e7 / e_floor_fast - 1.0).abs() < 0.01,
+            "{force_path}: floor {e7}"
+        );
+        assert!(
+            (e2 / e_ceiling - 1.0).abs() < 0.01,
+            "{force_path}: ceiling {e2}"
+        );
+        assert!(
+            (e34 / e_pair - 1.0).abs() < 0.01,
+            "{force_path}: pair {e34}"
+        );
         // Stuck: still within the neck's reach (a few nm) of what it hit, where a rebound at
         // the slow speed would have carried it tens of nm away.
         let reach = 1e-3 * RADIUS;
         let gap1 = CEILING - RADIUS - z(1);
         let gap56 = p[6].translation[0] - p[5].translation[0] - 2.0 * RADIUS;
         eprintln!("{force_path}: stuck gaps {gap1:.3e} m, {gap56:.3e} m");
-        assert!(gap1.abs() < reach, "{force_path}: ceiling sphere gap {gap1:e}");
-        assert!(gap56.abs() < reach, "{force_path}: sphere pair gap {gap56:e}");
+        assert!(
+            gap1.abs() < reach,
+            "{force_path}: ceiling sphere gap {gap1:e}"
+        );
+        assert!(
+            gap56.abs() < reach,
+            "{force_path}: sphere pair gap {gap56:e}"
+        );
         assert!(
             z(0) - RADIUS > 5.0 * reach,
             "the floor's sphere left: {}",
@@ -546,8 +605,8 @@ fn frame_plastic_work_leaves_the_adhesive_work_out() {
         let dir = common::temp_dir("adhesion-frames");
         let path = common::write(&dir, "throw.toml", &text);
         let scene = parse_scene(&path, &text).unwrap_or_else(|e| panic!("{e}"));
-        let summary = run_scene(&scene, &RunOptions::new(dir.join("out")).quiet(true))
-            .expect("run");
+        let summary =
+            run_scene(&scene, &RunOptions::new(dir.join("out")).quiet(true)).expect("run");
         let last_frame = particle_frames(&dir.join("out")).pop().expect("a frame");
         let frame = mdr_sim::output::vtk::read_particles(&last_frame).unwrap();
         let books = summary.energy.last().unwrap();

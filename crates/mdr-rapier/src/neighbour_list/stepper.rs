@@ -39,13 +39,13 @@ use crate::added_forces::AddedForces;
 use crate::adhesion::neck_reach;
 use crate::convert::{to_glam, to_na};
 use crate::error::{positive, CouplingError, Result};
-use crate::pair_models::PairNormals;
 use crate::geometry::{
     sphere_sphere, sphere_sphere_signed, ConvexFaces, SurfaceContact, SurfaceOfRevolution,
 };
 use crate::kernel::{
     evaluate_pair, Arms, ContactKinematics, ContactWorks, PairHistory, PairWrench, SphereArms,
 };
+use crate::pair_models::PairNormals;
 use crate::particles::{MaterialHandle, ParticleShape, SphereBuilder};
 use crate::registration::add_force_flags;
 use crate::timestep::stable_time_step;

@@ -11,11 +11,11 @@ use mdr_contact::damping::{
 use mdr_contact::normal::{
     AdhesiveMdrState, MdrState, NormalLaw, NormalModel, NormalResponse, ThorntonState,
 };
+use mdr_contact::params::Declared;
 use mdr_contact::rolling::{
     EpsdRolling, EpsdRollingState, NoRolling, RollingInput, RollingLaw, RollingModel,
     RollingResponse,
 };
-use mdr_contact::params::Declared;
 use mdr_contact::{ContactPair, Result};
 use serde::{Deserialize, Serialize};
 

@@ -34,7 +34,9 @@ where
                         a.radius * b.radius / (a.radius + b.radius),
                         a.mass * b.mass / (a.mass + b.mass),
                     )?;
-                    let law = self.pair_normals.bind(&self.model, a.material, b.material, &pair)?;
+                    let law = self
+                        .pair_normals
+                        .bind(&self.model, a.material, b.material, &pair)?;
                     let pull_off = law.normal.pull_off_force();
                     adhesive |= pull_off > 0.0;
                     neck = neck.max(neck_reach(pull_off, &pair));
@@ -74,7 +76,9 @@ where
                     a.mass
                 };
                 let pair = ContactPair::new(e, g, a.radius, mass)?;
-                let law = self.pair_normals.bind(&self.model, a.material, s.material, &pair)?;
+                let law = self
+                    .pair_normals
+                    .bind(&self.model, a.material, s.material, &pair)?;
                 let pull_off = law.normal.pull_off_force();
                 adhesive |= pull_off > 0.0;
                 neck = neck.max(neck_reach(pull_off, &pair));
