@@ -121,8 +121,8 @@ impl Checker<'_, '_> {
             );
             return;
         }
-        // The scene's law carries the largest pair value (its pull-off force bounds every
-        // pair's); in force mode each material pair is bound with its own.
+        // The scene's law carries the largest value of the pairs that meet; in force mode each
+        // material pair is bound with its own.
         let values = vec![contact.normal.values[0], contact.normal.values[1], hi];
         match AdhesiveMdr::from_values(&values) {
             Ok(_) => {
