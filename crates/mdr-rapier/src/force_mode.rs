@@ -23,6 +23,7 @@ use crate::geometry::{
     sphere_shape, sphere_shape_signed, sphere_sphere, sphere_sphere_signed, SurfaceContact,
 };
 use crate::kernel::{evaluate_pair, Arms, ContactKinematics, PairHistory, PairWrench};
+use crate::pair_models::PairNormals;
 use crate::particles::{MaterialHandle, Particle, ParticleSet, ParticleShape, SphereBuilder};
 use crate::registration::{add_force_flags, check_force_flags};
 use crate::store::{ContactStore, Keyed, PairKey};
@@ -210,6 +211,8 @@ pub struct ForceModeStepper<
     R: RollingModel = NoRolling,
 > {
     model: ContactModel<N, T, D>,
+    /// Normal models set per material pair, in place of `model.normal`.
+    pair_normals: PairNormals<N>,
     rolling: R,
     particles: ParticleSet,
     store: ForceStore<N, T, D, R>,
@@ -229,6 +232,7 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> ForceModeStepper<N, T,
     pub fn new(model: ContactModel<N, T, D>) -> Self {
         Self {
             model,
+            pair_normals: PairNormals::default(),
             rolling: NoRolling,
             particles: ParticleSet::new(),
             store: ContactStore::new(),
@@ -253,6 +257,7 @@ where
     pub fn with_rolling<R2: RollingModel>(self, rolling: R2) -> ForceModeStepper<N, T, D, R2> {
         ForceModeStepper {
             model: self.model,
+            pair_normals: self.pair_normals,
             rolling,
             particles: self.particles,
             store: ContactStore::new(),
@@ -274,6 +279,29 @@ where
     /// The contact model.
     pub fn model(&self) -> &ContactModel<N, T, D> {
         &self.model
+    }
+
+    /// Bind the contacts between materials `a` and `b` (sphere–sphere and sphere–surface,
+    /// either order) with the normal model `normal` in place of the contact model's (the
+    /// tangential and damping models stay the model's): e.g. the adhesive MDR law with the
+    /// pair's own work of adhesion. A contact's law is bound when it begins: call this before
+    /// the pair's first contact.
+    pub fn set_pair_normal(
+        &mut self,
+        a: MaterialHandle,
+        b: MaterialHandle,
+        normal: N,
+    ) -> Result<()> {
+        self.particles.material(a)?;
+        self.particles.material(b)?;
+        self.pair_normals.set(a, b, normal);
+        Ok(())
+    }
+
+    /// The normal model that binds the contacts between materials `a` and `b`: the one set by
+    /// [`ForceModeStepper::set_pair_normal`], else the contact model's.
+    pub fn pair_normal(&self, a: MaterialHandle, b: MaterialHandle) -> &N {
+        self.pair_normals.get(a, b).unwrap_or(&self.model.normal)
     }
 
     /// The registered colliders and materials.
@@ -596,7 +624,7 @@ where
             }
         }
         let (created0, removed0) = (self.store.created(), self.store.removed());
-        let model = &self.model;
+        let (model, pair_normals) = (&self.model, &self.pair_normals);
         let rolling = &self.rolling;
         self.store.merge(
             self.candidates.iter().filter(|c| c.contact.is_some()),
@@ -612,7 +640,7 @@ where
                     collider2: c.other,
                     body1,
                     body2: p2.body,
-                    law: model.bind(&pair)?,
+                    law: pair_normals.bind(model, p1.material, p2.material, &pair)?,
                     rolling: rolling.bind(&pair)?,
                     history: PairHistory::default(),
                     contact: c.contact.expect("filtered"),

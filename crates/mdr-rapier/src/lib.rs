@@ -50,6 +50,7 @@ pub mod adhesion;
 pub mod convert;
 pub mod error;
 pub mod neighbour_list;
+mod pair_models;
 
 /// The neighbour-list path under its former name.
 #[deprecated(note = "renamed `neighbour_list`: the module is named after its method")]

@@ -2,7 +2,8 @@
 //! of adhesion per material sticks below a speed and rebounds above it, with the coefficient of
 //! restitution of the validator `mdr-impact` (an independent integrator of the same law); the
 //! energy books close with the adhesive work booked apart from the plastic work; a bad work of
-//! adhesion is refused naming its key; and the work of adhesion is mixed per pair.
+//! adhesion is refused naming its key; and the work of adhesion is mixed per pair, each pair of
+//! a scene of several materials running its own.
 
 mod common;
 
@@ -256,8 +257,8 @@ fn work_of_adhesion_mixes_by_the_geometric_mean() {
 }
 
 /// Negative, NaN and infinite works of adhesion are refused naming the key; so are material
-/// pairs that mix to different works of adhesion in one scene, adhesion with a law that has
-/// none, and adhesion given both per material and in `[contact]`.
+/// pairs that mix to different works of adhesion in restitution mode (force mode takes them),
+/// adhesion with a law that has none, and adhesion given both per material and in `[contact]`.
 #[test]
 fn bad_work_of_adhesion_is_refused_naming_the_key() {
     let dir = common::temp_dir("adhesion-bad");
@@ -279,9 +280,10 @@ fn bad_work_of_adhesion_is_refused_naming_the_key() {
         );
         assert!(e.to_lowercase().contains(bad), "{bad}: {e}");
     }
-    // Two spheres of one material and a wall of another: the sphere pairs adhere with Δγ, the
-    // wall pairs with √(Δγ · 4Δγ) = 2Δγ.
-    let text = throw(1.0, GAMMA, 4.0 * GAMMA, "force")
+    // Restitution mode runs one Δγ: two spheres of one material and a wall of another, whose
+    // sphere pairs adhere with Δγ and wall pairs with √(Δγ · 4Δγ) = 2Δγ, are refused there
+    // (force mode binds each pair's own, below).
+    let text = throw(1.0, GAMMA, 4.0 * GAMMA, "restitution")
         .replacen("count = 1", "count = 2", 1)
         .replacen(
             &format!("region_max_m = [{:e}", 1.001 * RADIUS),
@@ -290,9 +292,15 @@ fn bad_work_of_adhesion_is_refused_naming_the_key() {
         );
     let e = refused(&text);
     assert!(
-        e.contains("work_of_adhesion_j_per_m2") && e.contains("mix"),
+        e.contains("work_of_adhesion_j_per_m2") && e.contains("mix") && e.contains("restitution"),
         "{e}"
     );
+    let forced = text.replace("coupling = \"restitution\"", "coupling = \"force\"");
+    let path = common::write(&dir, "mixed.toml", &forced);
+    let scene = parse_scene(&path, &forced).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.contact.normal.law, "adhesive_mdr");
+    assert!((scene.contact.pair_work_of_adhesion(0, 0) / GAMMA - 1.0).abs() < 1e-12);
+    assert!((scene.contact.pair_work_of_adhesion(0, 1) / (2.0 * GAMMA) - 1.0).abs() < 1e-12);
     let text = throw(1.0, GAMMA, GAMMA, "force")
         .replace("normal = \"mdr\"", "normal = \"hertz\"")
         .replace("critical_line_load_n_per_m = 100.0\n", "")
@@ -308,4 +316,330 @@ fn bad_work_of_adhesion_is_refused_naming_the_key() {
     );
     let e = refused(&text);
     assert!(e.contains("one place"), "{e}");
+}
+
+/// The validator's head-on impact of `pair` at `speed` with work of adhesion `gamma`:
+/// `(e_n, stuck)`.
+fn validator_of(pair: ContactPair, speed: f64, gamma: f64) -> (f64, bool) {
+    let out = Impact::new(
+        pair,
+        NormalSpec::Mdr(MdrElastoPlastic::new(QC, THETA).unwrap()),
+        speed,
+    )
+    .work_of_adhesion(gamma)
+    .run()
+    .unwrap();
+    (out.normal_restitution, out.stuck)
+}
+
+/// The validator's sticking speed (m/s) of `pair` with work of adhesion `gamma`, by bisection.
+fn sticking_speed_of(pair: ContactPair, gamma: f64) -> f64 {
+    let (mut lo, mut hi) = (0.001, 20.0);
+    assert!(validator_of(pair, lo, gamma).1 && !validator_of(pair, hi, gamma).1);
+    for _ in 0..30 {
+        let mid = (lo * hi).sqrt();
+        if validator_of(pair, mid, gamma).1 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
+/// One sphere of a mixed scene: material, centre `(x, y, z)` and velocity.
+struct Ball {
+    material: &'static str,
+    centre: [f64; 3],
+    velocity: [f64; 3],
+}
+
+/// Works of adhesion (J/m²) of the mixed scene's materials: powder spheres, a second sphere
+/// material, a steel floor without adhesion and a sticky ceiling.
+const POWDER: f64 = GAMMA;
+const OTHER: f64 = 4.0 * GAMMA;
+const STICKY: f64 = 4.0 * GAMMA;
+/// Height of the ceiling (m).
+const CEILING: f64 = 40.0 * RADIUS;
+
+/// A scene of four glass materials of different works of adhesion (every one but the steel
+/// floor's adhesive, no two meeting pairs mixing alike): `balls` between a steel floor at
+/// `z = 0` and a sticky ceiling at [`CEILING`], no gravity, for `duration` (s).
+fn mixed_scene(balls: &[Ball], max_speed: f64, duration: f64, force_path: &str) -> String {
+    let material = |name: &str, gamma: f64| {
+        let key = if gamma > 0.0 {
+            format!("work_of_adhesion_j_per_m2 = {gamma:e}\n")
+        } else {
+            String::new()
+        };
+        format!(
+            "[[material]]\nname = \"{name}\"\nyoungs_pa = {YOUNGS:e}\npoisson_ratio = {POISSON:?}\n\
+             density_kg_per_m3 = {DENSITY:?}\n{key}\n"
+        )
+    };
+    let mut text = format!(
+        r#"
+[run]
+name = "mixed"
+duration_s = {duration:e}
+dt_s = "auto"
+max_speed_m_per_s = {max_speed:e}
+steps_per_contact = 1000
+output_interval_s = {duration:e}
+energy_interval_s = {duration:e}
+{force_path}
+{powder}{other}{steel}{sticky}
+[contact]
+normal = "mdr"
+critical_line_load_n_per_m = {QC:?}
+hardening_ratio = {THETA:?}
+
+[[walls]]
+kind = "plane"
+material = "steel"
+point_m = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+
+[[walls]]
+kind = "plane"
+material = "sticky"
+point_m = [0.0, 0.0, {CEILING:e}]
+normal = [0.0, 0.0, -1.0]
+"#,
+        powder = material("powder", POWDER),
+        other = material("other", OTHER),
+        steel = material("steel", 0.0),
+        sticky = material("sticky", STICKY),
+    );
+    for b in balls {
+        let [x, y, z] = b.centre;
+        let [u, v, w] = b.velocity;
+        text.push_str(&format!(
+            "\n[[particles]]\nmaterial = \"{}\"\ncount = 1\nradius_m = {RADIUS:e}\nplacement = \"lattice\"\n\
+             region_min_m = [{:e}, {:e}, {:e}]\nregion_max_m = [{:e}, {:e}, {:e}]\n\
+             velocity_m_per_s = [{u:e}, {v:e}, {w:e}]\n",
+            b.material,
+            x - RADIUS,
+            y - RADIUS,
+            z - RADIUS,
+            x + 1.001 * RADIUS,
+            y + 1.001 * RADIUS,
+            z + 1.001 * RADIUS,
+        ));
+    }
+    text
+}
+
+/// Each material pair runs its own mixed work of adhesion, on both force paths. In one scene of
+/// powder spheres (`Δγ`), spheres of another material (`4Δγ`), a steel floor (0) and a sticky
+/// ceiling (`4Δγ`), compared with the validator `mdr-impact` at each pair's `Δγ_ij`:
+/// - powder spheres on the steel floor (`Δγ_ij = 0`) rebound with the validator's
+///   non-adhesive `e_n` to 1 %, slowly (elastic) at a speed where the powder–ceiling pair
+///   (`2Δγ`) sticks, and fast (plastic);
+/// - a powder sphere thrown as slowly at the ceiling sticks, and one thrown at twice that
+///   pair's sticking speed rebounds with the validator's `e_n` at `2Δγ` to 1 %;
+/// - a powder sphere and a sphere of the other material (`√(Δγ · 4Δγ) = 2Δγ`) thrown at each
+///   other rebound with the validator's sphere–sphere `e_n` at `2Δγ` to 1 % at twice their
+///   sticking speed, and stick below it.
+///
+/// One `Δγ` bound to every pair fails it: the largest (`2Δγ`) sticks the floor's sphere, and
+/// the validator's `e_n` at the powder's or the other material's own `Δγ` is checked to miss
+/// the sphere–sphere rebound by more than the tolerance.
+#[test]
+fn each_material_pair_runs_its_own_work_of_adhesion_on_both_force_paths() {
+    let wall = pair();
+    let spheres = ContactPair::sphere_on_sphere(RADIUS, &glass(), RADIUS, &glass()).unwrap();
+    let mixed = (POWDER * STICKY).sqrt();
+    assert_eq!(mixed, (POWDER * OTHER).sqrt());
+    let v_wall = sticking_speed_of(wall, mixed);
+    let v_pair = sticking_speed_of(spheres, mixed);
+    let slow = 0.5 * v_wall;
+    let fast = 2.0 * v_wall;
+    let (e_floor, stuck_floor) = validator_of(wall, slow, 0.0);
+    let (e_floor_fast, _) = validator_of(wall, fast, 0.0);
+    let (e_ceiling, _) = validator_of(wall, fast, mixed);
+    let (e_pair, _) = validator_of(spheres, 2.0 * v_pair, mixed);
+    eprintln!(
+        "validator: sticking speeds {v_wall:.4} m/s (wall, Δγ_ij = {mixed}), {v_pair:.4} m/s \
+         (sphere pair); e_n floor {e_floor:.5} and {e_floor_fast:.5}, ceiling {e_ceiling:.5}, pair {e_pair:.5}"
+    );
+    // The references tell the pairs' values apart.
+    assert!(!stuck_floor && e_floor > 0.3);
+    assert!(
+        (e_floor_fast / e_ceiling - 1.0).abs() > 0.1,
+        "the fast throws tell Δγ_ij apart"
+    );
+    assert!(
+        validator_of(wall, slow, mixed).1,
+        "the ceiling pair sticks at `slow`"
+    );
+    for wrong in [POWDER, OTHER] {
+        let (e_wrong, _) = validator_of(spheres, 2.0 * v_pair, wrong);
+        assert!(
+            (e_wrong / e_pair - 1.0).abs() > 0.03,
+            "{e_wrong} vs {e_pair}"
+        );
+    }
+
+    // Each throw starts `t0` before touching; the run lasts 20 contact times more.
+    let t_c = wall.hertz_contact_time(slow);
+    let t0 = 2.0 * t_c;
+    let duration = t0 + 20.0 * t_c;
+    let mid = 0.5 * CEILING;
+    let sphere = |material, centre, velocity| Ball {
+        material,
+        centre,
+        velocity,
+    };
+    let x = |k: f64| k * 10.0 * RADIUS;
+    let pair_gap = |u: f64| 2.0 * RADIUS + u * t0;
+    let u_fast = 2.0 * v_pair;
+    let u_slow = 0.5 * v_pair;
+    let balls = [
+        // 0: down on the floor.
+        sphere(
+            "powder",
+            [x(0.0), 0.0, RADIUS + slow * t0],
+            [0.0, 0.0, -slow],
+        ),
+        // 1, 2: up at the ceiling, slowly and fast.
+        sphere(
+            "powder",
+            [x(1.0), 0.0, CEILING - RADIUS - slow * t0],
+            [0.0, 0.0, slow],
+        ),
+        sphere(
+            "powder",
+            [x(2.0), 0.0, CEILING - RADIUS - fast * t0],
+            [0.0, 0.0, fast],
+        ),
+        // 3, 4 and 5, 6: head on in x, fast and slowly.
+        sphere("powder", [x(3.0), 0.0, mid], [0.5 * u_fast, 0.0, 0.0]),
+        sphere(
+            "other",
+            [x(3.0) + pair_gap(u_fast), 0.0, mid],
+            [-0.5 * u_fast, 0.0, 0.0],
+        ),
+        sphere("powder", [x(3.0), x(1.0), mid], [0.5 * u_slow, 0.0, 0.0]),
+        sphere(
+            "other",
+            [x(3.0) + pair_gap(u_slow), x(1.0), mid],
+            [-0.5 * u_slow, 0.0, 0.0],
+        ),
+        // 7: down on the floor fast (plastic).
+        sphere(
+            "powder",
+            [x(4.0), 0.0, RADIUS + fast * t0],
+            [0.0, 0.0, -fast],
+        ),
+    ];
+    let max_speed = fast.max(u_fast);
+    for force_path in ["", "force_path = \"rapier\""] {
+        let text = mixed_scene(&balls, max_speed, duration, force_path);
+        let summary = run(&text, "adhesion-pairs");
+        let p = &summary.particles;
+        assert_eq!(p.len(), balls.len());
+        let z = |i: usize| p[i].translation[2];
+        let vz = |i: usize| p[i].linvel[2];
+        let e0 = vz(0) / slow;
+        let e7 = vz(7) / fast;
+        let e2 = -vz(2) / fast;
+        let e34 = (p[4].linvel[0] - p[3].linvel[0]) / u_fast;
+        eprintln!(
+            "{force_path}: floor e_n {e0:.5} (validator {e_floor:.5}) and {e7:.5} \
+             ({e_floor_fast:.5}), ceiling e_n {e2:.5} \
+             ({e_ceiling:.5}), pair e_n {e34:.5} ({e_pair:.5})"
+        );
+        assert!(
+            (e0 / e_floor - 1.0).abs() < 0.01,
+            "{force_path}: floor {e0}"
+        );
+        assert!(
+            (e7 / e_floor_fast - 1.0).abs() < 0.01,
+            "{force_path}: floor {e7}"
+        );
+        assert!(
+            (e2 / e_ceiling - 1.0).abs() < 0.01,
+            "{force_path}: ceiling {e2}"
+        );
+        assert!(
+            (e34 / e_pair - 1.0).abs() < 0.01,
+            "{force_path}: pair {e34}"
+        );
+        // Stuck: still within the neck's reach (a few nm) of what it hit, where a rebound at
+        // the slow speed would have carried it tens of nm away.
+        let reach = 1e-3 * RADIUS;
+        let gap1 = CEILING - RADIUS - z(1);
+        let gap56 = p[6].translation[0] - p[5].translation[0] - 2.0 * RADIUS;
+        eprintln!("{force_path}: stuck gaps {gap1:.3e} m, {gap56:.3e} m");
+        assert!(
+            gap1.abs() < reach,
+            "{force_path}: ceiling sphere gap {gap1:e}"
+        );
+        assert!(
+            gap56.abs() < reach,
+            "{force_path}: sphere pair gap {gap56:e}"
+        );
+        assert!(
+            z(0) - RADIUS > 5.0 * reach,
+            "the floor's sphere left: {}",
+            z(0) - RADIUS
+        );
+    }
+}
+
+/// The particles' `plastic_work_j` in the frames is the plastic work alone, as the books keep
+/// it apart from the adhesive work: after an adhesive rebound (plastic and adhesive work both a
+/// good part of the loss) the sphere's plastic work in the last frame equals the books'
+/// `plastic_j` to round-off, on both force paths (with the adhesive work in it, it would miss
+/// by the adhesive work, which is checked to be more than a tenth of it).
+#[test]
+fn frame_plastic_work_leaves_the_adhesive_work_out() {
+    let v_s = sticking_speed();
+    for force_path in ["", "force_path = \"rapier\"\n"] {
+        let text = throw(2.0 * v_s, GAMMA, GAMMA, "force").replacen(
+            "headline = \"drop\"\n",
+            &format!("headline = \"drop\"\n{force_path}"),
+            1,
+        );
+        let dir = common::temp_dir("adhesion-frames");
+        let path = common::write(&dir, "throw.toml", &text);
+        let scene = parse_scene(&path, &text).unwrap_or_else(|e| panic!("{e}"));
+        let summary =
+            run_scene(&scene, &RunOptions::new(dir.join("out")).quiet(true)).expect("run");
+        let last_frame = particle_frames(&dir.join("out")).pop().expect("a frame");
+        let frame = mdr_sim::output::vtk::read_particles(&last_frame).unwrap();
+        let books = summary.energy.last().unwrap();
+        let plastic = frame.plastic_work[0];
+        eprintln!(
+            "{force_path}: frame plastic {plastic:.6e} J, books plastic {:.6e} J, adhesive {:.6e} J",
+            books.plastic_j, books.adhesive_j
+        );
+        assert!(books.adhesive_j > 0.1 * books.plastic_j, "{books:?}");
+        assert!(
+            (plastic - books.plastic_j).abs() < 1e-9 * books.plastic_j,
+            "{force_path}: frame {plastic:e} J, books {:e} J",
+            books.plastic_j
+        );
+    }
+}
+
+/// The particle frames (`frames/*.vtp`) under `dir`, sorted by path.
+fn particle_frames(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut found = Vec::new();
+    let mut todo = vec![dir.to_path_buf()];
+    while let Some(d) = todo.pop() {
+        for entry in std::fs::read_dir(&d).into_iter().flatten().flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                todo.push(path);
+            } else if path.extension().is_some_and(|e| e == "vtp")
+                && d.file_name().is_some_and(|n| n == "frames")
+            {
+                found.push(path);
+            }
+        }
+    }
+    found.sort();
+    found
 }

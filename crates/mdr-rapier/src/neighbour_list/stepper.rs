@@ -45,6 +45,7 @@ use crate::geometry::{
 use crate::kernel::{
     evaluate_pair, Arms, ContactKinematics, ContactWorks, PairHistory, PairWrench, SphereArms,
 };
+use crate::pair_models::PairNormals;
 use crate::particles::{MaterialHandle, ParticleShape, SphereBuilder};
 use crate::registration::add_force_flags;
 use crate::timestep::stable_time_step;
@@ -179,6 +180,8 @@ pub struct NeighbourListStepper<
     B: WorkBooks = Books,
 > {
     model: ContactModel<N, T, D>,
+    /// Normal models set per material pair, in place of `model.normal`.
+    pair_normals: PairNormals<N>,
     rolling: R,
     boundary: Boundary,
     skin: f64,
@@ -200,8 +203,10 @@ pub struct NeighbourListStepper<
     sphere_neck: f64,
     /// The same for particle–surface contacts: added to the candidates' reach.
     surface_neck: f64,
-    /// Whether a bound law is adhesive (a contact may hold apart).
+    /// Whether a bound sphere–sphere law is adhesive (a contact may hold apart).
     adhesive: bool,
+    /// Whether a bound particle–surface law is adhesive.
+    surface_adhesive: bool,
     /// Whether the cut-off covers the necks (always, but for a negative control in tests).
     neck_rule: bool,
     surfaces: Vec<NeighbourListSurface>,
@@ -277,6 +282,7 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> NeighbourListStepper<N
     pub fn new(model: ContactModel<N, T, D>, boundary: Boundary) -> Self {
         Self {
             model,
+            pair_normals: PairNormals::default(),
             rolling: NoRolling,
             boundary,
             skin: 0.0,
@@ -291,6 +297,7 @@ impl<N: NormalModel, T: TangentialModel, D: DampingModel> NeighbourListStepper<N
             sphere_neck: 0.0,
             surface_neck: 0.0,
             adhesive: false,
+            surface_adhesive: false,
             neck_rule: true,
             surfaces: Vec::new(),
             pairs: PairList::default(),
@@ -387,6 +394,7 @@ where
         let fresh = sphere_laws.is_empty();
         NeighbourListStepper {
             model: self.model,
+            pair_normals: self.pair_normals,
             rolling,
             boundary: self.boundary,
             skin: self.skin,
@@ -400,6 +408,7 @@ where
             sphere_neck: self.sphere_neck,
             surface_neck: self.surface_neck,
             adhesive: self.adhesive,
+            surface_adhesive: self.surface_adhesive,
             neck_rule: self.neck_rule,
             surface_masses: if fresh {
                 Vec::new()
@@ -528,6 +537,31 @@ where
         self.moduli[b.0 as usize * n + a.0 as usize] = value;
         self.laws_species = 0;
         Ok(())
+    }
+
+    /// Bind the contacts between materials `a` and `b` (sphere–sphere and sphere–surface,
+    /// either order) with the normal model `normal` in place of the contact model's (the
+    /// tangential and damping models stay the model's): e.g. the adhesive MDR law with the
+    /// pair's own work of adhesion. The laws are bound again at the next step; the pair loop
+    /// runs the same law type for every pair.
+    pub fn set_pair_normal(
+        &mut self,
+        a: MaterialHandle,
+        b: MaterialHandle,
+        normal: N,
+    ) -> Result<()> {
+        self.material(a)?;
+        self.material(b)?;
+        self.pair_normals.set(a, b, normal);
+        self.laws_species = 0;
+        self.needs_build = true;
+        Ok(())
+    }
+
+    /// The normal model that binds the contacts between materials `a` and `b`: the one set by
+    /// [`NeighbourListStepper::set_pair_normal`], else the contact model's.
+    pub fn pair_normal(&self, a: MaterialHandle, b: MaterialHandle) -> &N {
+        self.pair_normals.get(a, b).unwrap_or(&self.model.normal)
     }
 
     fn material(&self, handle: MaterialHandle) -> Result<&Material> {

@@ -192,9 +192,11 @@ impl HeadlineTracker for ColumnTracker {
 /// `m g` of one (the first particle's material): `Bo = 9 Δγ / (16 ρ g R²)`. `None` without
 /// adhesion or gravity.
 pub fn bond_number(scene: &Scene) -> Option<f64> {
-    let gamma = scene.contact.normal.value("work_of_adhesion_j_per_m2")?;
     let g = scene.gravity.norm();
     let first = scene.particles.first()?;
+    let gamma = scene
+        .contact
+        .pair_work_of_adhesion(first.material, first.material);
     if gamma <= 0.0 || g <= 0.0 {
         return None;
     }

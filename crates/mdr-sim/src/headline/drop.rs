@@ -65,17 +65,21 @@ impl HeadlineTracker for DropTracker {
             touched,
         } = *self;
         let law = scene.contact.normal.law;
-        let (mdr, work_of_adhesion) = if law == MdrElastoPlastic::DECLARATION.name {
-            (
-                MdrElastoPlastic::from_values(&scene.contact.normal.values).ok(),
-                0.0,
-            )
+        // The sphere–floor pair's work of adhesion (its materials' mixed value).
+        let work_of_adhesion = match (scene.particles.first(), scene.walls.first()) {
+            (Some(p), Some(wall)) => scene
+                .contact
+                .pair_work_of_adhesion(p.material, wall.material),
+            _ => 0.0,
+        };
+        let mdr = if law == MdrElastoPlastic::DECLARATION.name {
+            MdrElastoPlastic::from_values(&scene.contact.normal.values).ok()
         } else if law == AdhesiveMdr::DECLARATION.name {
             AdhesiveMdr::from_values(&scene.contact.normal.values)
                 .ok()
-                .map_or((None, 0.0), |a| (Some(*a.params()), a.work_of_adhesion()))
+                .map(|a| *a.params())
         } else {
-            (None, 0.0)
+            None
         };
         // Restitution mode resolves a stuck impact within a step, with no contact left to see:
         // the sphere is then at rest at the end.

@@ -11,6 +11,7 @@ use mdr_contact::damping::{
 use mdr_contact::normal::{
     AdhesiveMdrState, MdrState, NormalLaw, NormalModel, NormalResponse, ThorntonState,
 };
+use mdr_contact::params::Declared;
 use mdr_contact::rolling::{
     EpsdRolling, EpsdRollingState, NoRolling, RollingInput, RollingLaw, RollingModel,
     RollingResponse,
@@ -206,7 +207,7 @@ impl RollingLaw for AnyRollingLaw {
 /// normal law, so that a contact carries only its own law's history (8 bytes for MDR and Hertz)
 /// and the pair loop takes no branch on the law (docs/performance.md). Every normal model whose
 /// history has a checkpoint record ([`NormalHistoryRecord`]) is one.
-pub trait SceneNormal: NormalModel<Law: Clone> + 'static {
+pub trait SceneNormal: NormalModel<Law: Clone> + Declared + 'static {
     /// Whether a contact's history books adhesive work.
     const ADHESIVE: bool;
     /// The history to write for a contact.
@@ -219,7 +220,7 @@ pub trait SceneNormal: NormalModel<Law: Clone> + 'static {
 
 impl<N> SceneNormal for N
 where
-    N: NormalModel<Law: Clone> + 'static,
+    N: NormalModel<Law: Clone> + Declared + 'static,
     <N::Law as NormalLaw>::State: NormalHistoryRecord,
 {
     const ADHESIVE: bool = <<N::Law as NormalLaw>::State as NormalHistoryRecord>::ADHESIVE;

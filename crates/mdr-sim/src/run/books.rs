@@ -54,7 +54,9 @@ pub struct Books {
     pub adhesive_last: Vec<(AdhesiveKey, f64)>,
     /// Rapier path: every touching pair at the last update, sorted by key, with its books then.
     pub last: Vec<PairBooks>,
-    /// Plastic work per particle (J; on the neighbour-list path, of the contacts that ended).
+    /// Plastic work per particle (J), the adhesive work left out. On the neighbour-list path,
+    /// the dissipated work of the contacts that ended less the adhesive work booked so far of
+    /// every contact (a frame adds the live contacts' dissipated work).
     pub particle_plastic: Vec<f64>,
     /// Buffer of the contacts that ended in a step (empty between steps).
     #[serde(skip)]
@@ -257,12 +259,24 @@ impl Books {
             }
         }
         now.sort_unstable_by_key(|&(k, _)| k);
-        for &(key, w) in &now {
-            let before = match self.adhesive_last.binary_search_by_key(&key, |&(k, _)| k) {
+        for &((i, kind, other), w) in &now {
+            let before = match self
+                .adhesive_last
+                .binary_search_by_key(&(i, kind, other), |&(k, _)| k)
+            {
                 Ok(k) if self.adhesive_last[k].1 <= w => self.adhesive_last[k].1,
                 _ => 0.0,
             };
-            self.adhesive += w - before;
+            let added = w - before;
+            self.adhesive += added;
+            // The particles' plastic work leaves the adhesive work out: the contact's
+            // dissipated work, added when it ends or a frame is written, includes it.
+            if kind == 0 {
+                self.particle_plastic[i as usize] -= added;
+            } else {
+                self.particle_plastic[i as usize] -= 0.5 * added;
+                self.particle_plastic[other as usize] -= 0.5 * added;
+            }
         }
         self.adhesive_last = now;
     }

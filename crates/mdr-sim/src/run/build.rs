@@ -171,6 +171,25 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
             Coupling::Restitution(h) => h.particles_mut().insert_material(*m),
         })
         .collect();
+    // Each material pair's own normal values (the adhesive law with the pair's mixed work of
+    // adhesion), where the scene gives them.
+    for a in 0..materials.len() {
+        for b in a..materials.len() {
+            let Some(values) = scene.contact.pair_normal_values(a, b) else {
+                continue;
+            };
+            let (ma, mb) = (materials[a], materials[b]);
+            match &mut coupling {
+                Coupling::RapierPipeline(s) => s.set_pair_normal(ma, mb, &values)?,
+                Coupling::NeighbourList(s) => s.set_pair_normal(ma, mb, &values)?,
+                Coupling::Restitution(_) => {
+                    return Err(SimError::Build(
+                        "restitution mode runs one work of adhesion for every pair".to_owned(),
+                    ))
+                }
+            }
+        }
+    }
 
     let mut wall_bodies = Vec::new();
     let mut wall_of_collider = Vec::new();

@@ -72,6 +72,14 @@ pub trait NeighbourListScene: Send + Sync {
         material: MaterialHandle,
         surface: SurfaceOfRevolution,
     ) -> Result<ColliderHandle, SimError>;
+    /// Bind the contacts between materials `a` and `b` with the scene's normal law at
+    /// parameter `values` (declared order) in place of the scene's values.
+    fn set_pair_normal(
+        &mut self,
+        a: MaterialHandle,
+        b: MaterialHandle,
+        values: &[f64],
+    ) -> Result<(), SimError>;
     /// Add a sphere.
     fn insert_sphere(&mut self, sphere: SphereBuilder) -> Result<(), SimError>;
     /// Set rapier's integration parameters for step `dt`.
@@ -170,6 +178,19 @@ impl<N: SceneNormal, R: SceneRolling> NeighbourListScene for NeighbourListSceneS
     ) -> Result<ColliderHandle, SimError> {
         Ok(NeighbourListStepper::insert_surface_of_revolution(
             self, world, collider, parent, material, surface,
+        )?)
+    }
+    fn set_pair_normal(
+        &mut self,
+        a: MaterialHandle,
+        b: MaterialHandle,
+        values: &[f64],
+    ) -> Result<(), SimError> {
+        Ok(NeighbourListStepper::set_pair_normal(
+            self,
+            a,
+            b,
+            N::from_values(values)?,
         )?)
     }
     fn insert_sphere(&mut self, sphere: SphereBuilder) -> Result<(), SimError> {
@@ -309,6 +330,14 @@ pub trait RapierPipelineScene: Send + Sync {
         parent: Option<RigidBodyHandle>,
         material: MaterialHandle,
     ) -> Result<ColliderHandle, SimError>;
+    /// Bind the contacts between materials `a` and `b` with the scene's normal law at
+    /// parameter `values` (declared order) in place of the scene's values.
+    fn set_pair_normal(
+        &mut self,
+        a: MaterialHandle,
+        b: MaterialHandle,
+        values: &[f64],
+    ) -> Result<(), SimError>;
     /// Insert a sphere body and collider.
     fn insert_sphere(
         &mut self,
@@ -371,6 +400,19 @@ impl<N: SceneNormal> RapierPipelineScene for RapierPipelineSceneStepper<N> {
     ) -> Result<ColliderHandle, SimError> {
         Ok(ForceModeStepper::insert_surface(
             self, world, collider, parent, material,
+        )?)
+    }
+    fn set_pair_normal(
+        &mut self,
+        a: MaterialHandle,
+        b: MaterialHandle,
+        values: &[f64],
+    ) -> Result<(), SimError> {
+        Ok(ForceModeStepper::set_pair_normal(
+            self,
+            a,
+            b,
+            N::from_values(values)?,
         )?)
     }
     fn insert_sphere(

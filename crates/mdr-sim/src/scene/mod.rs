@@ -58,7 +58,45 @@ pub struct ContactSpec {
     pub tangential_damping_ratio: f64,
     /// Rolling-resistance coefficient `μ_r` (0: off).
     pub rolling_friction: f64,
+    /// Each material's work of adhesion `Δγ_i` (J/m², in [`Scene::materials`] order) when the
+    /// scene gives adhesion per material: the contacts of materials `i` and `j` then run
+    /// [`ContactSpec::normal`]'s law with the pair's mixed `Δγ_ij = √(Δγ_i Δγ_j)`
+    /// ([`ContactSpec::pair_normal_values`]). Empty when every pair runs `normal` as it is.
+    pub works_of_adhesion: Vec<f64>,
 }
+
+impl ContactSpec {
+    /// The work of adhesion (J/m²) of the contacts between materials `a` and `b`: their mixed
+    /// `Δγ_ij` where the scene gives adhesion per material, else the normal law's
+    /// `work_of_adhesion_j_per_m2` (0 for a law without adhesion).
+    pub fn pair_work_of_adhesion(&self, a: usize, b: usize) -> f64 {
+        match (self.works_of_adhesion.get(a), self.works_of_adhesion.get(b)) {
+            (Some(&wa), Some(&wb)) => validate::mixed_work_of_adhesion(wa, wb),
+            _ => self.normal.value(WORK_OF_ADHESION_KEY).unwrap_or(0.0),
+        }
+    }
+
+    /// The normal law's parameter values for the contacts between materials `a` and `b`:
+    /// [`ContactSpec::normal`]'s with the pair's mixed work of adhesion, where the scene gives
+    /// adhesion per material; `None` where the pair runs `normal`'s values as they are.
+    pub fn pair_normal_values(&self, a: usize, b: usize) -> Option<Vec<f64>> {
+        if self.works_of_adhesion.is_empty() {
+            return None;
+        }
+        let entry = crate::laws::registry::normal_law(self.normal.law)?;
+        let k = entry
+            .declaration
+            .params
+            .iter()
+            .position(|p| p.key == WORK_OF_ADHESION_KEY)?;
+        let mut values = self.normal.values.clone();
+        values[k] = self.pair_work_of_adhesion(a, b);
+        Some(values)
+    }
+}
+
+/// The scene key of the adhesive law's work of adhesion (`[contact]` and `[[material]]`).
+pub const WORK_OF_ADHESION_KEY: &str = "work_of_adhesion_j_per_m2";
 
 /// A checked scene: every value within its range, particles placed without overlap.
 #[derive(Debug, Clone, PartialEq)]

@@ -229,6 +229,88 @@ mod tests {
         assert_eq!(bench_bed(&bed, &tiled).unwrap().particles, 800);
     }
 
+    /// The reference system with every sphere thrown at `speed` in a direction of its own,
+    /// stepped `steps` times: the state checksum of [`BenchFigures::state_checksum`].
+    struct Thrown {
+        speed: f64,
+        steps: usize,
+    }
+
+    impl ReferenceRun for Thrown {
+        type Output = Result<String, BedError>;
+
+        fn run<N, R>(
+            self,
+            mut stepper: crate::neighbour_list::NeighbourListStepper<
+                N,
+                mdr_contact::tangential::Mindlin,
+                mdr_contact::damping::HertzianViscous,
+                R,
+            >,
+            mut world: rapier3d_f64::prelude::PhysicsWorld,
+        ) -> Self::Output
+        where
+            N: mdr_contact::normal::NormalModel,
+            N::Law: Clone,
+            R: mdr_contact::rolling::RollingModel,
+            R::Law: Clone,
+            <R::Law as mdr_contact::rolling::RollingLaw>::State: RollingTorque,
+        {
+            for (i, v) in stepper.particles_mut().linvel.iter_mut().enumerate() {
+                let a = i as f64;
+                *v = self.speed * Vector3::new((1.3 * a).sin(), (2.1 * a).cos(), (0.7 * a).sin());
+            }
+            for _ in 0..self.steps {
+                stepper.step(&mut world)?;
+            }
+            let p = stepper.particles();
+            Ok(state_checksum(
+                p.position.iter().chain(&p.linvel).chain(&p.angvel),
+            ))
+        }
+    }
+
+    /// On a bed whose spheres collide and part (thrown at one unit of speed across the lattice's
+    /// gaps of a tenth of a diameter, 1500 steps: every sphere meets its neighbours and
+    /// rebounds), the adhesive law's contacts unload past touching into tension, so the work
+    /// of adhesion reaches the trajectories: `Δγ = 0.5` and `2` give different checksums, and
+    /// so does `Δγ = 0.5` against the MDR law; `Δγ = 0` gives the MDR law's checksum exactly.
+    #[test]
+    fn work_of_adhesion_reaches_the_trajectories_of_a_thrown_bed() {
+        let bed = lattice_bed(&BedSpec {
+            count: 200,
+            ..BedSpec::default()
+        })
+        .unwrap();
+        let checksum = |law| {
+            let settings = BenchSettings {
+                law,
+                ..BenchSettings::default()
+            };
+            run_reference_system(
+                &bed,
+                &settings,
+                Thrown {
+                    speed: 1.0,
+                    steps: 1500,
+                },
+            )
+            .unwrap()
+            .unwrap()
+        };
+        let adhesive = |work_of_adhesion| {
+            checksum(BenchLaw::AdhesiveMdr {
+                qc: 10.0,
+                work_of_adhesion,
+            })
+        };
+        let mdr = checksum(BenchLaw::Mdr { qc: 10.0 });
+        let (weak, strong) = (adhesive(0.5), adhesive(2.0));
+        assert_ne!(weak, strong, "Δγ = 0.5 and 2 ran the same trajectories");
+        assert_ne!(weak, mdr, "Δγ = 0.5 ran the MDR law's trajectories");
+        assert_eq!(adhesive(0.0), mdr, "Δγ = 0 is the MDR law");
+    }
+
     #[test]
     fn sizes_beyond_the_bed_limit_are_refused_before_allocation() {
         let huge = lattice_bed(&BedSpec {

@@ -139,7 +139,7 @@ where
         let surfaces = &self.surfaces;
         let nsurf = surfaces.len();
         let record = self.ended.is_some();
-        let adhesive = self.adhesive;
+        let adhesive = self.surface_adhesive;
         let SurfacePairs {
             particle,
             surface,

@@ -34,7 +34,9 @@ where
                         a.radius * b.radius / (a.radius + b.radius),
                         a.mass * b.mass / (a.mass + b.mass),
                     )?;
-                    let law = self.model.bind(&pair)?;
+                    let law = self
+                        .pair_normals
+                        .bind(&self.model, a.material, b.material, &pair)?;
                     let pull_off = law.normal.pull_off_force();
                     adhesive |= pull_off > 0.0;
                     neck = neck.max(neck_reach(pull_off, &pair));
@@ -64,7 +66,7 @@ where
         }
         self.surface_masses = masses;
         self.surface_laws.clear();
-        let mut neck = 0.0_f64;
+        let (mut neck, mut adhesive) = (0.0_f64, false);
         for a in table {
             for (s, &m2) in self.surfaces.iter().zip(&self.surface_masses) {
                 let (e, g) = self.moduli[a.material.0 as usize * nm + s.material.0 as usize];
@@ -74,12 +76,17 @@ where
                     a.mass
                 };
                 let pair = ContactPair::new(e, g, a.radius, mass)?;
-                let law = self.model.bind(&pair)?;
-                neck = neck.max(neck_reach(law.normal.pull_off_force(), &pair));
+                let law = self
+                    .pair_normals
+                    .bind(&self.model, a.material, s.material, &pair)?;
+                let pull_off = law.normal.pull_off_force();
+                adhesive |= pull_off > 0.0;
+                neck = neck.max(neck_reach(pull_off, &pair));
                 self.surface_laws.push((law, self.rolling.bind(&pair)?));
             }
         }
         self.surface_neck = if self.neck_rule { neck } else { 0.0 };
+        self.surface_adhesive = adhesive;
         Ok(())
     }
 

@@ -1,9 +1,10 @@
 //! The work of adhesion of a scene's contacts: per material (`[[material]]
 //! work_of_adhesion_j_per_m2`, `Δγ_i`, default 0), mixed per pair by the geometric mean
 //! `Δγ_ij = √(Δγ_i Δγ_j)` (docs/theory.md §9, "Pair mixing"). A scene whose materials give
-//! adhesion runs the adhesive MDR law (`adhesive_mdr`) with the pairs' `Δγ` in place of
-//! `normal = "mdr"`; the couplings bind one law for every pair, so the pairs that can meet
-//! must mix to one `Δγ`.
+//! adhesion runs the adhesive MDR law (`adhesive_mdr`) in place of `normal = "mdr"`, bound per
+//! material pair with that pair's `Δγ_ij` (a pair with `Δγ_ij = 0` runs the MDR law's result
+//! exactly). Restitution mode takes one `Δγ` for every impact, so there the pairs that can
+//! meet must mix to one value.
 
 use super::*;
 
@@ -101,7 +102,8 @@ impl Checker<'_, '_> {
         if pairs.is_empty() || hi == 0.0 {
             return;
         }
-        if hi - lo > SAME_MIX * hi {
+        let restitution = file.run.coupling == CouplingMode::Restitution;
+        if restitution && hi - lo > SAME_MIX * hi {
             let list: Vec<String> = pairs
                 .iter()
                 .map(|&(a, b, g)| format!("{}–{}: {g:.6e} J/m²", name(a), name(b)))
@@ -110,19 +112,26 @@ impl Checker<'_, '_> {
                 &key,
                 format!(
                     "the material pairs that meet in this scene mix (Δγ_ij = √(Δγ_i Δγ_j)) to \
-                     different works of adhesion ({}); a scene runs one Δγ for every pair: give \
-                     the materials that meet values that mix to one Δγ (e.g. equal ones)",
+                     different works of adhesion ({}); restitution mode (coupling = \
+                     \"restitution\") runs one Δγ for every impact: give the materials that meet \
+                     values that mix to one Δγ (e.g. equal ones), or use coupling = \"force\", \
+                     which binds each pair's own Δγ",
                     list.join(", ")
                 ),
             );
             return;
         }
+        // The scene's law carries the largest value of the pairs that meet; in force mode each
+        // material pair is bound with its own.
         let values = vec![contact.normal.values[0], contact.normal.values[1], hi];
         match AdhesiveMdr::from_values(&values) {
             Ok(_) => {
                 contact.normal = NormalSpec {
                     law: AdhesiveMdr::DECLARATION.name,
                     values,
+                };
+                if !restitution {
+                    contact.works_of_adhesion = gammas.to_vec();
                 }
             }
             Err(e) => self.error(&key, e.to_string()),

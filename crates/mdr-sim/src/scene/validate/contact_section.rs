@@ -126,6 +126,7 @@ impl Checker<'_, '_> {
             damping: damping?,
             tangential_damping_ratio: tangential_damping?,
             rolling_friction: rolling?,
+            works_of_adhesion: Vec::new(),
         })
     }
 }
