@@ -23,6 +23,8 @@ mod bed;
 mod bench;
 mod device;
 mod law;
+mod scene;
+mod system;
 
 pub use bed::{GpuBed, GpuOptions, GpuPair, GpuState};
 pub use bench::{
@@ -31,4 +33,5 @@ pub use bench::{
 };
 pub use device::{GpuContext, GpuError};
 pub use law::{GpuLaws, GpuNormalLaw};
+pub use scene::{gpu_scene_support, GpuScene};
 pub use mdr_rapier::neighbour_list::bed::BENCH_THETA_RATIO;
