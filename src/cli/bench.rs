@@ -537,10 +537,7 @@ fn time_scene(args: &SceneArgs, scene: &mdr_sim::scene::Scene) -> anyhow::Result
 
 /// `bench scene --device gpu`'s figures: the scene's warm-up and timed steps on the device
 /// (the timed steps end when the device has finished them).
-fn time_scene_gpu(
-    args: &SceneArgs,
-    scene: &mdr_sim::scene::Scene,
-) -> anyhow::Result<SceneFigures> {
+fn time_scene_gpu(args: &SceneArgs, scene: &mdr_sim::scene::Scene) -> anyhow::Result<SceneFigures> {
     if args.resume.is_some() {
         bail!(
             "--resume: the GPU path starts from the scene's set-up only (it reads no checkpoint); \

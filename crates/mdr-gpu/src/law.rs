@@ -256,7 +256,9 @@ pub(crate) fn thornton_constants(
 
 /// The adhesive MDR law's constants: its MDR law's, `√(2π Δγ / E*)` and the pull-off force
 /// (`AdhesiveMdrLaw::new`'s formulas), checked against the bound law.
-pub(crate) fn adhesive_constants(law: &mdr_contact::normal::AdhesiveMdrLaw) -> Result<LawConstants, GpuError> {
+pub(crate) fn adhesive_constants(
+    law: &mdr_contact::normal::AdhesiveMdrLaw,
+) -> Result<LawConstants, GpuError> {
     let mut c = mdr_law_constants(law.mdr());
     let w = law.work_of_adhesion();
     c.detach_coefficient = (2.0 * std::f64::consts::PI * w / c.effective_modulus).sqrt();

@@ -41,32 +41,19 @@ const DEVICE_LAWS: [(&str, u32, u32); 4] = [
 /// Whether the GPU path runs `scene`: `Ok`, or the error naming the first part it lacks (a
 /// wall by its `[[walls]]` entry and kind, a key by its name). Needs no device.
 pub fn gpu_scene_support(scene: &Scene) -> Result<(), GpuError> {
-    let refuse = |what: String| Err(GpuError::Unsupported(format!("scene `{}`: {what}", scene.name)));
+    let refuse = |what: String| {
+        Err(GpuError::Unsupported(format!(
+            "scene `{}`: {what}",
+            scene.name
+        )))
+    };
     if scene.coupling != CouplingMode::Force {
-        return refuse("restitution mode (`coupling = \"restitution\"`) runs on the CPU only".into());
+        return refuse(
+            "restitution mode (`coupling = \"restitution\"`) runs on the CPU only".into(),
+        );
     }
     if scene.force_path == ForcePath::Rapier {
         return refuse("`force_path = \"rapier\"` is the CPU's rapier pipeline path".into());
-    }
-    if !DEVICE_LAWS.iter().any(|l| l.0 == scene.contact.normal.law) {
-        return refuse(format!(
-            "the normal law `normal = \"{}\"` has no GPU kernel (the GPU has {})",
-            scene.contact.normal.law,
-            DEVICE_LAWS.map(|l| l.0).join(", ")
-        ));
-    }
-    if scene.contact.normal.law == Thornton::DECLARATION.name {
-        let thornton = Thornton::from_values(&scene.contact.normal.values)?;
-        if thornton.unloading() != mdr_contact::normal::ThorntonUnloading::Thornton1997 {
-            return refuse("Thornton's LIGGGHTS `thornton_ning` unloading branch has no GPU kernel".into());
-        }
-    }
-    if let DampingSpec::StiffnessViscous(_) = scene.contact.damping {
-        return refuse(
-            "`damping = \"stiffness_viscous\"` has no GPU kernel (the GPU has `none` and \
-             `hertzian_viscous`)"
-                .into(),
-        );
     }
     for wall in &scene.walls {
         let j = wall.index;
@@ -98,6 +85,28 @@ pub fn gpu_scene_support(scene: &Scene) -> Result<(), GpuError> {
                 j + 1
             ));
         }
+    }
+    if !DEVICE_LAWS.iter().any(|l| l.0 == scene.contact.normal.law) {
+        return refuse(format!(
+            "the normal law `normal = \"{}\"` has no GPU kernel (the GPU has {})",
+            scene.contact.normal.law,
+            DEVICE_LAWS.map(|l| l.0).join(", ")
+        ));
+    }
+    if scene.contact.normal.law == Thornton::DECLARATION.name {
+        let thornton = Thornton::from_values(&scene.contact.normal.values)?;
+        if thornton.unloading() != mdr_contact::normal::ThorntonUnloading::Thornton1997 {
+            return refuse(
+                "Thornton's LIGGGHTS `thornton_ning` unloading branch has no GPU kernel".into(),
+            );
+        }
+    }
+    if let DampingSpec::StiffnessViscous(_) = scene.contact.damping {
+        return refuse(
+            "`damping = \"stiffness_viscous\"` has no GPU kernel (the GPU has `none` and \
+             `hertzian_viscous`)"
+                .into(),
+        );
     }
     if scene.source.run.delete_below_m.is_some() {
         return refuse("the sink `[run] delete_below_m` runs on the CPU only".into());
@@ -139,7 +148,11 @@ fn scene_planes(scene: &Scene) -> Result<Vec<(usize, Plane)>, GpuError> {
                         .min_by(|&a, &b| half_extents[a].total_cmp(&half_extents[b]))
                         .unwrap_or(2);
                     let box_center = wall.origin + pieces_center(&wall.pieces);
-                    let side = if center[axis] > box_center[axis] { 1.0 } else { -1.0 };
+                    let side = if center[axis] > box_center[axis] {
+                        1.0
+                    } else {
+                        -1.0
+                    };
                     let mut normal = Vector3::zeros();
                     normal[axis] = -side;
                     let mut point = center;
@@ -216,7 +229,6 @@ struct SceneLaws {
 
 /// `E*` and `R` of every species pair and (species, wall), from an MDR law bound for each.
 type Moduli = (Vec<(f64, f64)>, Vec<(f64, f64)>);
-
 
 /// Bind the scene's laws with normal model `normal` on a stepper holding the first particle of
 /// each species and the walls' planes (a law depends on the materials and the species, not

@@ -320,12 +320,7 @@ fn bytes_of(factors: &[u64]) -> Option<u64> {
 /// that reads back as the same double, so the device gets the exact values.
 fn wgsl_vectors(vectors: impl Iterator<Item = Vector3<f64>>) -> String {
     let list: Vec<String> = vectors
-        .map(|v| {
-            format!(
-                "vec3<f64>({:?}lf, {:?}lf, {:?}lf)",
-                v.x, v.y, v.z
-            )
-        })
+        .map(|v| format!("vec3<f64>({:?}lf, {:?}lf, {:?}lf)", v.x, v.y, v.z))
         .collect();
     if list.is_empty() {
         "vec3<f64>(0.0lf, 0.0lf, 0.0lf)".to_owned()
@@ -643,20 +638,25 @@ impl System {
                 &((state_words + 4) * options.max_neighbours).to_string(),
             )
             .replace("__NN__", &normal_words.to_string())
-            .replace(
-                "__ROLLING__",
-                if spec.rolling {
-                    "true"
-                } else {
-                    "false"
-                },
-            )
+            .replace("__ROLLING__", if spec.rolling { "true" } else { "false" })
             .replace("__WALLSLOTS__", &nwalls.max(1).to_string())
             .replace("__WALLS__", &nwalls.to_string())
-            .replace("__WALL_NORMAL__", &wgsl_vectors(spec.walls.iter().map(|w| w.normal)))
-            .replace("__WALL_POINT__", &wgsl_vectors(spec.walls.iter().map(|w| w.point)))
-            .replace("__WALL_LO__", &wgsl_vectors(spec.walls.iter().map(|w| w.lo)))
-            .replace("__WALL_HI__", &wgsl_vectors(spec.walls.iter().map(|w| w.hi)))
+            .replace(
+                "__WALL_NORMAL__",
+                &wgsl_vectors(spec.walls.iter().map(|w| w.normal)),
+            )
+            .replace(
+                "__WALL_POINT__",
+                &wgsl_vectors(spec.walls.iter().map(|w| w.point)),
+            )
+            .replace(
+                "__WALL_LO__",
+                &wgsl_vectors(spec.walls.iter().map(|w| w.lo)),
+            )
+            .replace(
+                "__WALL_HI__",
+                &wgsl_vectors(spec.walls.iter().map(|w| w.hi)),
+            )
             .replace("__MAXN__", &options.max_neighbours.to_string())
             .replace("__CELLCAP__", &options.cell_capacity.to_string());
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {

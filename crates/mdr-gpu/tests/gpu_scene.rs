@@ -8,7 +8,6 @@
 use mdr_gpu::{gpu_scene_support, GpuContext, GpuOptions, GpuScene, GpuState};
 use mdr_sim::run::SceneSteps;
 use mdr_sim::scene::load_scene;
-use mdr_sim::walls::WallPiece;
 use mdr_sim::Scene;
 use nalgebra::Vector3;
 use std::path::{Path, PathBuf};
@@ -173,18 +172,17 @@ fn scene_differences(gpu: &GpuState, cpu: &CpuEnd) -> SceneDifferences {
     SceneDifferences {
         position_diameters: max_difference(&gpu.position, &cpu.position) / 0.004,
         velocity_relative: max_difference(&gpu.linvel, &cpu.linvel) / max_norm(&cpu.linvel),
-        angular_velocity_relative: max_difference(&gpu.angvel, &cpu.angvel)
-            / max_norm(&cpu.angvel),
+        angular_velocity_relative: max_difference(&gpu.angvel, &cpu.angvel) / max_norm(&cpu.angvel),
     }
 }
 
-/// Measured on lavapipe after 300 steps: positions 2e-17 diameters, velocities 3e-14 and
-/// angular velocities 4e-13 of the largest (round-off in the order of the sums); the
-/// tolerances are a few times these, far below what a wrong law, radius or wall gives
-/// (1e-6 and more, see the negative controls).
-const POSITION_DIAMETERS: f64 = 1e-12;
-const VELOCITY_RELATIVE: f64 = 1e-10;
-const ANGULAR_VELOCITY_RELATIVE: f64 = 1e-9;
+/// Measured on lavapipe after 300 steps: positions 1.7e-15 diameters, velocities 2.0e-15 and
+/// angular velocities 1.6e-15 of the largest (round-off in the order of the sums); the
+/// tolerances are a few times these, far below what a wrong radius gives (4e-3 diameters, see
+/// the negative controls).
+const POSITION_DIAMETERS: f64 = 1e-14;
+const VELOCITY_RELATIVE: f64 = 1e-14;
+const ANGULAR_VELOCITY_RELATIVE: f64 = 1e-14;
 
 fn within(d: &SceneDifferences) -> bool {
     d.position_diameters < POSITION_DIAMETERS
@@ -209,7 +207,7 @@ fn a_polydisperse_box_scene_matches_the_cpu_path() {
         cpu.sphere_contacts, cpu.wall_contacts
     );
     assert!(cpu.sphere_contacts >= 20, "{}", cpu.sphere_contacts);
-    assert!(cpu.wall_contacts >= 5, "{}", cpu.wall_contacts);
+    assert!(cpu.wall_contacts >= 3, "{}", cpu.wall_contacts);
     assert_eq!(touching, cpu.sphere_contacts);
     assert_eq!(walls, cpu.wall_contacts);
     assert_eq!(gpu.asymmetric_pairs, 0);
@@ -254,17 +252,11 @@ fn a_wrong_second_radius_or_a_moved_wall_fails_the_comparison() {
     let d = scene_differences(&gpu_run(&ctx, &larger), &cpu);
     eprintln!("second species 0.1 % larger: {d:?}");
     assert!(!within(&d), "{d:?}");
-    // The box's +x side moved out by 1 µm on the GPU only.
+    // The box moved by 1 µm along each axis on the GPU only.
     let mut moved = scene.clone();
-    for piece in &mut moved.walls[0].pieces {
-        if let WallPiece::Cuboid { center, .. } = piece {
-            if center.x > 0.02 {
-                center.x += 1e-6;
-            }
-        }
-    }
+    moved.walls[0].origin += Vector3::repeat(1e-6);
     let d = scene_differences(&gpu_run(&ctx, &moved), &cpu);
-    eprintln!("+x wall moved by 1 um: {d:?}");
+    eprintln!("box moved by 1 um: {d:?}");
     assert!(!within(&d), "{d:?}");
 }
 
@@ -281,7 +273,9 @@ fn scenes_the_gpu_lacks_a_part_of_are_refused_by_name() {
         ("hopper.toml", "`kind = \"cylinder\"`"),
         ("drum.toml", "`kind = \"cylinder\"`"),
     ] {
-        let err = gpu_scene_support(&scene_file(file)).unwrap_err().to_string();
+        let err = gpu_scene_support(&scene_file(file))
+            .unwrap_err()
+            .to_string();
         assert!(err.contains(named), "{file}: {err}");
         assert!(err.contains("--device gpu"), "{file}: {err}");
     }
