@@ -5,7 +5,8 @@
 # CPU path (`--threads` = every core) on the same beds with fewer steps; the 90,000-sphere GPU
 # run is also compared with the CPU path (`--compare-cpu`: the largest position difference).
 # Then the GPU path's other contact models on the 10⁶-sphere bed: Thornton's law, the adhesive
-# MDR law, and MDR with rolling resistance (`--rolling 0.2`).
+# MDR law, and MDR with rolling resistance (`--rolling 0.2`). Then two scenes through
+# `bench scene --device gpu` (scenes/bed.toml, scenes/column.toml) against the CPU path.
 # Prints one table: particle-steps per second, ms per step and bytes per sphere (device buffers
 # for the GPU, the stepper's buffers for the CPU), and keeps every JSON line.
 #
@@ -103,5 +104,36 @@ for model in "thornton --law thornton" "adhesive-mdr --law adhesive-mdr" \
   printf '%-6s %-12s %10s %7s %16.2f %10.3f %14.0f %s\n' gpu "$name" "$(field particles "$line")" \
     "$msteps" "$(awk "BEGIN{print $(field particle_steps_per_s "$line")/1e6}")" \
     "$(field ms_per_step "$line")" "$(field device_bytes_per_particle "$line")" "$note"
+done
+
+# Scenes on the GPU (`bench scene --device gpu`): the settled bed as a scene (10,000 spheres,
+# periodic box, the floor plane) and the column collapse (21,347 spheres on a floor, open
+# space, rolling resistance), each against the CPU path on every core.
+if [ "$quick" = 1 ]; then
+  scases=("bed 20 5 10 2")
+else
+  scases=("bed 4000 200 400 20" "column 4000 1000 400 100")
+fi
+for c in "${scases[@]}"; do
+  read -r name gsteps gwarm csteps cwarm <<< "$c"
+  for device in gpu cpu; do
+    if [ "$device" = gpu ]; then
+      steps=$gsteps warm=$gwarm
+    else
+      steps=$csteps warm=$cwarm
+    fi
+    line=$("$bin" bench scene "$repo/scenes/$name.toml" --device "$device" --threads "$threads" \
+      --steps "$steps" --warmup "$warm" --json)
+    echo "{\"case\":\"scene_${name}_$device\",${line:1}" >> "$jsonl"
+    if [ "$device" = gpu ]; then
+      note="$(field adapter "$line")" bytes="$(field device_bytes_per_particle "$line")"
+    else
+      note="$threads threads" bytes=0
+    fi
+    printf '%-6s %-12s %10s %7s %16.2f %10.3f %14.0f %s\n' "$device" "scene:$name" \
+      "$(field particles "$line")" "$steps" \
+      "$(awk "BEGIN{print $(field particle_steps_per_s "$line")/1e6}")" \
+      "$(field ms_per_step "$line")" "$bytes" "$note"
+  done
 done
 echo "JSON lines: $jsonl"

@@ -48,6 +48,16 @@ pub struct SceneArgs {
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Where the steps run (`gpu`: force-mode scenes whose walls are planes and boxes, on a
+    /// device with 64-bit floats; docs/gpu.md).
+    #[arg(long, value_enum, default_value_t = DeviceArg::Cpu)]
+    pub device: DeviceArg,
+    /// With `--device gpu`: neighbour slots per particle (1 to 64).
+    #[arg(long, default_value_t = 16)]
+    pub max_neighbours: u32,
+    /// With `--device gpu`: particles per cell of the binning grid (1 to 64).
+    #[arg(long, default_value_t = 12)]
+    pub cell_capacity: u32,
 }
 
 /// Contact law of `bench bed`.
@@ -425,6 +435,12 @@ struct SceneFigures {
     /// as LAMMPS's timing breakdown.
     breakdown_ns_per_particle_step: Option<Breakdown>,
     scene: String,
+    /// `"cpu"` or `"gpu"`.
+    device: &'static str,
+    /// The GPU adapter (`--device gpu`).
+    adapter: Option<String>,
+    /// Bytes of device buffers per sphere (`--device gpu`).
+    device_bytes_per_particle: Option<f64>,
 }
 
 /// Wall time per particle-step of each part of a neighbour-list step (ns): the stepper's
@@ -513,6 +529,78 @@ fn time_scene(args: &SceneArgs, scene: &mdr_sim::scene::Scene) -> anyhow::Result
             .step_timings()
             .map(|t| Breakdown::new(&t, seconds, work)),
         scene: scene.name.clone(),
+        device: "cpu",
+        adapter: None,
+        device_bytes_per_particle: None,
+    })
+}
+
+/// `bench scene --device gpu`'s figures: the scene's warm-up and timed steps on the device
+/// (the timed steps end when the device has finished them).
+fn time_scene_gpu(args: &SceneArgs, scene: &mdr_sim::scene::Scene) -> anyhow::Result<SceneFigures> {
+    if args.resume.is_some() {
+        bail!(
+            "--resume: the GPU path starts from the scene's set-up only (it reads no checkpoint); \
+             leave out --resume or use --device cpu"
+        );
+    }
+    let ctx = mdr_gpu::GpuContext::new()?;
+    let options = mdr_gpu::GpuOptions {
+        max_neighbours: args.max_neighbours,
+        cell_capacity: args.cell_capacity,
+        laws: None,
+    };
+    let mut gpu = mdr_gpu::GpuScene::new(&ctx, scene, &options)?;
+    let as_steps = |n: u64, flag: &str| {
+        usize::try_from(n).map_err(|_| anyhow!("{flag} = {n} is outside the allowed range"))
+    };
+    gpu.step(as_steps(args.warmup, "--warmup")?)?;
+    let rebuilds0 = gpu.rebuilds()?;
+    let cpu0 = process_cpu_seconds();
+    let start = Instant::now();
+    gpu.step(as_steps(args.steps, "--steps")?)?;
+    let seconds = start.elapsed().as_secs_f64();
+    let cpu_seconds = match (cpu0, process_cpu_seconds()) {
+        (Some(a), Some(b)) => b - a,
+        _ => f64::NAN,
+    };
+    let rebuilds = gpu.rebuilds()? - rebuilds0;
+    let state = gpu.state()?;
+    let n = gpu.len();
+    let work = (n as u64 * args.steps) as f64;
+    let listed = state.pairs.len();
+    let touching = state.pairs.iter().filter(|p| p.active).count();
+    Ok(SceneFigures {
+        particle_steps_per_s: work / seconds,
+        cpu_particle_steps_per_s: work / cpu_seconds,
+        ms_per_step: 1e3 * seconds / args.steps as f64,
+        contacts_per_particle: 2.0 * touching as f64 / n as f64,
+        wall_contacts: state.floor.iter().filter(|w| w.is_some()).count(),
+        peak_rss_mb: peak_rss_mb(),
+        threads: 1,
+        particles: n,
+        steps: args.steps,
+        warmup: args.warmup,
+        cpu_seconds,
+        wall_seconds: seconds,
+        path: "neighbour_list",
+        start_step: 0,
+        max_speed_m_per_s: Some(state.linvel.iter().map(|v| v.norm()).fold(0.0, f64::max)),
+        rebuilds: Some(rebuilds),
+        listed_pairs_per_particle: Some(2.0 * listed as f64 / n as f64),
+        breakdown_ns_per_particle_step: None,
+        scene: scene.name.clone(),
+        device: "gpu",
+        adapter: Some(format!(
+            "{}{}",
+            ctx.adapter_name(),
+            if ctx.is_cpu_device() {
+                " (a CPU device: correct, but no measure of a GPU's speed)"
+            } else {
+                ""
+            }
+        )),
+        device_bytes_per_particle: Some(gpu.device_bytes() as f64 / n as f64),
     })
 }
 
@@ -525,9 +613,14 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
     }
     let pool = super::rayon_pool(args.threads)?;
     let scene = mdr_sim::scene::load_scene(&args.scene).map_err(|p| anyhow::anyhow!("{p}"))?;
-    // The run's steps with the pool's other threads awake between passes, as `sim run` has them.
-    let figures = pool
-        .install(|| mdr_rapier::neighbour_list::with_workers_awake(|| time_scene(args, &scene)))?;
+    let figures = match args.device {
+        DeviceArg::Gpu => time_scene_gpu(args, &scene)?,
+        // The run's steps with the pool's other threads awake between passes, as `sim run`
+        // has them.
+        DeviceArg::Cpu => pool.install(|| {
+            mdr_rapier::neighbour_list::with_workers_awake(|| time_scene(args, &scene))
+        })?,
+    };
     if figures.contacts_per_particle < FEW_CONTACTS_PER_PARTICLE {
         eprintln!(
             "warning: the timed steps had {:.3} sphere contacts per particle: they time spheres in \
@@ -539,16 +632,27 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
     if args.json {
         println!("{}", serde_json::to_string(&figures)?);
     } else {
-        println!(
-            "bench scene {}: {} spheres, {} path, {} threads, {} timed steps after {} warm-up steps from step {}",
-            figures.scene,
-            figures.particles,
-            figures.path,
-            figures.threads,
-            figures.steps,
-            figures.warmup,
-            figures.start_step
-        );
+        match &figures.adapter {
+            Some(adapter) => println!(
+                "bench scene {} --device gpu: {} spheres, {} path, {} timed steps after {} warm-up steps from step {} on {adapter}",
+                figures.scene,
+                figures.particles,
+                figures.path,
+                figures.steps,
+                figures.warmup,
+                figures.start_step
+            ),
+            None => println!(
+                "bench scene {}: {} spheres, {} path, {} threads, {} timed steps after {} warm-up steps from step {}",
+                figures.scene,
+                figures.particles,
+                figures.path,
+                figures.threads,
+                figures.steps,
+                figures.warmup,
+                figures.start_step
+            ),
+        }
         println!(
             "  {:.3} M particle-steps/s, {:.3} ms/step",
             figures.particle_steps_per_s / 1e6,
@@ -577,6 +681,9 @@ fn run_scene_bench(args: &SceneArgs) -> anyhow::Result<()> {
                 figures.peak_rss_mb
             ),
             (None, _) => println!("  peak RSS {:.1} MB", figures.peak_rss_mb),
+        }
+        if let Some(bytes) = figures.device_bytes_per_particle {
+            println!("  device memory {bytes:.0} bytes per sphere");
         }
         if let Some(b) = &figures.breakdown_ns_per_particle_step {
             println!(

@@ -1,258 +1,23 @@
-//! The settled-bed system of `mdr-dem bench bed` on the GPU: buffers, pipelines, steps and
-//! read-back ([`GpuBed`]).
+//! The settled-bed system of `mdr-dem bench bed` on the GPU ([`GpuBed`]): one species on the
+//! floor `z = 0` in the x/y periodic box.
 
 use crate::device::{GpuContext, GpuError};
-use crate::law::{BoundLaws, DeviceLaw, GpuLaws, LawConstants};
+use crate::law::{BoundLaws, DeviceLaw, GpuLaws};
+use crate::system::{Plane, System, SystemSpec};
 use mdr_rapier::neighbour_list::bed::{Bed, BedError, BenchSettings};
 use mdr_rapier::neighbour_list::boundary::Boundary;
 use nalgebra::Vector3;
-use wgpu::util::DeviceExt;
 
-/// Threads per workgroup of the particle and cell kernels (`WG` of `bed.wgsl`).
-const WORKGROUP: u32 = 64;
-/// Steps encoded per command buffer between two status checks.
-const STEPS_PER_SUBMIT: usize = 200;
-/// Storage buffers the step binds.
-const STORAGE_BINDINGS: u32 = 16;
-/// Set in a key while its pair touches (`ACTIVE` of `bed.wgsl`).
-const ACTIVE: u32 = 0x8000_0000;
-
-/// Settings of a [`GpuBed`] beyond those of [`BenchSettings`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GpuOptions {
-    /// Neighbour slots per particle (every neighbour within `r_i + r_j + skin`; the reference
-    /// bed has at most 11 with the default skin). A particle with more stops the run with
-    /// [`GpuError::NeighbourOverflow`].
-    pub max_neighbours: u32,
-    /// Particles per cell of the binning grid (cells of side `2 r + skin`; the reference bed
-    /// has at most 4). More stops the run with [`GpuError::CellOverflow`].
-    pub cell_capacity: u32,
-    /// The contact model, when it is not the one of [`BenchSettings::law`] (that normal law
-    /// with Mindlin and damping, no rolling resistance): another normal law (Thornton, the
-    /// adhesive MDR law) or rolling resistance.
-    pub laws: Option<GpuLaws>,
-}
-
-impl Default for GpuOptions {
-    fn default() -> Self {
-        Self {
-            max_neighbours: 16,
-            cell_capacity: 12,
-            laws: None,
-        }
-    }
-}
-
-impl GpuOptions {
-    /// Check both sizes: `max_neighbours` in `[1, 64]`, `cell_capacity` in `[1, 64]`.
-    pub fn validate(&self) -> Result<(), GpuError> {
-        for (name, value) in [
-            ("max_neighbours", self.max_neighbours),
-            ("cell_capacity", self.cell_capacity),
-        ] {
-            if !(1..=64).contains(&value) {
-                return Err(GpuError::OutOfRange {
-                    name,
-                    value: f64::from(value),
-                    range: "[1, 64]",
-                });
-            }
-        }
-        Ok(())
-    }
-}
-
-/// The uniform block of `bed.wgsl` (`Params`), field for field.
-#[repr(C)]
-#[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-struct Params {
-    sphere: LawConstants,
-    floor: LawConstants,
-    box_lo: [f64; 2],
-    box_len: [f64; 2],
-    cell_side: [f64; 2],
-    z_lo: f64,
-    inv_cell_z: f64,
-    radius: f64,
-    mass: f64,
-    inv_mass: f64,
-    inv_inertia: f64,
-    skin: f64,
-    dt: f64,
-    gravity_z: f64,
-    floor_z: f64,
-    search_reach: f64,
-    pad: f64,
-    n: u32,
-    law: u32,
-    orientation: u32,
-    groups_x: u32,
-    cells_x: u32,
-    cells_y: u32,
-    cells_z: u32,
-    cell_groups_x: u32,
-}
-
-/// One sphere–sphere pair of the device's list, as the CPU's half list has it (`i < j`).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GpuPair {
-    /// The lower index.
-    pub i: u32,
-    /// The higher index.
-    pub j: u32,
-    /// Image code of `j` as seen from `i` (`Image::code`).
-    pub image: u8,
-    /// Whether it touched (or held, adhesively) at the last force evaluation.
-    pub active: bool,
-    /// The normal law's history: the largest overlap so far.
-    pub max_overlap: f64,
-    /// The rest of the normal law's state: Thornton's unloading coefficient and residual
-    /// overlap, or the adhesive law's attached radius (then zero); zero for Hertz and MDR.
-    pub normal_state: [f64; 2],
-    /// Mindlin's tangential displacement `ξ`.
-    pub displacement: Vector3<f64>,
-    /// Mindlin's contact radius of the last step.
-    pub contact_radius: f64,
-    /// The rolling resistance spring's torque (zero without rolling resistance).
-    pub rolling_torque: Vector3<f64>,
-}
-
-/// The device state read back: particles, the touching pairs' histories, the floor contacts.
-#[derive(Debug, Clone, PartialEq)]
-pub struct GpuState {
-    /// Positions.
-    pub position: Vec<Vector3<f64>>,
-    /// Velocities.
-    pub linvel: Vec<Vector3<f64>>,
-    /// Angular velocities.
-    pub angvel: Vec<Vector3<f64>>,
-    /// Orientations `(x, y, z, w)` (identity when not integrated).
-    pub rotation: Vec<[f64; 4]>,
-    /// The list, one entry per pair (`i < j`), sorted by `(i, j, image)`.
-    pub pairs: Vec<GpuPair>,
-    /// Pairs whose two entries (in `i`'s slots and in `j`'s) differ in any bit or where one
-    /// is missing: zero, since both particles evaluate a pair with the same arithmetic.
-    pub asymmetric_pairs: usize,
-    /// Per particle: the floor contact's `(max overlap, ξ, contact radius)`, `None` when apart.
-    pub floor: Vec<Option<(f64, Vector3<f64>, f64)>>,
-    /// Per particle: the floor contact's rolling torque (zero when apart or without rolling
-    /// resistance).
-    pub floor_rolling_torque: Vec<Vector3<f64>>,
-    /// Neighbour-list builds so far.
-    pub rebuilds: u64,
-}
-
-struct Buffers {
-    params: wgpu::Buffer,
-    pos: wgpu::Buffer,
-    vel: wgpu::Buffer,
-    angvel: wgpu::Buffer,
-    built: wgpu::Buffer,
-    wrench: wgpu::Buffer,
-    rotation: wgpu::Buffer,
-    floor: wgpu::Buffer,
-    counts: wgpu::Buffer,
-    keys: wgpu::Buffer,
-    h_state: wgpu::Buffer,
-    h_xi: wgpu::Buffer,
-    h_radius: wgpu::Buffer,
-    cell_count: wgpu::Buffer,
-    cell_items: wgpu::Buffer,
-    status: wgpu::Buffer,
-    indirect: wgpu::Buffer,
-}
-
-impl Buffers {
-    fn all(&self) -> [&wgpu::Buffer; 17] {
-        [
-            &self.params,
-            &self.pos,
-            &self.vel,
-            &self.angvel,
-            &self.built,
-            &self.wrench,
-            &self.rotation,
-            &self.floor,
-            &self.counts,
-            &self.keys,
-            &self.h_state,
-            &self.h_xi,
-            &self.h_radius,
-            &self.cell_count,
-            &self.cell_items,
-            &self.status,
-            &self.indirect,
-        ]
-    }
-}
-
-struct Pipelines {
-    decide: wgpu::ComputePipeline,
-    clear_cells: wgpu::ComputePipeline,
-    bin: wgpu::ComputePipeline,
-    search: wgpu::ComputePipeline,
-    forces: wgpu::ComputePipeline,
-    integrate: wgpu::ComputePipeline,
-}
+pub use crate::system::{GpuOptions, GpuPair, GpuState};
 
 /// The reference bed system (`reference_system` of `mdr_rapier::neighbour_list::bed`: the
 /// floor `z = 0`, x/y periodic box, `g = 1` along −z, `dt = 1e-4`, Hertz or MDR with Mindlin and
 /// Hertzian viscous damping, or the contact model of [`GpuOptions::laws`]) stepped on the device.
+#[derive(Debug)]
 pub struct GpuBed {
-    device: wgpu::Device,
-    queue: wgpu::Queue,
-    buffers: Buffers,
-    pipelines: Pipelines,
-    bind_group: wgpu::BindGroup,
-    decide_group: wgpu::BindGroup,
-    n: usize,
-    max_neighbours: u32,
-    cell_capacity: u32,
-    groups: (u32, u32),
+    system: System,
     laws: GpuLaws,
-    state_words: u32,
-    floor_words: u32,
     yield_overlap: f64,
-    device_bytes: u64,
-    steps: u64,
-}
-
-impl std::fmt::Debug for GpuBed {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("GpuBed")
-            .field("particles", &self.n)
-            .field("steps", &self.steps)
-            .finish()
-    }
-}
-
-/// Validation and out-of-memory errors of the device calls between [`ErrorScopes::push`] and
-/// [`ErrorScopes::pop`], returned as [`GpuError::Device`] instead of wgpu's default panic.
-struct ErrorScopes {
-    validation: wgpu::ErrorScopeGuard,
-    memory: wgpu::ErrorScopeGuard,
-}
-
-impl ErrorScopes {
-    fn push(device: &wgpu::Device) -> Self {
-        let memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
-        let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        Self { validation, memory }
-    }
-
-    fn pop(self) -> Result<(), GpuError> {
-        let validation = pollster::block_on(self.validation.pop());
-        let memory = pollster::block_on(self.memory.pop());
-        match validation.or(memory) {
-            Some(e) => Err(GpuError::Device(e.to_string())),
-            None => Ok(()),
-        }
-    }
-}
-
-/// `a · b · …` in bytes, or `None` on overflow.
-fn bytes_of(factors: &[u64]) -> Option<u64> {
-    factors.iter().try_fold(1u64, |acc, &f| acc.checked_mul(f))
 }
 
 impl GpuBed {
@@ -295,339 +60,57 @@ impl GpuBed {
         let n = bed.len();
         let laws = options.laws.unwrap_or_else(|| GpuLaws::of(settings));
         let bound = BoundLaws::of_reference_system(bed, settings, &laws)?;
-        // f64 words per slot: the normal law's state and the rolling law's (torque, stiffness).
-        let normal_words = laws.normal.state_words();
-        let state_words = normal_words + if laws.rolling.is_some() { 4 } else { 0 };
-        // Per particle's floor contact: active, that state, ξ (3), a.
-        let floor_words = 1 + state_words + 4;
         let Boundary::PeriodicXY { lo, hi } = bound.boundary else {
             return Err(GpuError::Unsupported(
-                "the GPU path has the x/y periodic box of the reference bed only".to_owned(),
+                "the bed has the x/y periodic box of the reference bed only".to_owned(),
             ));
         };
-        let len = [hi[0] - lo[0], hi[1] - lo[1]];
-        let radius = bound.species.radius;
-        // A held adhesive pair is at most the neck's reach apart (the CPU list's cut-off).
-        let search_reach = settings.skin + bound.neck_reach;
-        let cutoff = 2.0 * radius + search_reach;
+        let cutoff = 2.0 * bound.species.radius + settings.skin + bound.neck_reach;
         bound.boundary.check_cutoff(cutoff)?;
-
-        // The binning grid: periodic x/y cells of side ≥ cutoff; z cells over the bed's height
-        // with a margin (particles beyond it are clamped into the edge cells, which keeps
-        // neighbouring cells neighbours).
-        let cells_x = ((len[0] / cutoff).floor() as u64).max(1);
-        let cells_y = ((len[1] / cutoff).floor() as u64).max(1);
-        let z_min = bed
-            .position
-            .iter()
-            .map(|p| p.z)
-            .fold(f64::INFINITY, f64::min);
-        let z_max = bed
-            .position
-            .iter()
-            .map(|p| p.z)
-            .fold(f64::NEG_INFINITY, f64::max);
-        let z_lo = z_min.min(0.0) - cutoff;
-        let cells_z = ((z_max - z_lo) / cutoff).floor() as u64 + 3;
-        let ncells = bytes_of(&[cells_x, cells_y, cells_z]).unwrap_or(u64::MAX);
-
-        let limits = &ctx.limits;
-        let adapter = ctx.adapter_name();
-        if limits.max_storage_buffers_per_shader_stage < STORAGE_BINDINGS {
-            return Err(GpuError::TooFewBindings {
-                adapter,
-                available: limits.max_storage_buffers_per_shader_stage,
-                needed: STORAGE_BINDINGS,
-            });
-        }
-        let n64 = n as u64;
-        let slots = u64::from(options.max_neighbours);
-        let cap = u64::from(options.cell_capacity);
-        // Sizes, checked before anything is allocated; indices in the shaders are u32.
-        let sizes: [(&'static str, Option<u64>); 14] = [
-            ("position", bytes_of(&[n64, 24])),
-            ("velocity", bytes_of(&[n64, 24])),
-            ("angular velocity", bytes_of(&[n64, 24])),
-            ("positions at the build", bytes_of(&[n64, 24])),
-            ("wrench", bytes_of(&[n64, 48])),
-            ("rotation", bytes_of(&[n64, 32])),
-            ("floor history", bytes_of(&[n64, u64::from(floor_words), 8])),
-            ("neighbour counts", bytes_of(&[n64, 4])),
-            ("neighbour keys", bytes_of(&[n64, slots, 4])),
-            (
-                "normal histories",
-                bytes_of(&[n64, slots, u64::from(state_words), 8]),
-            ),
-            ("tangential histories", bytes_of(&[n64, slots, 24])),
-            ("contact radii", bytes_of(&[n64, slots, 8])),
-            ("cell counts", bytes_of(&[ncells, 4])),
-            ("cell items", bytes_of(&[ncells, cap, 4])),
-        ];
-        let u32_indices = bytes_of(&[n64, slots, u64::from(state_words.max(3))])
-            .is_some_and(|k| k <= u64::from(u32::MAX))
-            && bytes_of(&[n64, u64::from(floor_words)]).is_some_and(|k| k <= u64::from(u32::MAX))
-            && bytes_of(&[ncells, cap]).is_some_and(|k| k <= u64::from(u32::MAX))
-            && bytes_of(&[n64, 9]).is_some_and(|k| k < u64::from(ACTIVE));
-        let mut device_bytes = 0u64;
-        for (buffer, bytes) in sizes {
-            let bytes = bytes.unwrap_or(u64::MAX);
-            for (limit, limit_name) in [
-                (
-                    limits.max_storage_buffer_binding_size,
-                    "max_storage_buffer_binding_size",
-                ),
-                (limits.max_buffer_size, "max_buffer_size"),
-            ] {
-                if bytes > limit {
-                    return Err(GpuError::TooLarge {
-                        particles: n,
-                        buffer,
-                        bytes,
-                        adapter: adapter.clone(),
-                        limit,
-                        limit_name,
-                    });
-                }
-            }
-            device_bytes = device_bytes.saturating_add(bytes);
-        }
-        if !u32_indices {
-            return Err(GpuError::TooLarge {
-                particles: n,
-                buffer: "neighbour keys",
-                bytes: bytes_of(&[n64, slots, 3]).unwrap_or(u64::MAX),
-                adapter,
-                limit: u64::from(u32::MAX),
-                limit_name: "32-bit shader indices",
-            });
-        }
-        let max_groups = u64::from(limits.max_compute_workgroups_per_dimension);
-        let groups = n64.div_ceil(u64::from(WORKGROUP));
-        let groups_x = groups.min(max_groups);
-        let groups_y = groups.div_ceil(groups_x);
-        let cell_groups = ncells.div_ceil(u64::from(WORKGROUP));
-        let cell_groups_x = cell_groups.min(max_groups);
-        if groups_y > max_groups || cell_groups.div_ceil(cell_groups_x) > max_groups {
-            return Err(GpuError::TooLarge {
-                particles: n,
-                buffer: "dispatch",
-                bytes: groups.max(cell_groups),
-                adapter,
-                limit: max_groups * max_groups,
-                limit_name: "max_compute_workgroups_per_dimension²",
-            });
-        }
-
-        let params = Params {
-            sphere: bound.sphere,
-            floor: bound.floor,
-            box_lo: lo,
-            box_len: len,
-            cell_side: [len[0] / cells_x as f64, len[1] / cells_y as f64],
-            z_lo,
-            inv_cell_z: 1.0 / cutoff,
-            radius,
-            mass: bound.species.mass,
-            inv_mass: bound.species.inv_mass,
-            inv_inertia: bound.species.inv_inertia,
-            skin: settings.skin,
-            dt: bound.dt,
-            gravity_z: bound.gravity_z,
-            floor_z: 0.0,
-            search_reach,
-            pad: 0.0,
-            n: n as u32,
-            law: laws.normal.code(),
-            orientation: u32::from(settings.orientation),
-            groups_x: groups_x as u32,
-            cells_x: cells_x as u32,
-            cells_y: cells_y as u32,
-            cells_z: cells_z as u32,
-            cell_groups_x: cell_groups_x as u32,
-        };
-
-        let device = ctx.device.clone();
-        let queue = ctx.queue.clone();
-        let scopes = ErrorScopes::push(&device);
-        let storage = wgpu::BufferUsages::STORAGE
-            | wgpu::BufferUsages::COPY_SRC
-            | wgpu::BufferUsages::COPY_DST;
-        let init = |label: &str, contents: &[u8], extra: wgpu::BufferUsages| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage: storage | extra,
-            })
-        };
-        let zeroed = |label: &str, bytes: u64| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: bytes.max(16),
-                usage: storage,
-                mapped_at_creation: false,
-            })
-        };
-        let flat =
-            |v: &[Vector3<f64>]| -> Vec<f64> { v.iter().flat_map(|p| [p.x, p.y, p.z]).collect() };
-        let identity: Vec<f64> = (0..n).flat_map(|_| [0.0, 0.0, 0.0, 1.0]).collect();
-        let mut status = [0u32; 4];
-        status[0] = 1; // the first step builds the lists
-        let buffers = Buffers {
-            params: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("params"),
-                contents: bytemuck::bytes_of(&params),
-                usage: wgpu::BufferUsages::UNIFORM,
-            }),
-            pos: init(
-                "position",
-                bytemuck::cast_slice(&flat(&bed.position)),
-                wgpu::BufferUsages::empty(),
-            ),
-            vel: zeroed("velocity", n64 * 24),
-            angvel: zeroed("angular velocity", n64 * 24),
-            built: zeroed("positions at the build", n64 * 24),
-            wrench: zeroed("wrench", n64 * 48),
-            rotation: init(
-                "rotation",
-                bytemuck::cast_slice(&identity),
-                wgpu::BufferUsages::empty(),
-            ),
-            floor: zeroed("floor history", n64 * u64::from(floor_words) * 8),
-            counts: zeroed("neighbour counts", n64 * 4),
-            keys: zeroed("neighbour keys", n64 * slots * 4),
-            h_state: zeroed("normal histories", n64 * slots * u64::from(state_words) * 8),
-            h_xi: zeroed("tangential histories", n64 * slots * 24),
-            h_radius: zeroed("contact radii", n64 * slots * 8),
-            cell_count: zeroed("cell counts", ncells * 4),
-            cell_items: zeroed("cell items", ncells * cap * 4),
-            status: init(
-                "status",
-                bytemuck::cast_slice(&status),
-                wgpu::BufferUsages::empty(),
-            ),
-            indirect: init(
-                "indirect",
-                bytemuck::cast_slice(&[0u32; 8]),
-                wgpu::BufferUsages::INDIRECT,
-            ),
-        };
-
-        let source = include_str!("bed.wgsl")
-            .replace(
-                "__MAXNCARRY__",
-                &((state_words + 4) * options.max_neighbours).to_string(),
-            )
-            .replace("__NN__", &normal_words.to_string())
-            .replace(
-                "__ROLLING__",
-                if laws.rolling.is_some() {
-                    "true"
-                } else {
-                    "false"
-                },
-            )
-            .replace("__MAXN__", &options.max_neighbours.to_string())
-            .replace("__CELLCAP__", &options.cell_capacity.to_string());
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("bed.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        // The decision kernel writes the indirect arguments: it alone binds them (a dispatch
-        // may not read a buffer as indirect arguments while it is bound for storage).
-        let entry = |binding: u32| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: if binding == 0 {
-                    wgpu::BufferBindingType::Uniform
-                } else {
-                    wgpu::BufferBindingType::Storage { read_only: false }
-                },
-                has_dynamic_offset: false,
-                min_binding_size: None,
+        let zeros = vec![Vector3::zeros(); n];
+        let system = System::new(
+            ctx,
+            &SystemSpec {
+                position: &bed.position,
+                linvel: &zeros,
+                angvel: &zeros,
+                species: vec![0; n],
+                species_table: vec![bound.species],
+                sphere_laws: vec![bound.sphere],
+                wall_laws: vec![bound.floor],
+                walls: vec![Plane::infinite(Vector3::z(), Vector3::zeros())],
+                periodic: Some((lo, hi)),
+                gravity: Vector3::new(0.0, 0.0, bound.gravity_z),
+                dt: bound.dt,
+                skin: settings.skin,
+                neck_reach: bound.neck_reach,
+                law_code: laws.normal.code(),
+                normal_words: laws.normal.state_words(),
+                rolling: laws.rolling.is_some(),
+                orientation: settings.orientation,
+                options: *options,
             },
-            count: None,
-        };
-        let all = buffers.all();
-        let group = |bindings: u32| {
-            let entries: Vec<_> = (0..bindings).map(entry).collect();
-            let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("bed"),
-                entries: &entries,
-            });
-            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("bed"),
-                layout: &layout,
-                entries: &all[..bindings as usize]
-                    .iter()
-                    .enumerate()
-                    .map(|(k, b)| wgpu::BindGroupEntry {
-                        binding: k as u32,
-                        resource: b.as_entire_binding(),
-                    })
-                    .collect::<Vec<_>>(),
-            });
-            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("bed"),
-                bind_group_layouts: &[Some(&layout)],
-                immediate_size: 0,
-            });
-            (group, pipeline_layout)
-        };
-        let (bind_group, step_layout) = group(all.len() as u32 - 1);
-        let (decide_group, decide_layout) = group(all.len() as u32);
-        let pipeline = |entry: &str, layout: &wgpu::PipelineLayout| {
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(entry),
-                layout: Some(layout),
-                module: &module,
-                entry_point: Some(entry),
-                compilation_options: Default::default(),
-                cache: None,
-            })
-        };
-        let pipelines = Pipelines {
-            decide: pipeline("decide", &decide_layout),
-            clear_cells: pipeline("clear_cells", &step_layout),
-            bin: pipeline("bin", &step_layout),
-            search: pipeline("search", &step_layout),
-            forces: pipeline("forces", &step_layout),
-            integrate: pipeline("integrate", &step_layout),
-        };
-        scopes.pop()?;
+        )?;
         Ok(Self {
-            device,
-            queue,
-            buffers,
-            pipelines,
-            bind_group,
-            decide_group,
-            n,
-            max_neighbours: options.max_neighbours,
-            cell_capacity: options.cell_capacity,
-            groups: (groups_x as u32, groups_y as u32),
+            system,
             laws,
-            state_words,
-            floor_words,
             yield_overlap: bound.yield_overlap,
-            device_bytes,
-            steps: 0,
         })
     }
 
     /// Particles.
     pub fn len(&self) -> usize {
-        self.n
+        self.system.len()
     }
 
     /// Whether there are no particles (never: [`GpuBed::new`] refuses an empty bed).
     pub fn is_empty(&self) -> bool {
-        self.n == 0
+        self.system.len() == 0
     }
 
     /// Steps done.
     pub fn steps(&self) -> u64 {
-        self.steps
+        self.system.steps()
     }
 
     /// The contact model.
@@ -637,258 +120,29 @@ impl GpuBed {
 
     /// Bytes of every device buffer of the system (particles, lists, histories, grid).
     pub fn device_bytes(&self) -> u64 {
-        self.device_bytes
+        self.system.device_bytes()
     }
 
     /// `steps` steps: per step, the rebuild decision, the list build when due (indirect
     /// dispatches of zero size otherwise, so the host never waits inside a batch), the forces
     /// and the integration. Waits for the device at the end and checks the overflow flags.
     pub fn step(&mut self, steps: usize) -> Result<(), GpuError> {
-        let mut left = steps;
-        while left > 0 {
-            let batch = left.min(STEPS_PER_SUBMIT);
-            let scopes = ErrorScopes::push(&self.device);
-            let mut encoder = self
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("steps"),
-                });
-            {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("steps"),
-                    timestamp_writes: None,
-                });
-                let p = &self.pipelines;
-                for _ in 0..batch {
-                    pass.set_bind_group(0, &self.decide_group, &[]);
-                    pass.set_pipeline(&p.decide);
-                    pass.dispatch_workgroups(1, 1, 1);
-                    pass.set_bind_group(0, &self.bind_group, &[]);
-                    pass.set_pipeline(&p.clear_cells);
-                    pass.dispatch_workgroups_indirect(&self.buffers.indirect, 12);
-                    pass.set_pipeline(&p.bin);
-                    pass.dispatch_workgroups_indirect(&self.buffers.indirect, 0);
-                    pass.set_pipeline(&p.search);
-                    pass.dispatch_workgroups_indirect(&self.buffers.indirect, 0);
-                    pass.set_pipeline(&p.forces);
-                    pass.dispatch_workgroups(self.groups.0, self.groups.1, 1);
-                    pass.set_pipeline(&p.integrate);
-                    pass.dispatch_workgroups(self.groups.0, self.groups.1, 1);
-                }
-            }
-            self.queue.submit([encoder.finish()]);
-            scopes.pop()?;
-            self.steps += batch as u64;
-            left -= batch;
-            self.check_status()?;
-        }
-        Ok(())
-    }
-
-    /// Wait for the device and turn its overflow flags into errors.
-    fn check_status(&self) -> Result<[u32; 4], GpuError> {
-        let status: Vec<u32> = self.read(&self.buffers.status, 16)?;
-        if status[2] != 0 {
-            return Err(GpuError::NeighbourOverflow {
-                particle: status[2] - 1,
-                max_neighbours: self.max_neighbours,
-            });
-        }
-        if status[3] != 0 {
-            return Err(GpuError::CellOverflow {
-                cell: status[3] - 1,
-                capacity: self.cell_capacity,
-            });
-        }
-        Ok([status[0], status[1], status[2], status[3]])
+        self.system.step(steps)
     }
 
     /// Neighbour-list builds so far.
     pub fn rebuilds(&self) -> Result<u64, GpuError> {
-        Ok(u64::from(self.check_status()?[1]))
-    }
-
-    /// Copy `bytes` of `buffer` back to the host.
-    fn read<T: bytemuck::Pod>(
-        &self,
-        buffer: &wgpu::Buffer,
-        bytes: u64,
-    ) -> Result<Vec<T>, GpuError> {
-        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("read-back"),
-            size: bytes,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let mut encoder = self
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("read-back"),
-            });
-        encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, bytes);
-        self.queue.submit([encoder.finish()]);
-        let slice = staging.slice(..);
-        let (send, receive) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = send.send(r);
-        });
-        self.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| GpuError::Readback(e.to_string()))?;
-        receive
-            .recv()
-            .map_err(|e| GpuError::Readback(e.to_string()))?
-            .map_err(|e| GpuError::Readback(e.to_string()))?;
-        let data = {
-            let view = slice
-                .get_mapped_range()
-                .map_err(|e| GpuError::Readback(e.to_string()))?;
-            bytemuck::pod_collect_to_vec::<u8, T>(&view)
-        };
-        staging.unmap();
-        Ok(data)
-    }
-
-    fn read_vectors(&self, buffer: &wgpu::Buffer) -> Result<Vec<Vector3<f64>>, GpuError> {
-        let flat: Vec<f64> = self.read(buffer, self.n as u64 * 24)?;
-        Ok(flat
-            .chunks_exact(3)
-            .map(|c| Vector3::new(c[0], c[1], c[2]))
-            .collect())
+        self.system.rebuilds()
     }
 
     /// Positions only (what a comparison or a checksum needs).
     pub fn positions(&self) -> Result<Vec<Vector3<f64>>, GpuError> {
-        self.read_vectors(&self.buffers.pos)
+        self.system.positions()
     }
 
-    /// The whole state, read back.
+    /// The whole state, read back (its wall slots are the floor contacts, one per particle).
     pub fn state(&self) -> Result<GpuState, GpuError> {
-        let n = self.n;
-        let slots = self.max_neighbours as usize;
-        let rebuilds = self.rebuilds()?;
-        let position = self.read_vectors(&self.buffers.pos)?;
-        let linvel = self.read_vectors(&self.buffers.vel)?;
-        let angvel = self.read_vectors(&self.buffers.angvel)?;
-        let rotation: Vec<f64> = self.read(&self.buffers.rotation, n as u64 * 32)?;
-        let fw = self.floor_words as usize;
-        let sw = self.state_words as usize;
-        let nw = self.laws.normal.state_words() as usize;
-        let floor_flat: Vec<f64> = self.read(&self.buffers.floor, (n * fw) as u64 * 8)?;
-        let counts: Vec<u32> = self.read(&self.buffers.counts, n as u64 * 4)?;
-        let total = (n * slots) as u64;
-        let keys: Vec<u32> = self.read(&self.buffers.keys, total * 4)?;
-        let h_state: Vec<f64> = self.read(&self.buffers.h_state, total * sw as u64 * 8)?;
-        let h_xi: Vec<f64> = self.read(&self.buffers.h_xi, total * 24)?;
-        let h_radius: Vec<f64> = self.read(&self.buffers.h_radius, total * 8)?;
-        let entry = |i: usize, s: usize| -> GpuPair {
-            let k = i * slots + s;
-            let key = keys[k] & !ACTIVE;
-            let active = keys[k] & ACTIVE != 0;
-            let j = key / 9;
-            let code = (key % 9) as u8;
-            let (lo, hi, image) = if (i as u32) < j {
-                (i as u32, j, code)
-            } else {
-                (j, i as u32, 8 - code)
-            };
-            GpuPair {
-                i: lo,
-                j: hi,
-                image,
-                active,
-                max_overlap: if active { h_state[sw * k] } else { 0.0 },
-                normal_state: if active {
-                    [1, 2].map(|w| if w < nw { h_state[sw * k + w] } else { 0.0 })
-                } else {
-                    [0.0; 2]
-                },
-                displacement: if active {
-                    Vector3::new(h_xi[3 * k], h_xi[3 * k + 1], h_xi[3 * k + 2])
-                } else {
-                    Vector3::zeros()
-                },
-                contact_radius: if active { h_radius[k] } else { 0.0 },
-                rolling_torque: if active && sw > nw {
-                    Vector3::new(
-                        h_state[sw * k + nw],
-                        h_state[sw * k + nw + 1],
-                        h_state[sw * k + nw + 2],
-                    )
-                } else {
-                    Vector3::zeros()
-                },
-            }
-        };
-        let mut pairs = Vec::new();
-        let mut mirrored = Vec::new();
-        for (i, &count) in counts.iter().enumerate() {
-            for s in 0..count as usize {
-                let e = entry(i, s);
-                if e.i == i as u32 {
-                    pairs.push(e);
-                } else {
-                    mirrored.push(e);
-                }
-            }
-        }
-        pairs.sort_by_key(|e| (e.i, e.j, e.image));
-        mirrored.sort_by_key(|e| (e.i, e.j, e.image));
-        let bits = |e: &GpuPair| {
-            (
-                e.i,
-                e.j,
-                e.image,
-                e.active,
-                e.max_overlap.to_bits(),
-                e.normal_state.map(f64::to_bits),
-                e.displacement.map(f64::to_bits),
-                e.contact_radius.to_bits(),
-                e.rolling_torque.map(f64::to_bits),
-            )
-        };
-        let asymmetric_pairs = if pairs.len() == mirrored.len() {
-            pairs
-                .iter()
-                .zip(&mirrored)
-                .filter(|(a, b)| bits(a) != bits(b))
-                .count()
-        } else {
-            pairs.len().abs_diff(mirrored.len()).max(1)
-        };
-        // Per particle: active, the normal state (nw), ξ (3), a, the rolling state.
-        let floor = floor_flat
-            .chunks_exact(fw)
-            .map(|h| {
-                let t = 1 + nw;
-                (h[0] != 0.0).then(|| (h[1], Vector3::new(h[t], h[t + 1], h[t + 2]), h[t + 3]))
-            })
-            .collect();
-        let floor_rolling_torque = floor_flat
-            .chunks_exact(fw)
-            .map(|h| {
-                let t = 1 + nw + 4;
-                if h[0] != 0.0 && fw > t {
-                    Vector3::new(h[t], h[t + 1], h[t + 2])
-                } else {
-                    Vector3::zeros()
-                }
-            })
-            .collect();
-        Ok(GpuState {
-            position,
-            linvel,
-            angvel,
-            rotation: rotation
-                .chunks_exact(4)
-                .map(|q| [q[0], q[1], q[2], q[3]])
-                .collect(),
-            pairs,
-            asymmetric_pairs,
-            floor,
-            floor_rolling_torque,
-            rebuilds,
-        })
+        self.system.state()
     }
 
     /// The yield overlap `u_c` of the sphere–sphere law (infinite for Hertz).

@@ -1,7 +1,9 @@
-// The settled-bed step of the neighbour-list path in f64 (docs/gpu.md): list build by cell
-// binning, pair forces with histories (Hertz, MDR, Thornton or adhesive MDR normal law,
-// Mindlin, Hertzian viscous damping, optionally rolling resistance), the floor plane, the x/y
-// periodic box, and rapier's symplectic Euler integration. Every formula is the CPU path's,
+// The step of the neighbour-list path in f64 (docs/gpu.md): list build by cell binning, pair
+// forces with histories (Hertz, MDR, Thornton or adhesive MDR normal law, Mindlin, Hertzian
+// viscous damping, optionally rolling resistance) bound per species pair, planar walls
+// (half-spaces), open space or the x/y periodic box, gravity, and rapier's symplectic Euler
+// integration. The settled bed is the case of one species, one floor plane and the periodic box.
+// Every formula is the CPU path's,
 // written in the same order (mdr-contact and mdr-rapier's kernel): `normal_law` is
 // `HertzLaw::update` / `MdrLaw::update` / `ThorntonLaw::update` / `AdhesiveMdrLaw::update`,
 // `contact_update` is `ContactLaw::update` with `MindlinLaw::update`, `rolling_update` is
@@ -20,7 +22,8 @@ const ROLLING: bool = __ROLLING__;
 // stiffness).
 const NR: u32 = select(0u, 4u, ROLLING);
 const NS: u32 = NN + NR;
-// f64 words per particle of `floor_hist`: active, the normal state, ξ (3), a, the rolling state.
+// f64 words per (particle, wall) of `wall_hist`: active, the normal state, ξ (3), a, the rolling
+// state.
 const FS: u32 = 1u + NS + 4u;
 // f64 words per slot carried over by a rebuild: the normal and rolling state, ξ (3), a.
 const CARRY: u32 = NS + 4u;
@@ -33,13 +36,26 @@ const LAW_ADHESIVE_MDR: u32 = 3u;
 const ACTIVE: u32 = 0x80000000u;
 
 // Status words (atomics): rebuild requested, rebuilds done, neighbour overflow (1 + particle),
-// cell overflow (1 + cell).
+// cell overflow (1 + cell), a wall touched outside the face it stands for (1 + particle, then
+// 1 + wall).
 const S_REBUILD: u32 = 0u;
 const S_REBUILDS: u32 = 1u;
 const S_NEIGHBOUR_OVERFLOW: u32 = 2u;
 const S_CELL_OVERFLOW: u32 = 3u;
+const S_OFF_FACE: u32 = 4u;
+const S_OFF_FACE_WALL: u32 = 5u;
+// f64 words per species in `tables` (radius, mass, 1/mass, 1/inertia).
+const SPECIES_WORDS: u32 = 4u;
+// The walls, written in by the host (constants, so that the compiler folds a floor's normal
+// `(0, 0, 1)` into its arithmetic): the outward normal, a point of the plane, and the corners
+// of the box the centre of a touching sphere must lie in.
+const WALLS: u32 = __WALLS__u;
+const WALL_NORMAL = array<vec3<f64>, __WALLSLOTS__>(__WALL_NORMAL__);
+const WALL_POINT = array<vec3<f64>, __WALLSLOTS__>(__WALL_POINT__);
+const WALL_LO = array<vec3<f64>, __WALLSLOTS__>(__WALL_LO__);
+const WALL_HI = array<vec3<f64>, __WALLSLOTS__>(__WALL_HI__);
 
-// The constants of one bound law (a pair of spheres, or a sphere and the floor).
+// The constants of one bound law (a pair of species, or a species and a wall).
 struct Law {
     effective_modulus: f64,
     sqrt_radius: f64,
@@ -64,23 +80,22 @@ struct Law {
 }
 
 struct Params {
-    sphere: Law,
-    floor: Law,
-    box_lo: vec2<f64>,
-    box_len: vec2<f64>,
-    cell_side: vec2<f64>,
-    z_lo: f64,
-    inv_cell_z: f64,
-    radius: f64,
-    mass: f64,
-    inv_mass: f64,
-    inv_inertia: f64,
+    box_lo_x: f64,     // the periodic box (x, y), when `periodic`
+    box_lo_y: f64,
+    box_len_x: f64,
+    box_len_y: f64,
+    grid_lo_x: f64,    // the binning grid's corner and cell sides
+    grid_lo_y: f64,
+    grid_lo_z: f64,
+    cell_side_x: f64,
+    cell_side_y: f64,
+    cell_side_z: f64,
     skin: f64,
     dt: f64,
+    gravity_x: f64,
+    gravity_y: f64,
     gravity_z: f64,
-    floor_z: f64,
     search_reach: f64, // skin + the adhesive neck reach: r_i + r_j + search_reach lists a pair
-    pad: f64,
     n: u32,
     law: u32,          // LAW_*
     orientation: u32,  // 1: integrate orientations
@@ -89,6 +104,10 @@ struct Params {
     cells_y: u32,
     cells_z: u32,
     cell_groups_x: u32,
+    species: u32,      // species (the sphere laws are `species²`, then `species · walls`)
+    walls: u32,
+    periodic: u32,     // 1: x/y periodic box; 0: open space
+    pad: u32,
 }
 
 @group(0) @binding(0) var<uniform> p: Params;
@@ -98,7 +117,7 @@ struct Params {
 @group(0) @binding(4) var<storage, read_write> built: array<f64>;
 @group(0) @binding(5) var<storage, read_write> wrench: array<f64>;      // force (3), torque (3)
 @group(0) @binding(6) var<storage, read_write> rotation: array<f64>;    // x, y, z, w
-@group(0) @binding(7) var<storage, read_write> floor_hist: array<f64>;  // FS per particle
+@group(0) @binding(7) var<storage, read_write> wall_hist: array<f64>;   // FS per (particle, wall)
 @group(0) @binding(8) var<storage, read_write> counts: array<u32>;
 @group(0) @binding(9) var<storage, read_write> keys: array<u32>;        // ACTIVE | (j · 9 + image)
 @group(0) @binding(10) var<storage, read_write> h_state: array<f64>;    // NS per slot
@@ -107,7 +126,10 @@ struct Params {
 @group(0) @binding(13) var<storage, read_write> cell_count: array<atomic<u32>>;
 @group(0) @binding(14) var<storage, read_write> cell_items: array<u32>;
 @group(0) @binding(15) var<storage, read_write> status: array<atomic<u32>>;
-@group(0) @binding(16) var<storage, read_write> indirect: array<u32>;   // particles (3), cells (3)
+@group(0) @binding(16) var<storage, read_write> species_of: array<u32>;
+@group(0) @binding(17) var<storage, read_write> tables: array<f64>;     // the species
+@group(0) @binding(18) var<storage, read_write> laws: array<Law>;       // sphere, then wall laws
+@group(0) @binding(19) var<storage, read_write> indirect: array<u32>;   // particles (3), cells (3)
 
 fn particle_index(gid: vec3<u32>) -> u32 {
     return gid.x + gid.y * p.groups_x * WG;
@@ -212,6 +234,23 @@ fn cell_coord(x: f64, lo: f64, side: f64, cells: u32) -> u32 {
     return u32(clamp(c, 0.0lf, f64(cells - 1u)));
 }
 
+// The cell of a centre (one beyond the grid is clamped into an edge cell, which keeps
+// neighbouring cells neighbours).
+fn cell_coords(x: vec3<f64>) -> vec3<u32> {
+    return vec3<u32>(cell_coord(x.x, p.grid_lo_x, p.cell_side_x, p.cells_x),
+                     cell_coord(x.y, p.grid_lo_y, p.cell_side_y, p.cells_y),
+                     cell_coord(x.z, p.grid_lo_z, p.cell_side_z, p.cells_z));
+}
+
+fn cell_of(x: vec3<f64>) -> u32 {
+    let c = cell_coords(x);
+    return (c.z * p.cells_y + c.y) * p.cells_x + c.x;
+}
+
+fn radius_of(species: u32) -> f64 {
+    return tables[SPECIES_WORDS * species];
+}
+
 // `Boundary::wrap`, the positions at the build, then the particle into its cell.
 @compute @workgroup_size(64)
 fn bin(@builtin(global_invocation_id) gid: vec3<u32>) {
@@ -220,23 +259,24 @@ fn bin(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     var x = load_pos(i);
-    for (var k = 0; k < 2; k++) {
-        let lo = p.box_lo[k];
-        let len = p.box_len[k];
-        let hi = lo + len;
-        if x[k] < lo || x[k] >= hi {
-            x[k] -= floor((x[k] - lo) / len) * len;
-            if x[k] >= hi {
-                x[k] = lo;
+    if p.periodic != 0u {
+        let box_lo = vec2<f64>(p.box_lo_x, p.box_lo_y);
+        let box_len = vec2<f64>(p.box_len_x, p.box_len_y);
+        for (var k = 0; k < 2; k++) {
+            let lo = box_lo[k];
+            let len = box_len[k];
+            let hi = lo + len;
+            if x[k] < lo || x[k] >= hi {
+                x[k] -= floor((x[k] - lo) / len) * len;
+                if x[k] >= hi {
+                    x[k] = lo;
+                }
             }
         }
+        store_pos(i, x);
     }
-    store_pos(i, x);
     store_built(i, x);
-    let cx = cell_coord(x.x, p.box_lo.x, p.cell_side.x, p.cells_x);
-    let cy = cell_coord(x.y, p.box_lo.y, p.cell_side.y, p.cells_y);
-    let cz = u32(clamp(floor((x.z - p.z_lo) * p.inv_cell_z), 0.0lf, f64(p.cells_z - 1u)));
-    let c = (cz * p.cells_y + cy) * p.cells_x + cx;
+    let c = cell_of(x);
     let at = atomicAdd(&cell_count[c], 1u);
     if at < CELLCAP {
         cell_items[c * CELLCAP + at] = i;
@@ -255,10 +295,11 @@ fn search(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let xi = load_pos(i);
-    let cx = i32(cell_coord(xi.x, p.box_lo.x, p.cell_side.x, p.cells_x));
-    let cy = i32(cell_coord(xi.y, p.box_lo.y, p.cell_side.y, p.cells_y));
-    let cz = i32(u32(clamp(floor((xi.z - p.z_lo) * p.inv_cell_z), 0.0lf, f64(p.cells_z - 1u))));
-    let reach = p.radius + p.radius + p.search_reach;
+    let cell = vec3<i32>(cell_coords(xi));
+    let cx = cell.x;
+    let cy = cell.y;
+    let cz = cell.z;
+    let ri = radius_of(species_of[i]);
     var found: array<u32, MAXN>;
     var m = 0u;
     var overflow = false;
@@ -270,16 +311,22 @@ fn search(@builtin(global_invocation_id) gid: vec3<u32>) {
         for (var oy = -1; oy <= 1; oy++) {
             var y = cy + oy;
             var iy = 0;
+            if p.periodic == 0u && (y < 0 || y >= i32(p.cells_y)) {
+                continue;
+            }
             if y < 0 { y += i32(p.cells_y); iy = -1; }
             if y >= i32(p.cells_y) { y -= i32(p.cells_y); iy = 1; }
             for (var ox = -1; ox <= 1; ox++) {
                 var x = cx + ox;
                 var ix = 0;
+                if p.periodic == 0u && (x < 0 || x >= i32(p.cells_x)) {
+                    continue;
+                }
                 if x < 0 { x += i32(p.cells_x); ix = -1; }
                 if x >= i32(p.cells_x) { x -= i32(p.cells_x); ix = 1; }
                 let c = (u32(z) * p.cells_y + u32(y)) * p.cells_x + u32(x);
                 let len = min(atomicLoad(&cell_count[c]), CELLCAP);
-                let shift = vec3<f64>(f64(ix) * p.box_len.x, f64(iy) * p.box_len.y, 0.0lf);
+                let shift = vec3<f64>(f64(ix) * p.box_len_x, f64(iy) * p.box_len_y, 0.0lf);
                 let code = u32((ix + 1) * 3 + (iy + 1));
                 for (var k = 0u; k < len; k++) {
                     let j = cell_items[c * CELLCAP + k];
@@ -294,6 +341,7 @@ fn search(@builtin(global_invocation_id) gid: vec3<u32>) {
                     } else {
                         d = load_pos(j) - (xi - shift);
                     }
+                    let reach = ri + radius_of(species_of[j]) + p.search_reach;
                     if d.x * d.x + d.y * d.y + d.z * d.z < reach * reach {
                         if m < MAXN {
                             found[m] = j * 9u + code;
@@ -744,39 +792,40 @@ fn store_slot(k: u32, h: History) {
     }
 }
 
-// Particle `i`'s floor history: active, the normal state, ξ, a, the rolling state.
-fn load_floor(i: u32) -> History {
+// The history of wall slot `i` (particle · walls + wall): active, the normal state, ξ, a, the
+// rolling state.
+fn load_wall(i: u32) -> History {
     let f = FS * i;
     var h = default_history();
     for (var w = 0u; w < NN; w++) {
-        h.normal[w] = floor_hist[f + 1u + w];
+        h.normal[w] = wall_hist[f + 1u + w];
     }
     let t = f + 1u + NN;
-    h.xi = vec3<f64>(floor_hist[t], floor_hist[t + 1u], floor_hist[t + 2u]);
-    h.radius = floor_hist[t + 3u];
+    h.xi = vec3<f64>(wall_hist[t], wall_hist[t + 1u], wall_hist[t + 2u]);
+    h.radius = wall_hist[t + 3u];
     if ROLLING {
-        h.torque = vec3<f64>(floor_hist[t + 4u], floor_hist[t + 5u], floor_hist[t + 6u]);
-        h.rolling_stiffness = floor_hist[t + 7u];
+        h.torque = vec3<f64>(wall_hist[t + 4u], wall_hist[t + 5u], wall_hist[t + 6u]);
+        h.rolling_stiffness = wall_hist[t + 7u];
     }
     return h;
 }
 
-fn store_floor(i: u32, touching: bool, h: History) {
+fn store_wall(i: u32, touching: bool, h: History) {
     let f = FS * i;
-    floor_hist[f] = select(0.0lf, 1.0lf, touching);
+    wall_hist[f] = select(0.0lf, 1.0lf, touching);
     for (var w = 0u; w < NN; w++) {
-        floor_hist[f + 1u + w] = h.normal[w];
+        wall_hist[f + 1u + w] = h.normal[w];
     }
     let t = f + 1u + NN;
-    floor_hist[t] = h.xi.x;
-    floor_hist[t + 1u] = h.xi.y;
-    floor_hist[t + 2u] = h.xi.z;
-    floor_hist[t + 3u] = h.radius;
+    wall_hist[t] = h.xi.x;
+    wall_hist[t + 1u] = h.xi.y;
+    wall_hist[t + 2u] = h.xi.z;
+    wall_hist[t + 3u] = h.radius;
     if ROLLING {
-        floor_hist[t + 4u] = h.torque.x;
-        floor_hist[t + 5u] = h.torque.y;
-        floor_hist[t + 6u] = h.torque.z;
-        floor_hist[t + 7u] = h.rolling_stiffness;
+        wall_hist[t + 4u] = h.torque.x;
+        wall_hist[t + 5u] = h.torque.y;
+        wall_hist[t + 6u] = h.torque.z;
+        wall_hist[t + 7u] = h.rolling_stiffness;
     }
 }
 
@@ -921,9 +970,9 @@ fn pair_wrench(law: Law, h: ptr<function, History>, overlap: f64, n: vec3<f64>, 
 }
 
 // ---------------------------------------------------------------------------------------------
-// Forces: each particle gathers its own wrench (floor first, then its neighbours in key order).
-// A pair is always evaluated with its lower index as body 1, so both particles compute the same
-// bits and get exactly opposite forces and identical histories.
+// Forces: each particle gathers its own wrench (walls first, in order, then its neighbours in key
+// order). A pair is always evaluated with its lower index as body 1, so both particles compute the
+// same bits and get exactly opposite forces and identical histories.
 
 @compute @workgroup_size(64)
 fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
@@ -935,28 +984,41 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
     let xi = load_pos(i);
     let vi = load_vel(i);
     let wi = load_angvel(i);
-    let r = p.radius;
+    let si = species_of[i];
+    let ri = radius_of(si);
     var force = zero;
     var torque = zero;
-    // The floor `z = floor_z`, normal +z (`sphere_half_space`; `sphere_half_space_signed` for
-    // a held adhesive contact).
-    {
-        let signed = xi.z - p.floor_z;
-        let overlap = r - signed;
-        let was_active = floor_hist[FS * i] != 0.0lf;
-        var h = load_floor(i);
-        let held = was_active && holds(p.floor, h);
+    // Each wall: the plane through `o` with outward normal `n` (`sphere_half_space`;
+    // `sphere_half_space_signed` for a held adhesive contact).
+    for (var k = 0u; k < WALLS; k++) {
+        let n = WALL_NORMAL[k];
+        let o = WALL_POINT[k];
+        let signed = dot3(n, xi - o);
+        let overlap = ri - signed;
+        let slot = i * p.walls + k;
+        let was_active = wall_hist[FS * slot] != 0.0lf;
+        var h = load_wall(slot);
+        let law = laws[p.species * p.species + si * p.walls + k];
+        let held = was_active && holds(law, h);
         if overlap <= 0.0lf && !held {
-            store_floor(i, false, default_history());
+            if was_active {
+                store_wall(slot, false, default_history());
+            }
         } else {
-            let n = vec3<f64>(0.0lf, 0.0lf, 1.0lf);
+            // A wall piece of finite extent (a box's side) acts as its plane only while the
+            // centre lies within its face's box: elsewhere the run stops instead of going on
+            // wrongly.
+            if any(xi < WALL_LO[k]) || any(xi > WALL_HI[k]) {
+                atomicMax(&status[S_OFF_FACE], i + 1u);
+                atomicMax(&status[S_OFF_FACE_WALL], k + 1u);
+            }
             let point = xi - n * (signed + 0.5lf * overlap);
             let arm1 = point - xi;
             let rv = vi + cross3(wi, arm1);
-            let out = pair_wrench(p.floor, &h, overlap, n, rv, wi, zero);
-            store_floor(i, true, h);
-            force = out.force;
-            torque = cross3(arm1, out.force) + out.rolling_torque;
+            let out = pair_wrench(law, &h, overlap, n, rv, wi, zero);
+            store_wall(slot, true, h);
+            force = force + out.force;
+            torque = torque + (cross3(arm1, out.force) + out.rolling_torque);
         }
     }
     let base = i * MAXN;
@@ -977,10 +1039,15 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         let ix = f64(i32(image / 3u) - 1);
         let iy = f64(i32(image % 3u) - 1);
         let x1 = load_pos(b1);
-        let x2 = load_pos(b2) + vec3<f64>(ix * p.box_len.x, iy * p.box_len.y, 0.0lf);
+        let x2 = load_pos(b2) + vec3<f64>(ix * p.box_len_x, iy * p.box_len_y, 0.0lf);
         let d = x1 - x2;
         let dist2 = dot3(d, d);
-        let reach = r + r;
+        let s1 = species_of[b1];
+        let s2 = species_of[b2];
+        let r1 = radius_of(s1);
+        let r2 = radius_of(s2);
+        let law = laws[s1 * p.species + s2];
+        let reach = r1 + r2;
         let touch = !(dist2 >= reach * reach || dist2 == 0.0lf);
         let was_active = (key & ACTIVE) != 0u;
         var h = default_history();
@@ -988,7 +1055,7 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
             h = load_slot(base + s);
         }
         // A held adhesive contact goes on at its negative overlap until its law lets go.
-        let held = was_active && dist2 != 0.0lf && holds(p.sphere, h);
+        let held = was_active && dist2 != 0.0lf && holds(law, h);
         if !(touch || held) {
             // Separated: inactive, the history left as it is (reset when it touches again).
             keys[base + s] = key & ~ACTIVE;
@@ -997,12 +1064,12 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         let dist = sqrt(dist2);
         let overlap = reach - dist;
         let n = d * (1.0lf / dist);
-        let lever1 = r - 0.5lf * overlap;
-        let lever2 = r - 0.5lf * overlap;
+        let lever1 = r1 - 0.5lf * overlap;
+        let lever2 = r2 - 0.5lf * overlap;
         let w1 = load_angvel(b1);
         let w2 = load_angvel(b2);
         let rv = (load_vel(b1) - load_vel(b2)) - cross3(w1 * lever1 + w2 * lever2, n);
-        let out = pair_wrench(p.sphere, &h, overlap, n, rv, w1, w2);
+        let out = pair_wrench(law, &h, overlap, n, rv, w1, w2);
         keys[base + s] = key | ACTIVE;
         store_slot(base + s, h);
         let moment = cross3(n, out.force);
@@ -1030,9 +1097,14 @@ fn integrate(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let force = load_wrench(2u * i);
     let torque = load_wrench(2u * i + 1u);
-    let total = force + vec3<f64>(0.0lf * p.mass, 0.0lf * p.mass, p.gravity_z * p.mass);
-    let v = load_vel(i) + total * p.inv_mass * p.dt;
-    let w = load_angvel(i) + torque * p.inv_inertia * p.dt;
+    let t = SPECIES_WORDS * species_of[i];
+    let mass = tables[t + 1u];
+    let inv_mass = tables[t + 2u];
+    let inv_inertia = tables[t + 3u];
+    // rapier: force = user force + g · m; Δv = force · (1/m) · dt.
+    let total = force + vec3<f64>(p.gravity_x * mass, p.gravity_y * mass, p.gravity_z * mass);
+    let v = load_vel(i) + total * inv_mass * p.dt;
+    let w = load_angvel(i) + torque * inv_inertia * p.dt;
     let x = load_pos(i) + v * p.dt;
     store_vel(i, v);
     store_angvel(i, w);

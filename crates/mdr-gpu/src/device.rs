@@ -88,6 +88,19 @@ pub enum GpuError {
         /// Its capacity.
         capacity: u32,
     },
+    /// A sphere touched a wall of finite extent (a box's side) outside the face the GPU path
+    /// takes as its plane.
+    #[error(
+        "--device gpu: particle {particle} touches wall plane {wall} outside its face (a box's \
+         side is taken as the plane of its inner face, valid over the face only): the sphere \
+         left the box; run the scene on the CPU path"
+    )]
+    OffFace {
+        /// The particle (0-based).
+        particle: u32,
+        /// The wall plane (0-based, in the system's order).
+        wall: u32,
+    },
     /// The system is not one the GPU path has.
     #[error("--device gpu: {0}")]
     Unsupported(String),

@@ -138,6 +138,13 @@ pub(crate) struct LawConstants {
     rolling_stiffness_ratio: f64,
 }
 
+impl LawConstants {
+    /// `E*` and `R` of the bound pair.
+    pub(crate) fn moduli(&self) -> (f64, f64) {
+        (self.effective_modulus, self.effective_radius)
+    }
+}
+
 /// What the GPU system takes from the CPU reference system.
 pub(crate) struct BoundLaws {
     pub boundary: Boundary,
@@ -176,7 +183,7 @@ fn mdr_constants(e: f64, r: f64, yield_displacement: f64, theta: f64) -> LawCons
 }
 
 /// The constants of an `MdrLaw`.
-fn mdr_law_constants(law: &mdr_contact::normal::MdrLaw) -> LawConstants {
+pub(crate) fn mdr_law_constants(law: &mdr_contact::normal::MdrLaw) -> LawConstants {
     mdr_constants(
         law.effective_modulus(),
         law.effective_radius(),
@@ -198,7 +205,7 @@ fn mismatch(what: &str) -> GpuError {
 }
 
 /// Hertz's constants (`HertzLaw::new`'s formulas) for `E*`, `R`, checked against `law`.
-fn hertz_constants(law: &HertzLaw, e: f64, r: f64) -> Result<LawConstants, GpuError> {
+pub(crate) fn hertz_constants(law: &HertzLaw, e: f64, r: f64) -> Result<LawConstants, GpuError> {
     if HertzLaw::new(&pair_of(e, r)?) != *law {
         return Err(mismatch("Hertz law"));
     }
@@ -212,7 +219,7 @@ fn hertz_constants(law: &HertzLaw, e: f64, r: f64) -> Result<LawConstants, GpuEr
 
 /// Thornton's constants (`ThorntonLaw::new`'s formulas, in its order) for `E*`, `R`, `p_y`,
 /// checked against `law` (the 1997 unloading branch only).
-fn thornton_constants(
+pub(crate) fn thornton_constants(
     law: &ThorntonLaw,
     e: f64,
     r: f64,
@@ -249,7 +256,9 @@ fn thornton_constants(
 
 /// The adhesive MDR law's constants: its MDR law's, `√(2π Δγ / E*)` and the pull-off force
 /// (`AdhesiveMdrLaw::new`'s formulas), checked against the bound law.
-fn adhesive_constants(law: &mdr_contact::normal::AdhesiveMdrLaw) -> Result<LawConstants, GpuError> {
+pub(crate) fn adhesive_constants(
+    law: &mdr_contact::normal::AdhesiveMdrLaw,
+) -> Result<LawConstants, GpuError> {
     let mut c = mdr_law_constants(law.mdr());
     let w = law.work_of_adhesion();
     c.detach_coefficient = (2.0 * std::f64::consts::PI * w / c.effective_modulus).sqrt();
@@ -260,15 +269,17 @@ fn adhesive_constants(law: &mdr_contact::normal::AdhesiveMdrLaw) -> Result<LawCo
     Ok(c)
 }
 
-/// The tangential and damping constants of a bound law, checked against its own responses.
+/// The tangential and damping constants of a bound law with Coulomb coefficient `friction`,
+/// checked against its own responses.
 fn add_tangential<T: TangentialLaw, D: DampingLaw>(
     mut c: LawConstants,
     tangential: &T,
     shear_modulus: f64,
     damping: &D,
+    friction: f64,
 ) -> Result<LawConstants, GpuError> {
     c.shear_modulus = shear_modulus;
-    c.friction = FRICTION;
+    c.friction = friction;
     // √1 = 1: the coefficient itself.
     c.dashpot = damping.normal_coefficient(&NormalResponse::default(), 1.0);
     c.tangential_ratio = damping.tangential_ratio();
@@ -286,9 +297,9 @@ fn add_tangential<T: TangentialLaw, D: DampingLaw>(
             },
         },
     );
-    if (slip.force.norm() - FRICTION).abs() > 1e-12 {
+    if (slip.force.norm() - friction).abs() > 1e-12 {
         return Err(GpuError::Unsupported(format!(
-            "the reference system's friction coefficient is {}, the GPU path's {FRICTION}",
+            "the bound law's friction coefficient is {}, the GPU path's {friction}",
             slip.force.norm()
         )));
     }
@@ -379,15 +390,8 @@ where
         >,
         mdr_contact::rolling::EpsdRollingLaw,
     );
-    let one_side = |(law, roll): &Bound<N::Law>, (e, r): (f64, f64)| {
-        // Mindlin's stiffness `2 G* a` at `a = 1/2` is `G*` exactly.
-        let c = add_tangential(
-            constants(&law.normal, e, r)?,
-            &law.tangential,
-            law.tangential.stiffness(0.5),
-            &law.damping,
-        )?;
-        add_rolling(c, mu_r, r, roll)
+    let one_side = |bound: &Bound<N::Law>, moduli: (f64, f64)| {
+        bound_constants(bound, moduli, FRICTION, mu_r, &constants)
     };
     let sphere_laws = stepper.sphere_pair_laws(0, 0);
     Ok(BoundLaws {
@@ -400,6 +404,36 @@ where
         yield_overlap: sphere_laws.0.normal.yield_overlap(),
         neck_reach: stepper.neck_reach(),
     })
+}
+
+/// The constants of one bound pair (`E*`, `R` in `moduli`) with Mindlin friction `friction` and
+/// rolling coefficient `mu_r` (0: off), the normal ones by `constants(law, E*, R)`.
+pub(crate) fn bound_constants<L, D, R, F>(
+    (law, roll): &(
+        mdr_contact::model::ContactLaw<L, mdr_contact::tangential::MindlinLaw, D>,
+        R,
+    ),
+    (e, r): (f64, f64),
+    friction: f64,
+    mu_r: f64,
+    constants: &F,
+) -> Result<LawConstants, GpuError>
+where
+    L: NormalLaw,
+    D: DampingLaw,
+    R: RollingLaw,
+    F: Fn(&L, f64, f64) -> Result<LawConstants, GpuError>,
+{
+    // Mindlin's stiffness `2 G* a` at `a = 1/2` is `G*` exactly.
+    let c = add_tangential(
+        constants(&law.normal, e, r)?,
+        &law.tangential,
+        law.tangential.stiffness(0.5),
+        &law.damping,
+        friction,
+    )?;
+    let r = c.effective_radius;
+    add_rolling(c, mu_r, r, roll)
 }
 
 impl BoundLaws {

@@ -1,8 +1,10 @@
 //! The neighbour-list path of mdr-dem on the GPU: wgpu compute shaders in f64 (Vulkan, Metal or
-//! DX12 with `SHADER_F64`) running the settled-bed system of `mdr-dem bench bed` with the CPU
-//! path's arithmetic: the same law formulas (Hertz, MDR, Thornton or adhesive MDR normal,
-//! Mindlin tangential, Hertzian viscous damping, optionally rolling resistance), the same
-//! integrator order, the same list and history semantics ([`GpuLaws`]).
+//! DX12 with `SHADER_F64`) running the settled-bed system of `mdr-dem bench bed` ([`GpuBed`])
+//! and force-mode scenes whose walls are planes and boxes ([`GpuScene`]; others are refused by
+//! [`gpu_scene_support`]) with the CPU path's arithmetic: the same law formulas (Hertz, MDR,
+//! Thornton or adhesive MDR normal, Mindlin tangential, Hertzian viscous damping, optionally
+//! rolling resistance) bound per species pair, the same integrator order, the same list and
+//! history semantics ([`GpuLaws`]).
 //! The design, its determinism and its cost are described in `docs/gpu.md`.
 //!
 //! ```no_run
@@ -23,6 +25,8 @@ mod bed;
 mod bench;
 mod device;
 mod law;
+mod scene;
+mod system;
 
 pub use bed::{GpuBed, GpuOptions, GpuPair, GpuState};
 pub use bench::{
@@ -32,3 +36,4 @@ pub use bench::{
 pub use device::{GpuContext, GpuError};
 pub use law::{GpuLaws, GpuNormalLaw};
 pub use mdr_rapier::neighbour_list::bed::BENCH_THETA_RATIO;
+pub use scene::{gpu_scene_support, GpuScene};

@@ -66,6 +66,17 @@ impl<'a> SceneSteps<'a> {
         }
     }
 
+    /// The spheres' positions, velocities and species (neighbour-list path; `None` on the
+    /// rapier pipeline paths).
+    pub fn neighbour_list_particles(
+        &self,
+    ) -> Option<&mdr_rapier::neighbour_list::particles::NeighbourListParticles> {
+        match &self.sim.built.coupling {
+            Coupling::NeighbourList(stepper) => Some(stepper.particles()),
+            _ => None,
+        }
+    }
+
     /// Number of particles.
     pub fn particles(&self) -> usize {
         self.sim.scene.particles.len()

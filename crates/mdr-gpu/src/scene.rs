@@ -1,0 +1,534 @@
+//! Scenes on the GPU ([`GpuScene`]): force-mode scenes whose walls are all planes and boxes,
+//! with the laws the CPU neighbour-list path binds for them, species pair by species pair.
+//!
+//! A scene the device does not have every part of is refused ([`gpu_scene_support`]) with the
+//! part named: a wall of another kind (cylinder, cone, orifice plate, mesh), a rotating or
+//! removed wall, a sink, restitution mode, the rapier pipeline path, the stiffness-viscous
+//! damping law, Thornton's LIGGGHTS unloading branch or a normal law without a device kernel.
+
+use crate::device::{GpuContext, GpuError};
+use crate::law::{
+    adhesive_constants, bound_constants, hertz_constants, mdr_law_constants, thornton_constants,
+    LawConstants,
+};
+use crate::system::{GpuOptions, GpuState, Plane, System, SystemSpec};
+use mdr_contact::model::ContactModel;
+use mdr_contact::normal::{AdhesiveMdr, Hertz, MdrElastoPlastic, NormalModel, Thornton};
+use mdr_contact::params::Declared;
+use mdr_contact::rolling::{NoRolling, RollingModel};
+use mdr_rapier::convert::to_glam;
+use mdr_rapier::neighbour_list::particles::Species;
+use mdr_rapier::neighbour_list::{Boundary, NeighbourListStepper};
+use mdr_rapier::particles::SphereBuilder;
+use mdr_sim::laws::registry::SceneParts;
+use mdr_sim::laws::AnyDamping;
+use mdr_sim::scene::schema::WallKind;
+use mdr_sim::scene::{CouplingMode, DampingSpec, ForcePath};
+use mdr_sim::walls::WallPiece;
+use mdr_sim::Scene;
+use nalgebra::Vector3;
+use rapier3d_f64::prelude::{ColliderBuilder, PhysicsWorld, SharedShape};
+
+/// The normal laws with a device kernel: scene name, `Params::law` code of `bed.wgsl`, f64
+/// words of per-contact state.
+const DEVICE_LAWS: [(&str, u32, u32); 4] = [
+    (Hertz::DECLARATION.name, 0, 1),
+    (MdrElastoPlastic::DECLARATION.name, 1, 1),
+    (Thornton::DECLARATION.name, 2, 3),
+    (AdhesiveMdr::DECLARATION.name, 3, 2),
+];
+
+/// Whether the GPU path runs `scene`: `Ok`, or the error naming the first part it lacks (a
+/// wall by its `[[walls]]` entry and kind, a key by its name). Needs no device.
+pub fn gpu_scene_support(scene: &Scene) -> Result<(), GpuError> {
+    let refuse = |what: String| {
+        Err(GpuError::Unsupported(format!(
+            "scene `{}`: {what}",
+            scene.name
+        )))
+    };
+    if scene.coupling != CouplingMode::Force {
+        return refuse(
+            "restitution mode (`coupling = \"restitution\"`) runs on the CPU only".into(),
+        );
+    }
+    if scene.force_path == ForcePath::Rapier {
+        return refuse("`force_path = \"rapier\"` is the CPU's rapier pipeline path".into());
+    }
+    for wall in &scene.walls {
+        let j = wall.index;
+        let kind = scene.source.walls.get(j).map(|w| w.kind);
+        if !matches!(kind, Some(WallKind::Plane | WallKind::Box)) || wall.revolution.is_some() {
+            return refuse(format!(
+                "wall {j} (`[[walls]]` entry {}, `kind = \"{}\"`{}) has no GPU kernel: the GPU \
+                 has `plane` and `box` walls only",
+                j + 1,
+                kind.map_or("unknown", kind_name),
+                if wall.revolution.is_some() {
+                    ", an exact surface of revolution"
+                } else {
+                    ""
+                }
+            ));
+        }
+        if wall.angular_velocity.is_some() {
+            return refuse(format!(
+                "wall {j} (`[[walls]]` entry {}) rotates (`angular_velocity_rad_per_s`): the GPU \
+                 has fixed walls only",
+                j + 1
+            ));
+        }
+        if wall.removed_at.is_some() {
+            return refuse(format!(
+                "wall {j} (`[[walls]]` entry {}) is removed during the run (`removed_at_s`): \
+                 the GPU has fixed walls only",
+                j + 1
+            ));
+        }
+    }
+    if !DEVICE_LAWS.iter().any(|l| l.0 == scene.contact.normal.law) {
+        return refuse(format!(
+            "the normal law `normal = \"{}\"` has no GPU kernel (the GPU has {})",
+            scene.contact.normal.law,
+            DEVICE_LAWS.map(|l| l.0).join(", ")
+        ));
+    }
+    if scene.contact.normal.law == Thornton::DECLARATION.name {
+        let thornton = Thornton::from_values(&scene.contact.normal.values)?;
+        if thornton.unloading() != mdr_contact::normal::ThorntonUnloading::Thornton1997 {
+            return refuse(
+                "Thornton's LIGGGHTS `thornton_ning` unloading branch has no GPU kernel".into(),
+            );
+        }
+    }
+    if let DampingSpec::StiffnessViscous(_) = scene.contact.damping {
+        return refuse(
+            "`damping = \"stiffness_viscous\"` has no GPU kernel (the GPU has `none` and \
+             `hertzian_viscous`)"
+                .into(),
+        );
+    }
+    if scene.source.run.delete_below_m.is_some() {
+        return refuse("the sink `[run] delete_below_m` runs on the CPU only".into());
+    }
+    Ok(())
+}
+
+/// The scene file's name of a wall kind.
+fn kind_name(kind: WallKind) -> &'static str {
+    match kind {
+        WallKind::Plane => "plane",
+        WallKind::Box => "box",
+        WallKind::Cylinder => "cylinder",
+        WallKind::Mesh => "mesh",
+        WallKind::OrificePlate => "orifice_plate",
+        WallKind::Cone => "cone",
+    }
+}
+
+/// The planes of `scene`'s walls in the CPU path's surface order, each with its wall index:
+/// a plane wall's half-space, and a box's slabs as the planes of their inner faces, each
+/// valid over its face.
+fn scene_planes(scene: &Scene) -> Result<Vec<(usize, Plane)>, GpuError> {
+    let mut planes = Vec::new();
+    for wall in &scene.walls {
+        for piece in &wall.pieces {
+            let plane = match piece {
+                WallPiece::HalfSpace { point, normal } => {
+                    Plane::infinite(normal.normalize(), wall.origin + point)
+                }
+                WallPiece::Cuboid {
+                    center,
+                    rotation,
+                    half_extents,
+                } if *rotation == nalgebra::UnitQuaternion::identity() => {
+                    let center = wall.origin + center;
+                    // The slab's thin axis; its inner face looks towards the box's centre.
+                    let axis = (0..3)
+                        .min_by(|&a, &b| half_extents[a].total_cmp(&half_extents[b]))
+                        .unwrap_or(2);
+                    let box_center = wall.origin + pieces_center(&wall.pieces);
+                    let side = if center[axis] > box_center[axis] {
+                        1.0
+                    } else {
+                        -1.0
+                    };
+                    let mut normal = Vector3::zeros();
+                    normal[axis] = -side;
+                    let mut point = center;
+                    point[axis] -= side * half_extents[axis];
+                    let mut lo = center - half_extents;
+                    let mut hi = center + half_extents;
+                    lo[axis] = f64::MIN;
+                    hi[axis] = f64::MAX;
+                    Plane {
+                        normal,
+                        point,
+                        lo,
+                        hi,
+                    }
+                }
+                _ => {
+                    return Err(GpuError::Unsupported(format!(
+                        "wall {} has a piece that is neither a half-space nor an axis-aligned slab",
+                        wall.index
+                    )))
+                }
+            };
+            planes.push((wall.index, plane));
+        }
+    }
+    Ok(planes)
+}
+
+/// The mean of the centres of a box's slabs: inside the box, on the inner side of every slab
+/// (an open top leaves the mean above the bottom slab).
+fn pieces_center(pieces: &[WallPiece]) -> Vector3<f64> {
+    let centers: Vec<_> = pieces
+        .iter()
+        .filter_map(|p| match p {
+            WallPiece::Cuboid { center, .. } => Some(*center),
+            _ => None,
+        })
+        .collect();
+    centers.iter().sum::<Vector3<f64>>() / centers.len().max(1) as f64
+}
+
+/// The species of `scene`'s particles as the CPU stepper numbers them (in order of first
+/// appearance), and the first particle of each.
+fn scene_species(scene: &Scene) -> (Vec<u32>, Vec<usize>) {
+    let mut keys: Vec<(usize, u64)> = Vec::new();
+    let mut first = Vec::new();
+    let species = scene
+        .particles
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let key = (p.material, p.radius.to_bits());
+            match keys.iter().position(|k| *k == key) {
+                Some(s) => s as u32,
+                None => {
+                    keys.push(key);
+                    first.push(i);
+                    (keys.len() - 1) as u32
+                }
+            }
+        })
+        .collect();
+    (species, first)
+}
+
+/// What a scene's CPU stepper binds: the species table, the laws per species pair and per
+/// (species, wall), the adhesive necks' reach.
+struct SceneLaws {
+    species_table: Vec<Species>,
+    sphere: Vec<LawConstants>,
+    walls: Vec<LawConstants>,
+    neck_reach: f64,
+}
+
+/// `E*` and `R` of every species pair and (species, wall), from an MDR law bound for each.
+type Moduli = (Vec<(f64, f64)>, Vec<(f64, f64)>);
+
+/// Bind the scene's laws with normal model `normal` on a stepper holding the first particle of
+/// each species and the walls' planes (a law depends on the materials and the species, not
+/// on the shape), as the CPU path's stepper binds them; the normal constants by
+/// `constants(law, E*, R)` with the pair's `E*` and `R` from `moduli` (`None`: the law keeps
+/// them itself).
+fn bind_scene<N, F>(
+    normal: N,
+    scene: &Scene,
+    planes: &[(usize, Plane)],
+    moduli: Option<&Moduli>,
+    constants: F,
+) -> Result<SceneLaws, GpuError>
+where
+    N: NormalModel,
+    N::Law: Clone,
+    F: Fn(&N::Law, f64, f64) -> Result<LawConstants, GpuError>,
+{
+    let parts = SceneParts::of(&scene.contact).map_err(mdr_rapier::error::CouplingError::from)?;
+    let model = ContactModel::new(normal)
+        .with_tangential(parts.tangential)
+        .with_damping(parts.damping);
+    let mu_r = scene.contact.rolling_friction;
+    match parts.rolling.0 {
+        Some(rolling) => bind_with(
+            NeighbourListStepper::<N, _, AnyDamping>::new(model, Boundary::Open)
+                .with_rolling(rolling),
+            scene,
+            planes,
+            moduli,
+            mu_r,
+            constants,
+        ),
+        None => bind_with(
+            NeighbourListStepper::<N, _, AnyDamping, NoRolling>::new(model, Boundary::Open),
+            scene,
+            planes,
+            moduli,
+            mu_r,
+            constants,
+        ),
+    }
+}
+
+fn bind_with<N, R, F>(
+    mut stepper: NeighbourListStepper<N, mdr_contact::tangential::Mindlin, AnyDamping, R>,
+    scene: &Scene,
+    planes: &[(usize, Plane)],
+    moduli: Option<&Moduli>,
+    mu_r: f64,
+    constants: F,
+) -> Result<SceneLaws, GpuError>
+where
+    N: NormalModel,
+    N::Law: Clone,
+    R: RollingModel,
+    R::Law: Clone,
+    F: Fn(&N::Law, f64, f64) -> Result<LawConstants, GpuError>,
+{
+    let mut world = PhysicsWorld::default();
+    let materials: Vec<_> = scene
+        .materials
+        .iter()
+        .map(|(_, m)| stepper.insert_material(*m))
+        .collect();
+    for (j, plane) in planes {
+        let material = materials[scene.walls[*j].material];
+        stepper.insert_surface(
+            &mut world,
+            ColliderBuilder::new(SharedShape::halfspace(to_glam(&plane.normal)))
+                .translation(to_glam(&plane.point)),
+            None,
+            material,
+        )?;
+    }
+    let (_, first) = scene_species(scene);
+    for &i in &first {
+        let p = &scene.particles[i];
+        stepper.insert_sphere(
+            SphereBuilder::new(p.radius, materials[p.material]).translation(to_glam(&p.position)),
+        )?;
+    }
+    let mut stepper = stepper.skin(mdr_sim::run::build::skin(scene))?;
+    stepper.configure(&mut world.integration_parameters, scene.dt)?;
+    stepper.compute_forces(&world, false)?;
+    let ns = first.len();
+    let nw = planes.len();
+    let mut sphere = Vec::with_capacity(ns * ns);
+    let mut walls = Vec::with_capacity(ns * nw);
+    for a in 0..ns {
+        for b in 0..ns {
+            let bound = stepper.sphere_pair_laws(a, b);
+            let m = match moduli {
+                Some(m) => m.0[a * ns + b],
+                None => (0.0, 0.0),
+            };
+            sphere.push(bound_constants(
+                bound,
+                m,
+                scene.contact.friction,
+                mu_r,
+                &constants,
+            )?);
+        }
+    }
+    for a in 0..ns {
+        for s in 0..nw {
+            let bound = stepper.surface_pair_laws(a, s);
+            let m = match moduli {
+                Some(m) => m.1[a * nw + s],
+                None => (0.0, 0.0),
+            };
+            walls.push(bound_constants(
+                bound,
+                m,
+                scene.contact.friction,
+                mu_r,
+                &constants,
+            )?);
+        }
+    }
+    Ok(SceneLaws {
+        species_table: stepper.particles().species_table.clone(),
+        sphere,
+        walls,
+        neck_reach: stepper.neck_reach(),
+    })
+}
+
+/// `E*` and `R` of every species pair and (species, wall) of `scene`, read from MDR laws bound
+/// for them by the CPU path's binding.
+fn scene_moduli(scene: &Scene, planes: &[(usize, Plane)]) -> Result<Moduli, GpuError> {
+    let laws = bind_scene(
+        MdrElastoPlastic::elastic(),
+        scene,
+        planes,
+        None,
+        |law, _, _| Ok(mdr_law_constants(law)),
+    )?;
+    Ok((
+        laws.sphere.iter().map(LawConstants::moduli).collect(),
+        laws.walls.iter().map(LawConstants::moduli).collect(),
+    ))
+}
+
+/// The laws of `scene` as its CPU stepper binds them.
+fn scene_laws(scene: &Scene, planes: &[(usize, Plane)]) -> Result<SceneLaws, GpuError> {
+    let values = &scene.contact.normal.values;
+    let law = scene.contact.normal.law;
+    let laws = if law == MdrElastoPlastic::DECLARATION.name {
+        bind_scene(
+            MdrElastoPlastic::from_values(values)?,
+            scene,
+            planes,
+            None,
+            |law, _, _| Ok(mdr_law_constants(law)),
+        )?
+    } else if law == AdhesiveMdr::DECLARATION.name {
+        bind_scene(
+            AdhesiveMdr::from_values(values)?,
+            scene,
+            planes,
+            None,
+            |law, _, _| adhesive_constants(law),
+        )?
+    } else if law == Hertz::DECLARATION.name {
+        let moduli = scene_moduli(scene, planes)?;
+        bind_scene(
+            Hertz::from_values(values)?,
+            scene,
+            planes,
+            Some(&moduli),
+            hertz_constants,
+        )?
+    } else if law == Thornton::DECLARATION.name {
+        let moduli = scene_moduli(scene, planes)?;
+        let thornton = Thornton::from_values(values)?;
+        let p_y = thornton.yield_pressure();
+        bind_scene(thornton, scene, planes, Some(&moduli), |law, e, r| {
+            thornton_constants(law, e, r, p_y)
+        })?
+    } else {
+        return Err(GpuError::Unsupported(format!(
+            "the normal law `{law}` has no GPU kernel"
+        )));
+    };
+    Ok(laws)
+}
+
+/// A force-mode scene stepped on the device: the steps of the CPU neighbour-list path
+/// (`mdr_sim::run::SceneSteps`) for a scene whose walls are planes and boxes, without the
+/// energy books and the headline tracker.
+#[derive(Debug)]
+pub struct GpuScene {
+    system: System,
+    wall_of_plane: Vec<usize>,
+}
+
+impl GpuScene {
+    /// `scene` at its set-up, uploaded to `ctx`'s device with the list and grid sizes of
+    /// `options` (its `laws` are ignored: the scene names its own). Refused with the part
+    /// named when the GPU path lacks one ([`gpu_scene_support`]).
+    pub fn new(ctx: &GpuContext, scene: &Scene, options: &GpuOptions) -> Result<Self, GpuError> {
+        gpu_scene_support(scene)?;
+        let planes = scene_planes(scene)?;
+        let laws = scene_laws(scene, &planes)?;
+        let &(_, law_code, normal_words) = DEVICE_LAWS
+            .iter()
+            .find(|l| l.0 == scene.contact.normal.law)
+            .ok_or_else(|| GpuError::Unsupported("no GPU kernel for the normal law".into()))?;
+        let skin = mdr_sim::run::build::skin(scene);
+        let periodic = match scene.periodic {
+            Some([x, y]) => {
+                let boundary = Boundary::periodic_xy(x, y)?;
+                let r_max = scene.particles.iter().map(|p| p.radius).fold(0.0, f64::max);
+                boundary.check_cutoff(2.0 * r_max + skin + laws.neck_reach)?;
+                Some(([x.0, y.0], [x.1, y.1]))
+            }
+            None => None,
+        };
+        let (species, _) = scene_species(scene);
+        let position: Vec<_> = scene.particles.iter().map(|p| p.position).collect();
+        let linvel: Vec<_> = scene.particles.iter().map(|p| p.velocity).collect();
+        let angvel = vec![Vector3::zeros(); position.len()];
+        let system = System::new(
+            ctx,
+            &SystemSpec {
+                position: &position,
+                linvel: &linvel,
+                angvel: &angvel,
+                species,
+                species_table: laws.species_table,
+                sphere_laws: laws.sphere,
+                wall_laws: laws.walls,
+                walls: planes.iter().map(|p| p.1).collect(),
+                periodic,
+                gravity: scene.gravity,
+                dt: scene.dt,
+                skin,
+                neck_reach: laws.neck_reach,
+                law_code,
+                normal_words,
+                rolling: scene.contact.rolling_friction > 0.0,
+                // Scenes integrate no orientations (no output reads them).
+                orientation: false,
+                options: GpuOptions {
+                    laws: None,
+                    ..*options
+                },
+            },
+        )?;
+        Ok(Self {
+            system,
+            wall_of_plane: planes.iter().map(|p| p.0).collect(),
+        })
+    }
+
+    /// Particles.
+    pub fn len(&self) -> usize {
+        self.system.len()
+    }
+
+    /// Whether there are no particles (never: an empty scene is refused).
+    pub fn is_empty(&self) -> bool {
+        self.system.len() == 0
+    }
+
+    /// The scene's wall (`[[walls]]` index) of each wall plane, in the device's order (a box
+    /// gives five or six).
+    pub fn wall_of_plane(&self) -> &[usize] {
+        &self.wall_of_plane
+    }
+
+    /// Steps done.
+    pub fn steps(&self) -> u64 {
+        self.system.steps()
+    }
+
+    /// Bytes of every device buffer of the system.
+    pub fn device_bytes(&self) -> u64 {
+        self.system.device_bytes()
+    }
+
+    /// `steps` steps (see [`crate::GpuBed::step`]).
+    pub fn step(&mut self, steps: usize) -> Result<(), GpuError> {
+        self.system.step(steps)
+    }
+
+    /// Neighbour-list builds so far.
+    pub fn rebuilds(&self) -> Result<u64, GpuError> {
+        self.system.rebuilds()
+    }
+
+    /// Positions.
+    pub fn positions(&self) -> Result<Vec<Vector3<f64>>, GpuError> {
+        self.system.positions()
+    }
+
+    /// The whole state, read back (wall slot `particle · planes + plane`).
+    pub fn state(&self) -> Result<GpuState, GpuError> {
+        self.system.state()
+    }
+}
