@@ -4,9 +4,9 @@
 //! Python's `mdr_dem.bench_bed` runs too); see `docs/performance.md`.
 
 use anyhow::{anyhow, bail, Context};
+use clap::{Args, Subcommand, ValueEnum};
 use mdr_contact::params::Declared;
 use mdr_contact::rolling::EpsdRolling;
-use clap::{Args, Subcommand, ValueEnum};
 use mdr_rapier::neighbour_list::bed::{
     bench_bed, peak_rss_mb, process_cpu_seconds, reference_data, settled_bed, Bed, BedSpec,
     BenchFigures, BenchLaw, BenchSettings, BenchValue,

@@ -100,7 +100,10 @@ pub const KEYWORDS: &[Keyword] = &[
         HertzianViscous::DECLARATION.params[1],
         ">= 0 (ratio), default 0",
     ),
-    Keyword::new(EpsdRolling::DECLARATION.params[0], ">= 0 (EPSD coefficient), default 0"),
+    Keyword::new(
+        EpsdRolling::DECLARATION.params[0],
+        ">= 0 (EPSD coefficient), default 0",
+    ),
     Keyword::new(
         AdhesiveMdr::DECLARATION.params[2].default(0.0),
         ">= 0 (work of adhesion, energy/area), default 0",
@@ -259,14 +262,27 @@ mod tests {
         for p in laws.iter().flat_map(|l| l.params) {
             let k = keyword(p.lammps_name())
                 .unwrap_or_else(|| panic!("`{}` is no keyword", p.lammps_name()));
-            assert_eq!((k.param.key, k.param.range), (p.key, p.range), "{}", k.name());
+            assert_eq!(
+                (k.param.key, k.param.range),
+                (p.key, p.range),
+                "{}",
+                k.name()
+            );
             if !names.contains(&p.lammps_name()) {
                 names.push(p.lammps_name());
             }
         }
         assert_eq!(
             names,
-            ["qc", "theta", "adhesion", "friction", "damping", "tangential_damping", "rolling"]
+            [
+                "qc",
+                "theta",
+                "adhesion",
+                "friction",
+                "damping",
+                "tangential_damping",
+                "rolling"
+            ]
         );
     }
 

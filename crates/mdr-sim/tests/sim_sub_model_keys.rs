@@ -14,10 +14,8 @@ use std::path::Path;
 
 /// The column scene with `μ = 0.3` and `extra` appended to its `[contact]` table.
 fn scene_with(extra: &str) -> Result<Scene, Problems> {
-    let text = common::column(2, 2, 0.01, 0.3, "").replace(
-        "friction = 0.3",
-        &format!("friction = 0.3\n{extra}"),
-    );
+    let text = common::column(2, 2, 0.01, 0.3, "")
+        .replace("friction = 0.3", &format!("friction = 0.3\n{extra}"));
     assert!(text.contains(extra), "{text}");
     parse_scene(Path::new("scene.toml"), &text)
 }
@@ -39,7 +37,10 @@ fn sub_model_values_and_defaults_come_from_the_declarations() {
     assert_eq!(c.damping, DampingSpec::HertzianViscous(50.0));
     // The declared defaults of the keys left out.
     let ratio = HertzianViscous::DECLARATION.params[1];
-    assert_eq!((ratio.key, ratio.default), ("damping_tangential_ratio", Some(0.0)));
+    assert_eq!(
+        (ratio.key, ratio.default),
+        ("damping_tangential_ratio", Some(0.0))
+    );
     assert_eq!(c.tangential_damping_ratio, 0.0);
     assert_eq!(c.rolling_friction, 0.0);
     let scene = scene_with(
@@ -61,13 +62,19 @@ fn range_errors_name_the_key_the_range_and_the_equation() {
         .find(|e| e.key == "contact.friction")
         .unwrap_or_else(|| panic!("{problems}"));
     let help = Mindlin::DECLARATION.params[0].help();
-    assert!(e.message.contains("[0, inf)") && e.message.contains(&help), "{e}");
+    assert!(
+        e.message.contains("[0, inf)") && e.message.contains(&help),
+        "{e}"
+    );
     let m = error(
         "damping = \"stiffness_viscous\"\ndamping_eta = -0.5",
         "damping_eta",
     );
     let help = StiffnessViscous::DECLARATION.params[0].help();
-    assert!(m.contains("`damping_eta` = -0.5") && m.contains(&help), "{m}");
+    assert!(
+        m.contains("`damping_eta` = -0.5") && m.contains(&help),
+        "{m}"
+    );
     let m = error("rolling_friction = nan", "rolling_friction");
     assert!(m.contains("rolling_friction"), "{m}");
     let m = error("damping = \"hertzian_viscous\"", "contact");
@@ -77,7 +84,10 @@ fn range_errors_name_the_key_the_range_and_the_equation() {
             && m.contains("1/(m·s)"),
         "{m}"
     );
-    let m = error("damping_eta = \"much\"\ndamping = \"stiffness_viscous\"", "damping_eta");
+    let m = error(
+        "damping_eta = \"much\"\ndamping = \"stiffness_viscous\"",
+        "damping_eta",
+    );
     assert!(m.contains("expected a number"), "{m}");
 }
 
@@ -96,20 +106,29 @@ fn laws_are_chosen_by_registered_name_and_other_laws_keys_refused() {
         "damping_eta",
     );
     assert!(
-        m.contains("not used by damping = \"hertzian_viscous\" (a parameter of `stiffness_viscous`)"),
+        m.contains(
+            "not used by damping = \"hertzian_viscous\" (a parameter of `stiffness_viscous`)"
+        ),
         "{m}"
     );
     let m = error("damping_tangential_ratio = 0.5", "damping_tangential_ratio");
     assert!(m.contains("not used by damping = \"none\""), "{m}");
-    let m = error("rolling = \"none\"\nrolling_friction = 0.1", "rolling_friction");
-    assert!(m.contains("not used by rolling = \"none\" (a parameter of `epsd`)"), "{m}");
+    let m = error(
+        "rolling = \"none\"\nrolling_friction = 0.1",
+        "rolling_friction",
+    );
+    assert!(
+        m.contains("not used by rolling = \"none\" (a parameter of `epsd`)"),
+        "{m}"
+    );
     // A zero coefficient of a law that is not chosen is that law off: accepted.
     let scene = scene_with("rolling = \"none\"\nrolling_friction = 0.0").expect("valid");
     assert_eq!(scene.contact.rolling_friction, 0.0);
     // An unknown key lists the sub-models' keys among the allowed ones.
     let m = error("rolling_frction = 0.1", "rolling_frction");
     assert!(
-        m.contains("`rolling`, `rolling_friction`") && m.contains("did you mean `rolling_friction`?"),
+        m.contains("`rolling`, `rolling_friction`")
+            && m.contains("did you mean `rolling_friction`?"),
         "{m}"
     );
 }
@@ -154,8 +173,58 @@ fn the_contact_table_is_written_in_its_fixed_order() {
          damping_eta = 0.3\ndamping_tangential_ratio = 0.5\nrolling_friction = 0.1\n"
     );
     // `damping` is written when left out, as `none`; `rolling` only when given.
-    let scene = parse_scene(Path::new("scene.toml"), &common::column(2, 2, 0.01, 0.3, ""))
-        .expect("valid");
+    let scene = parse_scene(
+        Path::new("scene.toml"),
+        &common::column(2, 2, 0.01, 0.3, ""),
+    )
+    .expect("valid");
     let written = toml::to_string(&scene.source.contact).unwrap();
-    assert!(written.ends_with("friction = 0.3\ndamping = \"none\"\n"), "{written}");
+    assert!(
+        written.ends_with("friction = 0.3\ndamping = \"none\"\n"),
+        "{written}"
+    );
+}
+
+/// A damping law registered without a place in the steppers' types is refused by name, and the
+/// registered ones are placed (docs/architecture.md, "Tangential, damping and rolling laws").
+#[test]
+fn a_sub_model_without_a_place_in_the_steppers_is_refused_by_name() {
+    use mdr_contact::params::{LawDeclaration, LawKind, Param, Range};
+    use mdr_contact::rolling::EpsdRolling;
+    use mdr_contact::tangential::Frictionless;
+    use mdr_sim::laws::registry::contact_spec;
+    use mdr_sim::scene::SubModelSpec;
+    static PARAMS: &[Param] = &[Param::new(
+        "damping_c_n_s_per_m",
+        "c",
+        "N·s/m",
+        Range::NON_NEGATIVE,
+        "F_d = c dδ/dt",
+    )];
+    let constant = SubModelSpec {
+        declaration: LawDeclaration {
+            name: "constant_viscous",
+            kind: LawKind::Damping,
+            summary: "",
+            params: PARAMS,
+        },
+        values: vec![1.0],
+    };
+    let spec = |declaration: LawDeclaration, values: Vec<f64>| SubModelSpec {
+        declaration,
+        values,
+    };
+    let normal = scene_with("").expect("valid").contact.normal;
+    let tangential = spec(Frictionless::DECLARATION, vec![]);
+    let rolling = spec(EpsdRolling::DECLARATION, vec![0.2]);
+    let e = contact_spec(normal.clone(), &tangential, &constant, &rolling).unwrap_err();
+    assert_eq!((e.kind, e.law), (LawKind::Damping, "constant_viscous"));
+    assert!(e.to_string().contains("no place for it"), "{e}");
+    let viscous = spec(StiffnessViscous::DECLARATION, vec![0.3, 0.5]);
+    let c = contact_spec(normal, &tangential, &viscous, &rolling).unwrap();
+    assert_eq!(c.damping, DampingSpec::StiffnessViscous(0.3));
+    assert_eq!(
+        (c.friction, c.tangential_damping_ratio, c.rolling_friction),
+        (0.0, 0.5, 0.2)
+    );
 }

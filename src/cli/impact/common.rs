@@ -382,7 +382,11 @@ pub(crate) fn friction(a: &CommonArgs) -> anyhow::Result<f64> {
 
 /// The value of the flag of declared parameter `param` (`given`, else `default`), checked
 /// against the declared range; the error names the flag, the range and the equation.
-pub(crate) fn declared_flag(param: &Param, given: Option<f64>, default: f64) -> anyhow::Result<f64> {
+pub(crate) fn declared_flag(
+    param: &Param,
+    given: Option<f64>,
+    default: f64,
+) -> anyhow::Result<f64> {
     let value = given.unwrap_or(default);
     param.check(value).map_err(|_| {
         anyhow!(

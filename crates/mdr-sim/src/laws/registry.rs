@@ -27,7 +27,7 @@ use mdr_contact::normal::{AdhesiveMdr, Hertz, MdrElastoPlastic, NormalModel, Tho
 use mdr_contact::params::{Declared, LawDeclaration, LawKind};
 use mdr_contact::rolling::{EpsdRolling, NoRolling};
 use mdr_contact::tangential::{Frictionless, Mindlin};
-use mdr_contact::{ContactError, Result};
+use mdr_contact::Result;
 use mdr_impact::DeclaredLaw;
 use mdr_rapier::neighbour_list::Boundary;
 
@@ -222,12 +222,10 @@ pub fn contact_spec(
     tangential: &SubModelSpec,
     damping: &SubModelSpec,
     rolling: &SubModelSpec,
-) -> Result<ContactSpec> {
-    let unsupported = |law: &SubModelSpec| ContactError::InvalidTable {
-        name: law.declaration.name,
-        reason: "is registered, but the scenes' steppers have no place for it \
-                 (docs/architecture.md, \"Tangential, damping and rolling laws\")"
-            .into(),
+) -> std::result::Result<ContactSpec, UnplacedSubModel> {
+    let unsupported = |law: &SubModelSpec| UnplacedSubModel {
+        kind: law.declaration.kind,
+        law: law.declaration.name,
     };
     let friction = match tangential.declaration.name {
         n if n == Frictionless::DECLARATION.name => 0.0,
@@ -259,6 +257,19 @@ pub fn contact_spec(
             .unwrap_or(0.0),
         rolling_friction,
     })
+}
+
+/// A registered tangential, damping or rolling law that the scenes' steppers have no place for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "`{law}` is registered, but the scenes' steppers have no place for it \
+     (docs/architecture.md, \"Tangential, damping and rolling laws\")"
+)]
+pub struct UnplacedSubModel {
+    /// Its kind.
+    pub kind: LawKind,
+    /// Its name.
+    pub law: &'static str,
 }
 
 /// The sub-models of a scene other than the normal law, as its steppers take them.

@@ -10,10 +10,15 @@ impl Checker<'_, '_> {
     pub(super) fn contact(&mut self, c: &ContactSection) -> Option<ContactSpec> {
         let table = KeyPath::root().key("contact");
         let normal = self.normal_law(c, &table);
-        let [tangential, damping, rolling] =
-            SUB_MODEL_KINDS.each_ref().map(|kind| self.sub_model(c, &table, kind));
+        let [tangential, damping, rolling] = SUB_MODEL_KINDS
+            .each_ref()
+            .map(|kind| self.sub_model(c, &table, kind));
         let spec = registry::contact_spec(normal?, &tangential?, &damping?, &rolling?);
-        spec.map_err(|e| self.contact_error(&table, e)).ok()
+        spec.map_err(|e| {
+            let key = registry::sub_model_kind(e.kind).map_or("", |k| k.key);
+            self.error(&table.key(key), e.to_string());
+        })
+        .ok()
     }
 
     /// The law of one sub-model kind (`tangential = "…"`, its default when absent) and its
@@ -109,7 +114,11 @@ impl Checker<'_, '_> {
                                 table,
                                 p.key,
                                 None::<f64>,
-                                &format!("required by {chosen_by} = \"{}\": {}", law.name, p.help()),
+                                &format!(
+                                    "required by {chosen_by} = \"{}\": {}",
+                                    law.name,
+                                    p.help()
+                                ),
                             );
                         }
                         ParamProblem::Invalid(p, _)
