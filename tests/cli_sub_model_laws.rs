@@ -82,7 +82,7 @@ fn sub_model_flags_are_the_declared_ones() {
         help.contains("Coulomb friction coefficient: |F_t| ≤ μ F_n"),
         "{help}"
     );
-    let out = mdr_dem(&["impact", "oblique", "--mu", "-0.1"]);
+    let out = mdr_dem(&["impact", "oblique", "--speed", "1", "--mu", "-0.1"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success());
     assert!(

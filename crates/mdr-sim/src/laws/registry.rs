@@ -14,6 +14,12 @@
 //! [`Declared`] declaration and a state with a checkpoint record,
 //! [`super::NormalHistoryRecord`]) and add `NormalEntry::of::<TheLaw>()` below
 //! (docs/architecture.md, "Adding a law").
+//!
+//! The tangential, damping and rolling laws are registered alike, one line each
+//! ([`TANGENTIAL_LAWS`], [`DAMPING_LAWS`], [`ROLLING_LAWS`]); [`SUB_MODEL_KINDS`] says which
+//! `[contact]` key names each kind's law. The scenes' steppers take them in fixed concrete
+//! types ([`SceneParts`], [`contact_spec`]), so a new one also needs its place there
+//! (docs/architecture.md, "Tangential, damping and rolling laws").
 
 use super::{AnyDamping, AnyRolling, SceneNormal};
 use crate::error::SimError;
@@ -54,8 +60,8 @@ pub static DAMPING_LAWS: &[SubModelEntry] = &[
     SubModelEntry::of::<StiffnessViscous>(),
 ];
 
-/// The rolling-resistance laws of scenes: the elastic–plastic spring, on when its
-/// `rolling_friction` is above 0.
+/// The rolling-resistance laws of scenes (`[contact] rolling = "…"`, default `epsd`): the
+/// elastic–plastic spring, on when its `rolling_friction` is above 0.
 pub static ROLLING_LAWS: &[SubModelEntry] = &[
     SubModelEntry::of::<NoRolling>(),
     SubModelEntry::of::<EpsdRolling>(),
@@ -77,16 +83,6 @@ pub fn sub_model(kind: LawKind, name: &str) -> Option<&'static SubModelEntry> {
         .laws
         .iter()
         .find(|e| e.declaration.name == name)
-}
-
-/// The declared default of the sub-model parameter with scene key `key`, whichever registered
-/// sub-model declares it: the value a scene takes when it omits the key.
-pub fn sub_model_default(key: &str) -> Option<f64> {
-    SUB_MODEL_KINDS
-        .iter()
-        .flat_map(|k| k.laws)
-        .find_map(|e| e.declaration.param(key))
-        .and_then(|p| p.default)
 }
 
 /// One kind of sub-model as a scene's `[contact]` table chooses it: the key naming the law

@@ -13,12 +13,14 @@ impl Checker<'_, '_> {
         let [tangential, damping, rolling] = SUB_MODEL_KINDS
             .each_ref()
             .map(|kind| self.sub_model(c, &table, kind));
-        let spec = registry::contact_spec(normal?, &tangential?, &damping?, &rolling?);
-        spec.map_err(|e| {
-            let key = registry::sub_model_kind(e.kind).map_or("", |k| k.key);
-            self.error(&table.key(key), e.to_string());
-        })
-        .ok()
+        match registry::contact_spec(normal?, &tangential?, &damping?, &rolling?) {
+            Ok(spec) => Some(spec),
+            Err(e) => {
+                let key = registry::sub_model_kind(e.kind).map_or("", |k| k.key);
+                self.error(&table.key(key), e.to_string());
+                None
+            }
+        }
     }
 
     /// The law of one sub-model kind (`tangential = "…"`, its default when absent) and its
