@@ -39,9 +39,9 @@ pub fn scene_laws<'py>(py: Python<'py>, kind: Option<&str>) -> PyResult<Bound<'p
         .collect();
     let value = serde_json::to_value(laws).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
     let value = match (kind, value) {
-        (Some(k), serde_json::Value::Array(items)) => serde_json::Value::Array(
-            items.into_iter().filter(|l| l["kind"] == k).collect(),
-        ),
+        (Some(k), serde_json::Value::Array(items)) => {
+            serde_json::Value::Array(items.into_iter().filter(|l| l["kind"] == k).collect())
+        }
         (_, value) => value,
     };
     json_to_py(py, &value)
