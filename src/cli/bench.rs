@@ -5,6 +5,8 @@
 
 use anyhow::{anyhow, bail, Context};
 use clap::{Args, Subcommand, ValueEnum};
+use mdr_contact::params::Declared;
+use mdr_contact::rolling::EpsdRolling;
 use mdr_rapier::neighbour_list::bed::{
     bench_bed, peak_rss_mb, process_cpu_seconds, reference_data, settled_bed, Bed, BedSpec,
     BenchFigures, BenchLaw, BenchSettings, BenchValue,
@@ -116,8 +118,9 @@ pub struct BedArgs {
     #[arg(long, allow_negative_numbers = true, default_value_t = 2.0)]
     pub work_of_adhesion: f64,
     /// Rolling resistance coefficient `μ_r` (elastic–plastic spring rolling resistance,
-    /// `EpsdRolling`), with any law.
-    #[arg(long, allow_negative_numbers = true)]
+    /// `EpsdRolling`), with any law; help and flag name as `EpsdRolling` declares them.
+    #[arg(long, allow_negative_numbers = true, value_name = "VALUE",
+        help = format!("{}; with any law [default: off]", EpsdRolling::DECLARATION.params[0].help()))]
     pub rolling: Option<f64>,
     /// Neighbour skin (as LAMMPS `neighbor 0.1 bin`).
     #[arg(long, default_value_t = 0.1)]

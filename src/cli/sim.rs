@@ -28,8 +28,8 @@ pub enum SimCommand {
     /// A granular scene from a TOML file (scenes/*.toml): VTK frames, energy books, plots,
     /// checkpoints; `--resume CHECKPOINT` continues a run.
     Run(super::sim_run::RunArgs),
-    /// The normal laws a scene can name (`[contact] normal = "…"`), each with its parameters'
-    /// scene keys, units, allowed ranges and equations.
+    /// The laws a scene can name (`[contact] normal = "…"`, then `tangential`, `damping`,
+    /// `rolling`), each with its parameters' scene keys, units, allowed ranges and equations.
     Laws(super::sim_laws::LawsArgs),
 }
 

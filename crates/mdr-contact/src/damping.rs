@@ -200,7 +200,8 @@ const TANGENTIAL_RATIO: Param = Param::new(
     Range::NON_NEGATIVE,
     "tangential dashpot over the normal one while the Mindlin spring sticks (LAMMPS gammat/gamman; its NULL is 0.5)",
 )
-.default(0.0);
+.default(0.0)
+.lammps("tangential_damping");
 
 /// No damping: no parameters.
 impl Declared for NoDamping {
@@ -230,7 +231,7 @@ impl Declared for HertzianViscous {
                 Range::NON_NEGATIVE,
                 "normal dashpot: F_d = m γ_n (dδ/dt) √(R δ), m the reduced mass, R the effective radius",
             )
-            .lammps("gamman"),
+            .lammps("damping"),
             TANGENTIAL_RATIO,
         ],
     };

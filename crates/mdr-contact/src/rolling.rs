@@ -294,7 +294,10 @@ impl Declared for EpsdRolling {
             Range::NON_NEGATIVE,
             "rolling-resistance coefficient: |M_r| ≤ μ_r R F_N, k_r = 2.25 k_n μ_r² R²; 0 is off",
         )
-        .default(0.0)],
+        .default(0.0)
+        .flag("rolling")
+        .python("rolling")
+        .lammps("rolling")],
     };
     fn from_values(values: &[f64]) -> Result<Self> {
         crate::params::check_values::<Self>(values)?;

@@ -1,13 +1,18 @@
 //! The keywords of `pair_coeff` (and of `fix wall/mdrdem`, which takes the same), each a
-//! parameter declaration of `mdr_contact::params`: the law's own where the law declares it
-//! (`qc`, `theta` of [`MdrElastoPlastic`], `adhesion` of [`AdhesiveMdr`]) under the plugin's
-//! published LAMMPS name, the plugin's own for the material, the sub-models that do not declare
-//! theirs yet and the `E*`/`G*` overrides. Parsing, the range checks, the defaults, the errors
-//! and the keyword table of docs/lammps.md (checked by a test) all come from [`KEYWORDS`].
+//! parameter declaration of `mdr_contact::params`: the law's own wherever a law declares it,
+//! under the LAMMPS name the declaration publishes ([`Param::lammps_name`]: `qc`, `theta` of
+//! [`MdrElastoPlastic`], `friction` of [`Mindlin`], `damping` and `tangential_damping` of
+//! [`HertzianViscous`], `rolling` of [`EpsdRolling`], `adhesion` of [`AdhesiveMdr`]), and the
+//! plugin's own for the material and the `E*`/`G*` overrides. Parsing, the range checks, the
+//! defaults, the errors and the keyword table of docs/lammps.md (checked by a test) all come
+//! from [`KEYWORDS`].
 
 use crate::error::PluginError;
+use mdr_contact::damping::HertzianViscous;
 use mdr_contact::normal::{AdhesiveMdr, MdrElastoPlastic};
 use mdr_contact::params::{Declared, Param, Range};
+use mdr_contact::rolling::EpsdRolling;
+use mdr_contact::tangential::Mindlin;
 
 /// One keyword: its parameter declaration (the LAMMPS name is [`Param::lammps_name`]), how its
 /// range reads in errors and in the docs, and whether it may be left out without a default.
@@ -75,61 +80,32 @@ pub const KEYWORDS: &[Keyword] = &[
         "(-1, 0.5], required",
     ),
     Keyword::new(
-        MdrElastoPlastic::DECLARATION.params[0].lammps("qc"),
+        MdrElastoPlastic::DECLARATION.params[0],
         ">= 0 (force/length), required",
     ),
     Keyword::new(
-        MdrElastoPlastic::DECLARATION.params[1].lammps("theta"),
+        MdrElastoPlastic::DECLARATION.params[1],
         "[0, 1] (ratio Theta/E*), required",
     ),
+    // The plugin's pair is frictionless and undamped unless told otherwise: its default 0.
     Keyword::new(
-        Param::new(
-            "friction",
-            "μ",
-            "1",
-            Range::NON_NEGATIVE,
-            "Coulomb coefficient of the Mindlin law",
-        )
-        .default(0.0),
+        Mindlin::DECLARATION.params[0].default(0.0),
         ">= 0, default 0",
     ),
     Keyword::new(
-        Param::new(
-            "damping",
-            "γ_n",
-            "1/(time length^1/2)",
-            Range::NON_NEGATIVE,
-            "Hertzian viscous damping, F_d = m γ_n √(R δ) v_n",
-        )
-        .default(0.0),
+        HertzianViscous::DECLARATION.params[0].default(0.0),
         ">= 0 (1/(time length^1/2)), default 0",
     ),
     Keyword::new(
-        Param::new(
-            "tangential_damping",
-            "η_t/η_n",
-            "1",
-            Range::NON_NEGATIVE,
-            "tangential dashpot over the normal dashpot (while sticking)",
-        )
-        .default(0.0),
+        HertzianViscous::DECLARATION.params[1],
         ">= 0 (ratio), default 0",
     ),
     Keyword::new(
-        Param::new(
-            "rolling",
-            "μ_r",
-            "1",
-            Range::NON_NEGATIVE,
-            "EPSD rolling-resistance coefficient",
-        )
-        .default(0.0),
+        EpsdRolling::DECLARATION.params[0],
         ">= 0 (EPSD coefficient), default 0",
     ),
     Keyword::new(
-        AdhesiveMdr::DECLARATION.params[2]
-            .lammps("adhesion")
-            .default(0.0),
+        AdhesiveMdr::DECLARATION.params[2].default(0.0),
         ">= 0 (work of adhesion, energy/area), default 0",
     ),
     Keyword::new(
@@ -269,6 +245,45 @@ mod tests {
             }
         }
         assert_eq!(KEYWORDS.len(), 11);
+    }
+
+    /// Every parameter the plugin's laws declare is a keyword under the LAMMPS name of its
+    /// declaration, with the declared key and range: the table holds no copy of its own.
+    #[test]
+    fn law_keywords_are_the_declarations() {
+        let laws = [
+            MdrElastoPlastic::DECLARATION,
+            AdhesiveMdr::DECLARATION,
+            Mindlin::DECLARATION,
+            HertzianViscous::DECLARATION,
+            EpsdRolling::DECLARATION,
+        ];
+        let mut names = Vec::new();
+        for p in laws.iter().flat_map(|l| l.params) {
+            let k = keyword(p.lammps_name())
+                .unwrap_or_else(|| panic!("`{}` is no keyword", p.lammps_name()));
+            assert_eq!(
+                (k.param.key, k.param.range),
+                (p.key, p.range),
+                "{}",
+                k.name()
+            );
+            if !names.contains(&p.lammps_name()) {
+                names.push(p.lammps_name());
+            }
+        }
+        assert_eq!(
+            names,
+            [
+                "qc",
+                "theta",
+                "adhesion",
+                "friction",
+                "damping",
+                "tangential_damping",
+                "rolling"
+            ]
+        );
     }
 
     /// The error texts are a contract: these are the messages LAMMPS prints after

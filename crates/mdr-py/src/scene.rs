@@ -10,17 +10,40 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 
-/// The normal laws a scene can name (`[contact] normal = "…"`), as the registry declares them:
-/// a list of dicts with `name`, `kind`, `summary` and `parameters` (each with its scene `key`,
-/// `symbol`, `unit`, `range`, `default`, `doc`, command-line `flag`, `python` keyword and
-/// `lammps` keyword).
+/// The laws a scene can name, as the registry declares them: the normal laws (`[contact]
+/// normal = "…"`), then the tangential, damping and rolling laws (`tangential = "…"`,
+/// `damping = "…"`, `rolling = "…"`); `kind` ("normal", "tangential", "damping", "rolling")
+/// keeps one kind. A list of dicts with `name`, `kind`, `summary` and `parameters` (each with
+/// its scene `key`, `symbol`, `unit`, `range`, `default`, `doc`, command-line `flag`, `python`
+/// keyword and `lammps` keyword).
 #[pyfunction]
-pub fn scene_laws(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
-    let laws: Vec<_> = mdr_sim::laws::registry::NORMAL_LAWS
+#[pyo3(signature = (kind = None))]
+pub fn scene_laws<'py>(py: Python<'py>, kind: Option<&str>) -> PyResult<Bound<'py, PyAny>> {
+    use mdr_sim::laws::registry::{NORMAL_LAWS, SUB_MODEL_KINDS};
+    const KINDS: [&str; 4] = ["normal", "tangential", "damping", "rolling"];
+    if let Some(k) = kind.filter(|k| !KINDS.contains(k)) {
+        return Err(PyValueError::new_err(format!(
+            "invalid value for `kind`: `{k}` (allowed: {})",
+            KINDS.map(|k| format!("\"{k}\"")).join(", ")
+        )));
+    }
+    let laws: Vec<_> = NORMAL_LAWS
         .iter()
         .map(|e| e.declaration)
+        .chain(
+            SUB_MODEL_KINDS
+                .iter()
+                .flat_map(|k| k.laws)
+                .map(|e| e.declaration),
+        )
         .collect();
     let value = serde_json::to_value(laws).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let value = match (kind, value) {
+        (Some(k), serde_json::Value::Array(items)) => {
+            serde_json::Value::Array(items.into_iter().filter(|l| l["kind"] == k).collect())
+        }
+        (_, value) => value,
+    };
     json_to_py(py, &value)
 }
 

@@ -7,6 +7,7 @@ use crate::errors::{self, invalid};
 use crate::law::{check_steps, declared_values, parse_method, MdrLaw, Params, Setup, PARAM_NAMES};
 use mdr_contact::normal::{AdhesiveMdr, NormalLaw, Thornton};
 use mdr_contact::params::{Declared, Param};
+use mdr_contact::tangential::Mindlin;
 use mdr_impact::fit::{fit as fit_law, predict, FitParameter, FitValues};
 use mdr_impact::output::Measurement;
 use mdr_impact::{
@@ -138,12 +139,19 @@ fn check_scale(scale: f64) -> PyResult<f64> {
     }
 }
 
+/// `mu`, checked as `Mindlin` declares its friction coefficient.
 fn check_mu(mu: f64) -> PyResult<f64> {
-    if mu.is_finite() && mu >= 0.0 {
-        Ok(mu)
-    } else {
-        Err(invalid("mu", format!("{mu} (must be finite and ≥ 0)")))
-    }
+    let param = &Mindlin::DECLARATION.params[0];
+    param.check(mu).map_err(|_| {
+        invalid(
+            param.python_name(),
+            format!(
+                "{mu} (must be finite and in {}; {})",
+                param.range.notation,
+                param.help()
+            ),
+        )
+    })
 }
 
 /// 1 for a stuck impact (adhesion, e_n = 0), 0 otherwise: the CSV's `stuck` column.

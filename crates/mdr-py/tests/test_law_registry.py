@@ -25,6 +25,32 @@ def test_scene_laws_are_the_registry_with_the_published_names():
     assert [p["key"] for p in laws["thornton"]["parameters"]] == ["yield_pressure_pa"]
 
 
+def test_scene_laws_list_the_sub_models_with_their_published_names():
+    laws = mdr_dem.scene_laws()
+    kinds = [law["kind"] for law in laws]
+    # The normal laws first, then the tangential, damping and rolling laws, in that order.
+    assert kinds == sorted(kinds, key=["normal", "tangential", "damping", "rolling"].index)
+    by_kind = {k: {law["name"]: law for law in mdr_dem.scene_laws(kind=k)} for k in set(kinds)}
+    assert list(by_kind["tangential"]) == ["none", "mindlin"]
+    assert list(by_kind["damping"]) == ["none", "hertzian_viscous", "stiffness_viscous"]
+    assert list(by_kind["rolling"]) == ["none", "epsd"]
+    (mu,) = by_kind["tangential"]["mindlin"]["parameters"]
+    assert (mu["key"], mu["flag"], mu["python"], mu["lammps"]) == ("friction", "--mu", "mu", "friction")
+    assert mu["default"] is None and mu["range"] == "[0, inf)"
+    gamma, ratio = by_kind["damping"]["hertzian_viscous"]["parameters"]
+    assert (gamma["key"], gamma["unit"], gamma["lammps"]) == ("damping_gamma_n_per_m_s", "1/(m·s)", "damping")
+    assert (ratio["key"], ratio["default"], ratio["lammps"]) == ("damping_tangential_ratio", 0.0, "tangential_damping")
+    (mu_r,) = by_kind["rolling"]["epsd"]["parameters"]
+    assert (mu_r["key"], mu_r["python"], mu_r["lammps"], mu_r["default"]) == ("rolling_friction", "rolling", "rolling", 0.0)
+    with pytest.raises(ValueError, match="kind"):
+        mdr_dem.scene_laws(kind="normall")
+
+
+def test_friction_is_checked_as_declared():
+    with pytest.raises(ValueError, match=r"mu.*\[0, inf\).*Coulomb"):
+        mdr_dem.oblique(1.0, [30.0], mu=-0.1, tangential="mindlin")
+
+
 def test_demo_law_runs_in_a_scene_as_its_analytic_solution(tmp_path):
     laws = {law["name"]: law for law in mdr_dem.scene_laws()}
     assert "linear_spring" in laws, "the wheel is built with the demo-laws feature"

@@ -191,7 +191,9 @@ fn documented_unit(unit: &str) -> &str {
 /// declaration changed without the table (or the reverse) fails here.
 #[test]
 fn contact_table_is_the_declarations() {
-    use mdr_sim::laws::registry::{DAMPING_LAWS, NORMAL_LAWS, ROLLING_LAWS, TANGENTIAL_LAWS};
+    use mdr_sim::laws::registry::{
+        DAMPING_LAWS, NORMAL_LAWS, ROLLING_LAWS, SUB_MODEL_KINDS, TANGENTIAL_LAWS,
+    };
     let guide = std::fs::read_to_string(
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/user-guide.md"),
     )
@@ -249,10 +251,11 @@ fn contact_table_is_the_declarations() {
     {
         assert!(normal[4].contains(&format!("`{}`", entry.declaration.name)));
     }
-    // The `tangential` and `damping` rows name every registered law of their kind.
-    for (key, laws) in [("tangential", TANGENTIAL_LAWS), ("damping", DAMPING_LAWS)] {
-        let cells = row(key);
-        for entry in laws {
+    // The `tangential`, `damping` and `rolling` rows name every registered law of their kind.
+    for kind in &SUB_MODEL_KINDS {
+        let cells = row(kind.key);
+        let key = kind.key;
+        for entry in kind.laws {
             assert!(
                 cells[4].contains(&format!("`{}`", entry.declaration.name)),
                 "{key}: {cells:?}"

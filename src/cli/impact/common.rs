@@ -6,7 +6,8 @@ use super::law_flags::{registered_law, LawParamArgs};
 use anyhow::{anyhow, Context};
 use clap::{Args, ValueEnum};
 use mdr_contact::normal::{AdhesiveMdr, MdrElastoPlastic, NormalLaw, NormalModel, Thornton};
-use mdr_contact::params::{Declared, LawDeclaration};
+use mdr_contact::params::{Declared, LawDeclaration, Param};
+use mdr_contact::tangential::Mindlin;
 use mdr_contact::{ContactError, ContactPair, Material};
 use mdr_impact::output::{read_measurements, write_atomic, Measurement};
 use mdr_impact::plot::Figure;
@@ -96,7 +97,8 @@ pub struct CommonArgs {
             impacts stick (e_n = 0)", declared_help::<AdhesiveMdr>(2, "0")))]
     pub work_of_adhesion: Option<f64>,
     /// Friction coefficient μ (oblique impacts) [default: 0.2].
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true, value_name = "VALUE",
+        help = declared_help::<Mindlin>(0, "0.2"))]
     pub mu: Option<f64>,
     /// Scale applied to the model's e_n (docs/theory.md §7) [default: 0.95].
     #[arg(long, allow_negative_numbers = true)]
@@ -370,24 +372,30 @@ pub(crate) fn normal_laws(
 
 /// `--work-of-adhesion` (J/m²), default 0.
 pub(crate) fn work_of_adhesion(a: &CommonArgs) -> anyhow::Result<f64> {
-    let w = a.work_of_adhesion.unwrap_or(0.0);
-    if !(w.is_finite() && w >= 0.0) {
-        return Err(anyhow!(
-            "invalid value for --work-of-adhesion: {w} (must be a finite number ≥ 0, J/m²)"
-        ));
-    }
-    Ok(w)
+    declared_flag(&AdhesiveMdr::DECLARATION.params[2], a.work_of_adhesion, 0.0)
 }
 
 /// `--mu`, default 0.2.
 pub(crate) fn friction(a: &CommonArgs) -> anyhow::Result<f64> {
-    let mu = a.mu.unwrap_or(0.2);
-    if !(mu.is_finite() && mu >= 0.0) {
-        return Err(anyhow!(
-            "invalid value for --mu: {mu} (must be a finite number ≥ 0)"
-        ));
-    }
-    Ok(mu)
+    declared_flag(&Mindlin::DECLARATION.params[0], a.mu, 0.2)
+}
+
+/// The value of the flag of declared parameter `param` (`given`, else `default`), checked
+/// against the declared range; the error names the flag, the range and the equation.
+pub(crate) fn declared_flag(
+    param: &Param,
+    given: Option<f64>,
+    default: f64,
+) -> anyhow::Result<f64> {
+    let value = given.unwrap_or(default);
+    param.check(value).map_err(|_| {
+        anyhow!(
+            "invalid value for --{}: {value} (must be a finite number in {}; {})",
+            param.flag_name(),
+            param.range.notation,
+            param.help()
+        )
+    })
 }
 
 impl Settings {

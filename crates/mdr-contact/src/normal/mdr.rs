@@ -68,7 +68,7 @@ impl Declared for MdrElastoPlastic {
             )
             .flag("theta-ratio")
             .python("theta_ratio")
-            .lammps("theta_ratio"),
+            .lammps("theta"),
         ],
     };
 

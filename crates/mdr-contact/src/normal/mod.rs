@@ -52,7 +52,7 @@ impl Declared for AdhesiveMdr {
             )
             .flag("work-of-adhesion")
             .python("work_of_adhesion")
-            .lammps("work_of_adhesion"),
+            .lammps("adhesion"),
         ],
     };
 

@@ -279,7 +279,8 @@ impl Declared for Mindlin {
             "Coulomb friction coefficient: |F_t| ≤ μ F_n",
         )
         .flag("mu")
-        .python("mu")],
+        .python("mu")
+        .lammps("friction")],
     };
     fn from_values(values: &[f64]) -> Result<Self> {
         crate::params::check_values::<Self>(values)?;

@@ -11,7 +11,8 @@ releases the GIL during long runs.
 - ``curve``, ``fit``, ``oblique``: the single-impact validator (``mdr-dem impact ...``).
 - ``Ring``: a planetary-ring shearing box (``mdr-dem sim ring``).
 - ``run_scene``, ``bench_bed``: granular scenes from TOML files and the throughput bench;
-  ``scene_laws``: the normal laws a scene can name, with their declared parameters.
+  ``scene_laws``: the laws a scene can name (normal, tangential, damping, rolling), with their
+  declared parameters.
 
 See docs/python.md.
 """

@@ -353,12 +353,14 @@ class Ring:
         """Every sample so far as arrays (t_orbits, sigma_x, …, c, z_rms, collisions, wall_s)."""
     def __len__(self) -> int: ...
 
-def scene_laws() -> list[dict[str, Any]]:
-    """The normal laws a scene can name (``[contact] normal = "…"``), as the law registry
-    declares them: each a dict with ``name``, ``kind``, ``summary`` and ``parameters``, a list of
-    dicts with the scene ``key``, ``symbol``, ``unit``, allowed ``range``, ``default`` (None:
-    required), ``doc`` (what it is, with its equation), command-line ``flag``, ``python``
-    keyword and ``lammps`` keyword."""
+def scene_laws(kind: Optional[str] = None) -> list[dict[str, Any]]:
+    """The laws a scene can name, as the law registry declares them: the normal laws
+    (``[contact] normal = "…"``), then the tangential, damping and rolling laws
+    (``tangential = "…"``, ``damping = "…"``, ``rolling = "…"``); ``kind`` (``"normal"``,
+    ``"tangential"``, ``"damping"``, ``"rolling"``) keeps one kind. Each a dict with ``name``,
+    ``kind``, ``summary`` and ``parameters``, a list of dicts with the scene ``key``,
+    ``symbol``, ``unit``, allowed ``range``, ``default`` (None: required), ``doc`` (what it is,
+    with its equation), command-line ``flag``, ``python`` keyword and ``lammps`` keyword."""
 
 def run_scene(
     path: StrPath,

@@ -14,13 +14,19 @@
 //! [`Declared`] declaration and a state with a checkpoint record,
 //! [`super::NormalHistoryRecord`]) and add `NormalEntry::of::<TheLaw>()` below
 //! (docs/architecture.md, "Adding a law").
+//!
+//! The tangential, damping and rolling laws are registered alike, one line each
+//! ([`TANGENTIAL_LAWS`], [`DAMPING_LAWS`], [`ROLLING_LAWS`]); [`SUB_MODEL_KINDS`] says which
+//! `[contact]` key names each kind's law. The scenes' steppers take them in fixed concrete
+//! types ([`SceneParts`], [`contact_spec`]), so a new one also needs its place there
+//! (docs/architecture.md, "Tangential, damping and rolling laws").
 
 use super::{AnyDamping, AnyRolling, SceneNormal};
 use crate::error::SimError;
 use crate::run::coupling::{
     neighbour_list_stepper, rapier_pipeline_stepper, NeighbourListScene, RapierPipelineScene,
 };
-use crate::scene::{ContactSpec, DampingSpec};
+use crate::scene::{ContactSpec, DampingSpec, NormalSpec, SubModelSpec};
 use mdr_contact::damping::{HertzianViscous, NoDamping, StiffnessViscous};
 use mdr_contact::model::ContactModel;
 use mdr_contact::normal::{AdhesiveMdr, Hertz, MdrElastoPlastic, NormalModel, Thornton};
@@ -54,8 +60,8 @@ pub static DAMPING_LAWS: &[SubModelEntry] = &[
     SubModelEntry::of::<StiffnessViscous>(),
 ];
 
-/// The rolling-resistance laws of scenes: the elastic–plastic spring, on when its
-/// `rolling_friction` is above 0.
+/// The rolling-resistance laws of scenes (`[contact] rolling = "…"`, default `epsd`): the
+/// elastic–plastic spring, on when its `rolling_friction` is above 0.
 pub static ROLLING_LAWS: &[SubModelEntry] = &[
     SubModelEntry::of::<NoRolling>(),
     SubModelEntry::of::<EpsdRolling>(),
@@ -73,24 +79,107 @@ pub fn normal_law_names() -> Vec<&'static str> {
 
 /// The registered sub-model of `kind` named `name` (tangential, damping or rolling).
 pub fn sub_model(kind: LawKind, name: &str) -> Option<&'static SubModelEntry> {
-    let laws = match kind {
-        LawKind::Tangential => TANGENTIAL_LAWS,
-        LawKind::Damping => DAMPING_LAWS,
-        LawKind::Rolling => ROLLING_LAWS,
-        LawKind::Normal => return None,
-    };
-    laws.iter().find(|e| e.declaration.name == name)
+    sub_model_kind(kind)?
+        .laws
+        .iter()
+        .find(|e| e.declaration.name == name)
 }
 
-/// The declared default of the sub-model parameter with scene key `key`, whichever registered
-/// sub-model declares it: the value a scene takes when it omits the key.
-pub fn sub_model_default(key: &str) -> Option<f64> {
-    TANGENTIAL_LAWS
+/// One kind of sub-model as a scene's `[contact]` table chooses it: the key naming the law
+/// (`tangential = "mindlin"`), the law taken when the key is absent, and the registered laws.
+#[derive(Debug, Clone, Copy)]
+pub struct SubModelKind {
+    /// Tangential, damping or rolling.
+    pub kind: LawKind,
+    /// The `[contact]` key naming the law.
+    pub key: &'static str,
+    /// The law of a scene that does not name one.
+    pub default: &'static str,
+    /// The registered laws of the kind.
+    pub laws: &'static [SubModelEntry],
+}
+
+impl SubModelKind {
+    /// The registered law named `name`.
+    pub fn law(&self, name: &str) -> Option<&'static SubModelEntry> {
+        self.laws.iter().find(|e| e.declaration.name == name)
+    }
+
+    /// The names of the registered laws, in registry order.
+    pub fn names(&self) -> Vec<&'static str> {
+        self.laws.iter().map(|e| e.declaration.name).collect()
+    }
+
+    /// The scene keys of the kind's parameters, each once: those one law declares in registry
+    /// order, then those several laws share (the order a scene file is written in, which a
+    /// checkpoint's fingerprint hashes).
+    pub fn keys(&self) -> Vec<&'static str> {
+        let params = || self.laws.iter().flat_map(|e| e.declaration.params);
+        let shared = |key: &str| {
+            self.laws
+                .iter()
+                .filter(|e| e.declaration.param(key).is_some())
+                .count()
+                > 1
+        };
+        let mut keys: Vec<&'static str> = Vec::new();
+        for key in params()
+            .map(|p| p.key)
+            .filter(|k| !shared(k))
+            .chain(params().map(|p| p.key).filter(|k| shared(k)))
+        {
+            if !keys.contains(&key) {
+                keys.push(key);
+            }
+        }
+        keys
+    }
+
+    /// The names of the registered laws declaring the parameter `key`.
+    pub fn declaring(&self, key: &str) -> Vec<&'static str> {
+        self.laws
+            .iter()
+            .filter(|e| e.declaration.param(key).is_some())
+            .map(|e| e.declaration.name)
+            .collect()
+    }
+}
+
+/// The kinds of sub-model besides the normal law, in the order of a scene's `[contact]` table.
+/// Rolling resistance defaults to the elastic–plastic spring, which is off at its default
+/// `rolling_friction = 0`.
+pub static SUB_MODEL_KINDS: [SubModelKind; 3] = [
+    SubModelKind {
+        kind: LawKind::Tangential,
+        key: "tangential",
+        default: Frictionless::DECLARATION.name,
+        laws: TANGENTIAL_LAWS,
+    },
+    SubModelKind {
+        kind: LawKind::Damping,
+        key: "damping",
+        default: NoDamping::DECLARATION.name,
+        laws: DAMPING_LAWS,
+    },
+    SubModelKind {
+        kind: LawKind::Rolling,
+        key: "rolling",
+        default: EpsdRolling::DECLARATION.name,
+        laws: ROLLING_LAWS,
+    },
+];
+
+/// The scene's choice of sub-model `kind`.
+pub fn sub_model_kind(kind: LawKind) -> Option<&'static SubModelKind> {
+    SUB_MODEL_KINDS.iter().find(|k| k.kind == kind)
+}
+
+/// Whether `key` is a parameter of a registered tangential, damping or rolling law.
+pub fn is_sub_model_key(key: &str) -> bool {
+    SUB_MODEL_KINDS
         .iter()
-        .chain(DAMPING_LAWS)
-        .chain(ROLLING_LAWS)
-        .find_map(|e| e.declaration.param(key))
-        .and_then(|p| p.default)
+        .flat_map(|k| k.laws)
+        .any(|e| e.declaration.param(key).is_some())
 }
 
 /// A registered tangential, damping or rolling law: its declaration (name, parameters with
@@ -118,6 +207,66 @@ impl SubModelEntry {
     pub fn check(&self, values: &[f64]) -> Result<()> {
         (self.check)(values)
     }
+}
+
+/// The contact model of a scene from its normal law and its tangential, damping and rolling
+/// laws as the validation read them from their declarations. The steppers take these laws in
+/// fixed concrete types ([`SceneParts`]); a registered law of a kind they have no place for is
+/// refused here, by name (docs/architecture.md, "Tangential, damping and rolling laws").
+pub fn contact_spec(
+    normal: NormalSpec,
+    tangential: &SubModelSpec,
+    damping: &SubModelSpec,
+    rolling: &SubModelSpec,
+) -> std::result::Result<ContactSpec, UnplacedSubModel> {
+    let unsupported = |law: &SubModelSpec| UnplacedSubModel {
+        kind: law.declaration.kind,
+        law: law.declaration.name,
+    };
+    let friction = match tangential.declaration.name {
+        n if n == Frictionless::DECLARATION.name => 0.0,
+        n if n == Mindlin::DECLARATION.name => tangential.values[0],
+        _ => return Err(unsupported(tangential)),
+    };
+    let damping_law = match damping.declaration.name {
+        n if n == NoDamping::DECLARATION.name => DampingSpec::None,
+        n if n == HertzianViscous::DECLARATION.name => {
+            DampingSpec::HertzianViscous(damping.values[0])
+        }
+        n if n == StiffnessViscous::DECLARATION.name => {
+            DampingSpec::StiffnessViscous(damping.values[0])
+        }
+        _ => return Err(unsupported(damping)),
+    };
+    let rolling_friction = match rolling.declaration.name {
+        n if n == NoRolling::DECLARATION.name => 0.0,
+        n if n == EpsdRolling::DECLARATION.name => rolling.values[0],
+        _ => return Err(unsupported(rolling)),
+    };
+    Ok(ContactSpec {
+        normal,
+        friction,
+        damping: damping_law,
+        // The tangential ratio both viscous laws declare.
+        tangential_damping_ratio: damping
+            .value(HertzianViscous::DECLARATION.params[1].key)
+            .unwrap_or(0.0),
+        rolling_friction,
+        works_of_adhesion: Vec::new(),
+    })
+}
+
+/// A registered tangential, damping or rolling law that the scenes' steppers have no place for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "`{law}` is registered, but the scenes' steppers have no place for it \
+     (docs/architecture.md, \"Tangential, damping and rolling laws\")"
+)]
+pub struct UnplacedSubModel {
+    /// Its kind.
+    pub kind: LawKind,
+    /// Its name.
+    pub law: &'static str,
 }
 
 /// The sub-models of a scene other than the normal law, as its steppers take them.

@@ -7,6 +7,7 @@ pub mod validate;
 
 use crate::placement::ParticleInit;
 use crate::walls::Wall;
+use mdr_contact::params::LawDeclaration;
 use mdr_contact::Material;
 use nalgebra::Vector3;
 use std::path::PathBuf;
@@ -30,6 +31,25 @@ impl NormalSpec {
     pub fn value(&self, key: &str) -> Option<f64> {
         let entry = crate::laws::registry::normal_law(self.law)?;
         let k = entry.declaration.params.iter().position(|p| p.key == key)?;
+        self.values.get(k).copied()
+    }
+}
+
+/// A tangential, damping or rolling law of a scene: a registered law's declaration
+/// ([`crate::laws::registry::SUB_MODEL_KINDS`]) and the values of its parameters, in declared
+/// order (checked against the declaration and by the law's constructor).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SubModelSpec {
+    /// The law's declaration.
+    pub declaration: LawDeclaration,
+    /// Its parameters' values, in the order of its declaration.
+    pub values: Vec<f64>,
+}
+
+impl SubModelSpec {
+    /// The value of the parameter with scene key `key`, if the law declares it.
+    pub fn value(&self, key: &str) -> Option<f64> {
+        let k = self.declaration.params.iter().position(|p| p.key == key)?;
         self.values.get(k).copied()
     }
 }

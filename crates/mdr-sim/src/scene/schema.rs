@@ -3,6 +3,7 @@
 //! `[contact]`, whose law parameters come from the laws' declarations, by the validation); the
 //! values are checked afterwards by [`super::validate`], which knows every key's allowed range.
 
+use mdr_contact::params::LawKind;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -185,66 +186,85 @@ pub struct MaterialSection {
     pub work_of_adhesion_j_per_m2: Option<f64>,
 }
 
-/// Tangential law name.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum TangentialLawName {
-    /// Frictionless.
-    None,
-    /// Incremental Mindlin with a Coulomb cap.
-    Mindlin,
-}
-
-/// Damping law name.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum DampingLawName {
-    /// No damping.
-    #[default]
-    None,
-    /// `F_d = m γ_n (dδ/dt) √(R δ)` (LAMMPS `gran/hertz/history`).
-    HertzianViscous,
-    /// `F_d = η √(m k_n) (dδ/dt)`.
-    StiffnessViscous,
-}
-
-/// `[contact]`. Besides the keys named here it holds the declared parameters of its normal law
-/// ([`mdr_contact::params`]; e.g. `critical_line_load_n_per_m` of `mdr`): the validation
-/// checks them against the law's declaration and refuses any key the law does not declare.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// `[contact]`: the law of each kind by its registered name (`crate::laws::registry`) and,
+/// besides, the declared parameters of those laws ([`mdr_contact::params`]; e.g.
+/// `critical_line_load_n_per_m` of `mdr`, `friction` of `mindlin`): the validation checks each
+/// against its law's declaration and refuses any key no chosen law declares.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 pub struct ContactSection {
-    /// Normal law: the name of a registered law (`mdr`, `hertz`, `thornton`;
-    /// `crate::laws::registry`).
+    /// Normal law: the name of a registered law (`mdr`, `hertz`, `thornton`, …).
     pub normal: String,
-    /// The other keys: the normal law's parameters by their declared keys (in key order).
-    #[serde(flatten)]
-    pub law_parameters: BTreeMap<String, ParamValue>,
     /// Tangential law (default `none`).
     #[serde(default)]
-    pub tangential: Option<TangentialLawName>,
-    /// Coulomb friction coefficient `μ` (Mindlin; restitution mode's friction).
-    #[serde(default)]
-    pub friction: Option<f64>,
+    pub tangential: Option<String>,
     /// Damping law (default `none`).
     #[serde(default)]
-    pub damping: DampingLawName,
-    /// `γ_n` of `hertzian_viscous` (1/(m·s)).
+    pub damping: Option<String>,
+    /// Rolling-resistance law (default `epsd`, off while its `rolling_friction` is 0).
     #[serde(default)]
-    pub damping_gamma_n_per_m_s: Option<f64>,
-    /// `η` of `stiffness_viscous` (dimensionless).
-    #[serde(default)]
-    pub damping_eta: Option<f64>,
-    /// Tangential dashpot as a fraction of the normal one (dimensionless, ≥ 0; LAMMPS
-    /// `gammat / gamman`, 0.5 for its `NULL`): `−η_t v_t` while the Mindlin spring sticks.
-    #[serde(default)]
-    pub damping_tangential_ratio: Option<f64>,
-    /// Rolling-resistance coefficient `μ_r` (dimensionless); off when absent or 0.
-    #[serde(default)]
-    pub rolling_friction: Option<f64>,
+    pub rolling: Option<String>,
+    /// The other keys: the chosen laws' parameters by their declared keys (in key order).
+    #[serde(flatten)]
+    pub law_parameters: BTreeMap<String, ParamValue>,
 }
 
-/// The value of a key of `[contact]` that is not one of its named keys: a number (a law's
-/// parameter) or anything else (refused by the validation, with the key's line).
+impl ContactSection {
+    /// The law of `kind` the table names, if it names one.
+    pub fn chosen(&self, kind: LawKind) -> Option<&str> {
+        match kind {
+            LawKind::Normal => Some(&self.normal),
+            LawKind::Tangential => self.tangential.as_deref(),
+            LawKind::Damping => self.damping.as_deref(),
+            LawKind::Rolling => self.rolling.as_deref(),
+        }
+    }
+
+    /// The number given for `key`, if any.
+    pub fn number(&self, key: &str) -> Option<f64> {
+        match self.law_parameters.get(key) {
+            Some(ParamValue::Number(v)) => Some(*v),
+            _ => None,
+        }
+    }
+}
+
+/// Written in one fixed order, so that a scene's serialisation (which a checkpoint's
+/// fingerprint hashes) does not depend on where its keys came from: `normal`, the normal law's
+/// parameters in key order, `tangential` (if given), then each sub-model kind's parameters in
+/// [`crate::laws::registry::SubModelKind::keys`] order with `damping` (always, `none` when not
+/// given) before the damping laws' and `rolling` (if given) before the rolling laws'.
+impl Serialize for ContactSection {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use crate::laws::registry::{is_sub_model_key, SUB_MODEL_KINDS};
+        use serde::ser::SerializeMap;
+        let mut map = serializer.serialize_map(None)?;
+        map.serialize_entry("normal", &self.normal)?;
+        for (key, value) in &self.law_parameters {
+            if !is_sub_model_key(key) {
+                map.serialize_entry(key, value)?;
+            }
+        }
+        for kind in &SUB_MODEL_KINDS {
+            let name = match kind.kind {
+                // `damping` is written even when not given (as `none`).
+                LawKind::Damping => self.chosen(kind.kind).or(Some(kind.default)),
+                _ => self.chosen(kind.kind),
+            };
+            if let Some(name) = name {
+                map.serialize_entry(kind.key, name)?;
+            }
+            for key in kind.keys() {
+                if let Some(value) = self.law_parameters.get(key) {
+                    map.serialize_entry(key, value)?;
+                }
+            }
+        }
+        map.end()
+    }
+}
+
+/// The value of a law's parameter in `[contact]`: a number, or anything else (refused by the
+/// validation, with the key's line).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(untagged)]
 pub enum ParamValue {

@@ -1,149 +1,143 @@
-//! `[contact]`: the normal, tangential, damping and rolling sub-models and their parameters.
+//! `[contact]`: the normal, tangential, damping and rolling laws, each by its registered name,
+//! and their parameters, each read, defaulted and range-checked as its law declares it.
 
 use super::*;
+use crate::laws::registry::{SubModelKind, SUB_MODEL_KINDS};
+use crate::scene::SubModelSpec;
+use mdr_contact::params::LawDeclaration;
 
 impl Checker<'_, '_> {
     pub(super) fn contact(&mut self, c: &ContactSection) -> Option<ContactSpec> {
         let table = KeyPath::root().key("contact");
         let normal = self.normal_law(c, &table);
-        let tangential = c.tangential.unwrap_or(TangentialLawName::None);
-        let friction = match (tangential, c.friction) {
-            (TangentialLawName::None, Some(mu)) if mu != 0.0 => {
-                self.error(
-                    &table.key("friction"),
-                    "friction needs tangential = \"mindlin\" (tangential is \"none\")",
-                );
+        let [tangential, damping, rolling] = SUB_MODEL_KINDS
+            .each_ref()
+            .map(|kind| self.sub_model(c, &table, kind));
+        match registry::contact_spec(normal?, &tangential?, &damping?, &rolling?) {
+            Ok(spec) => Some(spec),
+            Err(e) => {
+                let key = registry::sub_model_kind(e.kind).map_or("", |k| k.key);
+                self.error(&table.key(key), e.to_string());
                 None
             }
-            (TangentialLawName::Mindlin, None) => {
-                self.require(
-                    &table,
-                    "friction",
-                    None::<f64>,
-                    "required by tangential = \"mindlin\"",
-                );
-                None
-            }
-            (_, mu) => {
-                let mu = mu.unwrap_or(0.0);
-                match Mindlin::new(mu) {
-                    Ok(_) => Some(mu),
-                    Err(e) => {
-                        self.contact_error(&table, e);
-                        None
-                    }
-                }
-            }
+        }
+    }
+
+    /// The law of one sub-model kind (`tangential = "…"`, its default when absent) and its
+    /// declared parameters: each given or defaulted, and in its declared range; a parameter
+    /// only the kind's other laws declare is refused unless it is 0 (the coefficient of a law
+    /// that is off).
+    fn sub_model(
+        &mut self,
+        c: &ContactSection,
+        table: &KeyPath,
+        kind: &SubModelKind,
+    ) -> Option<SubModelSpec> {
+        let name = c.chosen(kind.kind).unwrap_or(kind.default);
+        let Some(entry) = kind.law(name) else {
+            let names: Vec<String> = kind.names().iter().map(|n| format!("`{n}`")).collect();
+            self.error(
+                &table.key(kind.key),
+                with_suggestion(&format!(
+                    "unknown variant `{name}`, expected one of {}",
+                    names.join(", ")
+                )),
+            );
+            return None;
         };
-        let damping = match c.damping {
-            DampingLawName::None => {
-                self.unused(
-                    &table,
-                    &[
-                        (
-                            "damping_gamma_n_per_m_s",
-                            c.damping_gamma_n_per_m_s.is_some(),
+        let law = entry.declaration;
+        let mut ok = true;
+        for key in kind.keys() {
+            if law.param(key).is_some() {
+                continue;
+            }
+            match c.law_parameters.get(key) {
+                None | Some(ParamValue::Number(0.0)) => {}
+                Some(_) => {
+                    ok = false;
+                    let owners: Vec<String> = kind
+                        .declaring(key)
+                        .iter()
+                        .map(|n| format!("`{n}`"))
+                        .collect();
+                    self.error(
+                        &table.key(key),
+                        format!(
+                            "this key is not used by {} = \"{name}\" (a parameter of {}): remove it",
+                            kind.key,
+                            owners.join(", ")
                         ),
-                        ("damping_eta", c.damping_eta.is_some()),
-                        (
-                            "damping_tangential_ratio",
-                            c.damping_tangential_ratio.is_some(),
-                        ),
-                    ],
-                    "by damping = \"none\"",
-                );
-                Some(DampingSpec::None)
-            }
-            DampingLawName::HertzianViscous => {
-                self.unused(
-                    &table,
-                    &[("damping_eta", c.damping_eta.is_some())],
-                    "by damping = \"hertzian_viscous\"",
-                );
-                let g = self.require(
-                    &table,
-                    "damping_gamma_n_per_m_s",
-                    c.damping_gamma_n_per_m_s,
-                    "required by damping = \"hertzian_viscous\"",
-                )?;
-                match HertzianViscous::new(g) {
-                    Ok(_) => Some(DampingSpec::HertzianViscous(g)),
-                    Err(e) => {
-                        self.contact_error(&table, e);
-                        None
-                    }
+                    );
                 }
             }
-            DampingLawName::StiffnessViscous => {
-                self.unused(
-                    &table,
-                    &[(
-                        "damping_gamma_n_per_m_s",
-                        c.damping_gamma_n_per_m_s.is_some(),
-                    )],
-                    "by damping = \"stiffness_viscous\"",
-                );
-                let eta = self.require(
-                    &table,
-                    "damping_eta",
-                    c.damping_eta,
-                    "required by damping = \"stiffness_viscous\"",
-                )?;
-                match StiffnessViscous::new(eta) {
-                    Ok(_) => Some(DampingSpec::StiffnessViscous(eta)),
-                    Err(e) => {
-                        self.contact_error(&table, e);
-                        None
-                    }
-                }
-            }
-        };
-        let rolling = match c.rolling_friction {
-            Some(mu_r) => match EpsdRolling::new(mu_r) {
-                Ok(_) => Some(mu_r),
-                Err(e) => {
-                    self.contact_error(&table, e);
-                    None
-                }
-            },
-            None => registry::sub_model_default("rolling_friction"),
-        };
-        let tangential_damping = match c.damping_tangential_ratio {
-            Some(ratio) => {
-                match HertzianViscous::new(0.0).and_then(|d| d.with_tangential_ratio(ratio)) {
-                    Ok(_) => Some(ratio),
-                    Err(e) => {
-                        self.contact_error(&table, e);
-                        None
-                    }
-                }
-            }
-            None => registry::sub_model_default("damping_tangential_ratio"),
-        };
-        Some(ContactSpec {
-            normal: normal?,
-            friction: friction?,
-            damping: damping?,
-            tangential_damping_ratio: tangential_damping?,
-            rolling_friction: rolling?,
-            works_of_adhesion: Vec::new(),
+        }
+        let values = self.declared_values(c, table, &law, kind.key)?;
+        if let Err(e) = entry.check(&values) {
+            self.contact_error(table, e);
+            return None;
+        }
+        ok.then_some(SubModelSpec {
+            declaration: law,
+            values,
         })
     }
-}
 
-/// The keys of `[contact]` besides the normal law's parameters.
-const CONTACT_KEYS: &[&str] = &[
-    "normal",
-    "tangential",
-    "friction",
-    "damping",
-    "damping_gamma_n_per_m_s",
-    "damping_eta",
-    "damping_tangential_ratio",
-    "rolling_friction",
-];
+    /// The values of `law`'s parameters from the table, in declared order: each given as a
+    /// number or defaulted, and in its declared range; every problem reported at its key.
+    /// `chosen_by`: the key naming the law (`normal`, `tangential`, …).
+    fn declared_values(
+        &mut self,
+        c: &ContactSection,
+        table: &KeyPath,
+        law: &LawDeclaration,
+        chosen_by: &str,
+    ) -> Option<Vec<f64>> {
+        for p in law.params {
+            if let Some(ParamValue::Other(v)) = c.law_parameters.get(p.key) {
+                self.error(
+                    &table.key(p.key),
+                    format!("invalid type: {}, expected a number", v.type_str()),
+                );
+            }
+        }
+        let values = law.values(|p| match c.law_parameters.get(p.key) {
+            Some(ParamValue::Number(v)) => Some(*v),
+            // Reported above as not a number.
+            Some(ParamValue::Other(_)) => Some(f64::NAN),
+            None => None,
+        });
+        match values {
+            Ok(values) => Some(values),
+            Err(problems) => {
+                for problem in problems {
+                    match problem {
+                        ParamProblem::Missing(p) => {
+                            self.require(
+                                table,
+                                p.key,
+                                None::<f64>,
+                                &format!(
+                                    "required by {chosen_by} = \"{}\": {}",
+                                    law.name,
+                                    p.help()
+                                ),
+                            );
+                        }
+                        ParamProblem::Invalid(p, _)
+                            if matches!(
+                                c.law_parameters.get(p.key),
+                                Some(ParamValue::Other(_))
+                            ) => {}
+                        ParamProblem::Invalid(p, e) => {
+                            self.error(&table.key(p.key), format!("{e}: {}", p.help()));
+                        }
+                    }
+                }
+                None
+            }
+        }
+    }
 
-impl Checker<'_, '_> {
     /// `normal = "…"` and its parameters: a registered law's name, each of its declared
     /// parameters given (a scene states all of its physics) and in its declared range, and no
     /// parameter of another law.
@@ -165,15 +159,8 @@ impl Checker<'_, '_> {
         };
         let law = entry.declaration;
         let mut ok = true;
-        for (key, value) in &c.law_parameters {
-            if law.param(key).is_some() {
-                if let ParamValue::Other(v) = value {
-                    self.error(
-                        &table.key(key),
-                        format!("invalid type: {}, expected a number", v.type_str()),
-                    );
-                    ok = false;
-                }
+        for key in c.law_parameters.keys() {
+            if law.param(key).is_some() || registry::is_sub_model_key(key) {
                 continue;
             }
             ok = false;
@@ -187,9 +174,8 @@ impl Checker<'_, '_> {
                     &format!("by normal = \"{}\"", law.name),
                 );
             } else {
-                let expected: Vec<String> = CONTACT_KEYS
-                    .iter()
-                    .copied()
+                let expected: Vec<String> = contact_keys()
+                    .into_iter()
                     .chain(law.params.iter().map(|p| p.key))
                     .map(|k| format!("`{k}`"))
                     .collect();
@@ -202,38 +188,7 @@ impl Checker<'_, '_> {
                 );
             }
         }
-        let values = law.values(|p| match c.law_parameters.get(p.key) {
-            Some(ParamValue::Number(v)) => Some(*v),
-            // Reported above as not a number.
-            Some(ParamValue::Other(_)) => Some(f64::NAN),
-            None => None,
-        });
-        let values = match values {
-            Ok(values) => values,
-            Err(problems) => {
-                for problem in problems {
-                    match problem {
-                        ParamProblem::Missing(p) => {
-                            self.require(
-                                table,
-                                p.key,
-                                None::<f64>,
-                                &format!("required by normal = \"{}\": {}", law.name, p.help()),
-                            );
-                        }
-                        ParamProblem::Invalid(p, _)
-                            if matches!(
-                                c.law_parameters.get(p.key),
-                                Some(ParamValue::Other(_))
-                            ) => {}
-                        ParamProblem::Invalid(p, e) => {
-                            self.error(&table.key(p.key), format!("{e}: {}", p.help()));
-                        }
-                    }
-                }
-                return None;
-            }
-        };
+        let values = self.declared_values(c, table, &law, "normal")?;
         if let Err(e) = entry.check(&values) {
             self.contact_error(table, e);
             return None;
@@ -243,4 +198,15 @@ impl Checker<'_, '_> {
             values,
         })
     }
+}
+
+/// The keys of `[contact]` besides the normal law's parameters: `normal`, then each sub-model
+/// kind's key and its laws' parameters.
+fn contact_keys() -> Vec<&'static str> {
+    let mut keys = vec!["normal"];
+    for kind in &SUB_MODEL_KINDS {
+        keys.push(kind.key);
+        keys.extend(kind.keys());
+    }
+    keys
 }

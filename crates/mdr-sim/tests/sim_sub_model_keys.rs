@@ -1,0 +1,230 @@
+//! The tangential, damping and rolling keys of `[contact]` read from the laws' declarations:
+//! each law chosen by its registered name, each parameter defaulted and range-checked as
+//! declared, errors naming the key, its range and its equation; and the scene written back in
+//! the fixed key order a checkpoint's fingerprint hashes.
+
+mod common;
+
+use mdr_contact::damping::{HertzianViscous, StiffnessViscous};
+use mdr_contact::params::Declared;
+use mdr_contact::tangential::Mindlin;
+use mdr_sim::scene::validate::parse_scene;
+use mdr_sim::scene::{DampingSpec, Problems, Scene};
+use std::path::Path;
+
+/// The column scene with `μ = 0.3` and `extra` appended to its `[contact]` table.
+fn scene_with(extra: &str) -> Result<Scene, Problems> {
+    let text = common::column(2, 2, 0.01, 0.3, "")
+        .replace("friction = 0.3", &format!("friction = 0.3\n{extra}"));
+    assert!(text.contains(extra), "{text}");
+    parse_scene(Path::new("scene.toml"), &text)
+}
+
+/// The one error of a refused scene about `key`.
+fn error(extra: &str, key: &str) -> String {
+    let problems = scene_with(extra).expect_err("refused");
+    let errors: Vec<_> = problems.errors().filter(|e| e.key.ends_with(key)).collect();
+    assert_eq!(errors.len(), 1, "one error about `{key}`: {problems}");
+    errors[0].message.clone()
+}
+
+#[test]
+fn sub_model_values_and_defaults_come_from_the_declarations() {
+    let scene = scene_with("damping = \"hertzian_viscous\"\ndamping_gamma_n_per_m_s = 50.0")
+        .expect("valid");
+    let c = &scene.contact;
+    assert_eq!(c.friction, 0.3);
+    assert_eq!(c.damping, DampingSpec::HertzianViscous(50.0));
+    // The declared defaults of the keys left out.
+    let ratio = HertzianViscous::DECLARATION.params[1];
+    assert_eq!(
+        (ratio.key, ratio.default),
+        ("damping_tangential_ratio", Some(0.0))
+    );
+    assert_eq!(c.tangential_damping_ratio, 0.0);
+    assert_eq!(c.rolling_friction, 0.0);
+    let scene = scene_with(
+        "damping = \"stiffness_viscous\"\ndamping_eta = 0.3\ndamping_tangential_ratio = 0.5\n\
+         rolling = \"epsd\"\nrolling_friction = 0.1",
+    )
+    .expect("valid");
+    let c = &scene.contact;
+    assert_eq!(c.damping, DampingSpec::StiffnessViscous(0.3));
+    assert_eq!((c.tangential_damping_ratio, c.rolling_friction), (0.5, 0.1));
+}
+
+#[test]
+fn range_errors_name_the_key_the_range_and_the_equation() {
+    let scene = common::column(2, 2, 0.01, 0.3, "").replace("friction = 0.3", "friction = -1.0");
+    let problems = parse_scene(Path::new("scene.toml"), &scene).expect_err("refused");
+    let e = problems
+        .errors()
+        .find(|e| e.key == "contact.friction")
+        .unwrap_or_else(|| panic!("{problems}"));
+    let help = Mindlin::DECLARATION.params[0].help();
+    assert!(
+        e.message.contains("[0, inf)") && e.message.contains(&help),
+        "{e}"
+    );
+    let m = error(
+        "damping = \"stiffness_viscous\"\ndamping_eta = -0.5",
+        "damping_eta",
+    );
+    let help = StiffnessViscous::DECLARATION.params[0].help();
+    assert!(
+        m.contains("`damping_eta` = -0.5") && m.contains(&help),
+        "{m}"
+    );
+    let m = error("rolling_friction = nan", "rolling_friction");
+    assert!(m.contains("rolling_friction"), "{m}");
+    let m = error("damping = \"hertzian_viscous\"", "contact");
+    assert!(
+        m.contains("missing key `damping_gamma_n_per_m_s`")
+            && m.contains("required by damping = \"hertzian_viscous\"")
+            && m.contains("1/(m·s)"),
+        "{m}"
+    );
+    let m = error(
+        "damping_eta = \"much\"\ndamping = \"stiffness_viscous\"",
+        "damping_eta",
+    );
+    assert!(m.contains("expected a number"), "{m}");
+}
+
+#[test]
+fn laws_are_chosen_by_registered_name_and_other_laws_keys_refused() {
+    let m = error("damping = \"hertzian_viscos\"", "damping");
+    assert!(
+        m.contains("`none`, `hertzian_viscous`, `stiffness_viscous`")
+            && m.contains("did you mean `hertzian_viscous`?"),
+        "{m}"
+    );
+    let m = error("rolling = \"spring\"", "rolling");
+    assert!(m.contains("`none`, `epsd`"), "{m}");
+    let m = error(
+        "damping = \"hertzian_viscous\"\ndamping_gamma_n_per_m_s = 50.0\ndamping_eta = 0.3",
+        "damping_eta",
+    );
+    assert!(
+        m.contains(
+            "not used by damping = \"hertzian_viscous\" (a parameter of `stiffness_viscous`)"
+        ),
+        "{m}"
+    );
+    let m = error("damping_tangential_ratio = 0.5", "damping_tangential_ratio");
+    assert!(m.contains("not used by damping = \"none\""), "{m}");
+    let m = error(
+        "rolling = \"none\"\nrolling_friction = 0.1",
+        "rolling_friction",
+    );
+    assert!(
+        m.contains("not used by rolling = \"none\" (a parameter of `epsd`)"),
+        "{m}"
+    );
+    // A zero coefficient of a law that is not chosen is that law off: accepted.
+    let scene = scene_with("rolling = \"none\"\nrolling_friction = 0.0").expect("valid");
+    assert_eq!(scene.contact.rolling_friction, 0.0);
+    // An unknown key lists the sub-models' keys among the allowed ones.
+    let m = error("rolling_frction = 0.1", "rolling_frction");
+    assert!(
+        m.contains("`rolling`, `rolling_friction`")
+            && m.contains("did you mean `rolling_friction`?"),
+        "{m}"
+    );
+}
+
+#[test]
+fn a_frictionless_scene_refuses_a_friction_coefficient() {
+    let text = common::column(2, 2, 0.01, 0.3, "").replace("tangential = \"mindlin\"\n", "");
+    let problems = parse_scene(Path::new("scene.toml"), &text).expect_err("refused");
+    let e = problems
+        .errors()
+        .find(|e| e.key == "contact.friction")
+        .unwrap_or_else(|| panic!("{problems}"));
+    assert!(
+        e.message
+            .contains("not used by tangential = \"none\" (a parameter of `mindlin`)"),
+        "{e}"
+    );
+    let text = text.replace("friction = 0.3", "friction = 0.0");
+    let scene = parse_scene(Path::new("scene.toml"), &text).expect("valid");
+    assert_eq!(scene.contact.friction, 0.0);
+}
+
+/// The `[contact]` table is written back (the text a checkpoint's fingerprint hashes) in one
+/// order whatever the file's: `normal`, the normal law's keys, `tangential`, `friction`,
+/// `damping` (always), the damping keys (shared `damping_tangential_ratio` last), the rolling
+/// keys: the order of the scene files whose checkpoints exist.
+#[test]
+fn the_contact_table_is_written_in_its_fixed_order() {
+    let text = common::column(2, 2, 0.01, 0.3, "").replace(
+        "[contact]\nnormal = \"mdr\"\ncritical_line_load_n_per_m = 100.0\nhardening_ratio = 0.37\ntangential = \"mindlin\"\nfriction = 0.3",
+        "[contact]\nrolling_friction = 0.1\ndamping_tangential_ratio = 0.5\nfriction = 0.3\n\
+         hardening_ratio = 0.37\ndamping_eta = 0.3\ndamping = \"stiffness_viscous\"\n\
+         tangential = \"mindlin\"\ncritical_line_load_n_per_m = 100.0\nnormal = \"mdr\"",
+    );
+    assert!(text.contains("rolling_friction = 0.1"), "{text}");
+    let scene = parse_scene(Path::new("scene.toml"), &text).expect("valid");
+    let written = toml::to_string(&scene.source.contact).unwrap();
+    assert_eq!(
+        written,
+        "normal = \"mdr\"\ncritical_line_load_n_per_m = 100.0\nhardening_ratio = 0.37\n\
+         tangential = \"mindlin\"\nfriction = 0.3\ndamping = \"stiffness_viscous\"\n\
+         damping_eta = 0.3\ndamping_tangential_ratio = 0.5\nrolling_friction = 0.1\n"
+    );
+    // `damping` is written when left out, as `none`; `rolling` only when given.
+    let scene = parse_scene(
+        Path::new("scene.toml"),
+        &common::column(2, 2, 0.01, 0.3, ""),
+    )
+    .expect("valid");
+    let written = toml::to_string(&scene.source.contact).unwrap();
+    assert!(
+        written.ends_with("friction = 0.3\ndamping = \"none\"\n"),
+        "{written}"
+    );
+}
+
+/// A damping law registered without a place in the steppers' types is refused by name, and the
+/// registered ones are placed (docs/architecture.md, "Tangential, damping and rolling laws").
+#[test]
+fn a_sub_model_without_a_place_in_the_steppers_is_refused_by_name() {
+    use mdr_contact::params::{LawDeclaration, LawKind, Param, Range};
+    use mdr_contact::rolling::EpsdRolling;
+    use mdr_contact::tangential::Frictionless;
+    use mdr_sim::laws::registry::contact_spec;
+    use mdr_sim::scene::SubModelSpec;
+    static PARAMS: &[Param] = &[Param::new(
+        "damping_c_n_s_per_m",
+        "c",
+        "N·s/m",
+        Range::NON_NEGATIVE,
+        "F_d = c dδ/dt",
+    )];
+    let constant = SubModelSpec {
+        declaration: LawDeclaration {
+            name: "constant_viscous",
+            kind: LawKind::Damping,
+            summary: "",
+            params: PARAMS,
+        },
+        values: vec![1.0],
+    };
+    let spec = |declaration: LawDeclaration, values: Vec<f64>| SubModelSpec {
+        declaration,
+        values,
+    };
+    let normal = scene_with("").expect("valid").contact.normal;
+    let tangential = spec(Frictionless::DECLARATION, vec![]);
+    let rolling = spec(EpsdRolling::DECLARATION, vec![0.2]);
+    let e = contact_spec(normal.clone(), &tangential, &constant, &rolling).unwrap_err();
+    assert_eq!((e.kind, e.law), (LawKind::Damping, "constant_viscous"));
+    assert!(e.to_string().contains("no place for it"), "{e}");
+    let viscous = spec(StiffnessViscous::DECLARATION, vec![0.3, 0.5]);
+    let c = contact_spec(normal, &tangential, &viscous, &rolling).unwrap();
+    assert_eq!(c.damping, DampingSpec::StiffnessViscous(0.3));
+    assert_eq!(
+        (c.friction, c.tangential_damping_ratio, c.rolling_friction),
+        (0.0, 0.5, 0.2)
+    );
+}
