@@ -55,6 +55,13 @@ pub fn gpu_scene_support(scene: &Scene) -> Result<(), GpuError> {
     if scene.force_path == ForcePath::Rapier {
         return refuse("`force_path = \"rapier\"` is the CPU's rapier pipeline path".into());
     }
+    if !scene.contact.works_of_adhesion.is_empty() {
+        return refuse(
+            "its materials mix to different works of adhesion per pair \
+             (`[[material]] work_of_adhesion_j_per_m2`): the GPU binds one value for every pair"
+                .into(),
+        );
+    }
     for wall in &scene.walls {
         let j = wall.index;
         let kind = scene.source.walls.get(j).map(|w| w.kind);

@@ -302,4 +302,8 @@ fn scenes_the_gpu_lacks_a_part_of_are_refused_by_name() {
     restitution.coupling = mdr_sim::scene::CouplingMode::Restitution;
     let err = gpu_scene_support(&restitution).unwrap_err().to_string();
     assert!(err.contains("restitution"), "{err}");
+    let mut mixed = test_scene();
+    mixed.contact.works_of_adhesion = vec![0.5, 0.0];
+    let err = gpu_scene_support(&mixed).unwrap_err().to_string();
+    assert!(err.contains("work_of_adhesion_j_per_m2"), "{err}");
 }
