@@ -337,12 +337,6 @@ struct BlockOutcome {
     ended: Vec<EndedContact>,
 }
 
-/// The touching pairs of a chunk, by index in the chunk.
-struct Touching {
-    pairs: [u16; CHUNK],
-    len: usize,
-}
-
 impl<N, T, D, R> PairPass<'_, N, T, D, R>
 where
     N: NormalModel,
@@ -425,18 +419,19 @@ where
         window: &mut Window<'_>,
         ended: &mut Vec<EndedContact>,
     ) -> usize {
-        let touching = self.touching::<HOLDS, B>(&mut chunk, ended);
+        let mut touching = [0u16; CHUNK];
+        let len = self.touching::<HOLDS, B>(&mut chunk, &mut touching, ended);
         // Per group of touching pairs: first the geometry (a square root and a division per
         // pair, independent of each other, so they overlap instead of heading each pair's
         // dependency chain through the law), then the law.
         let mut geometry = [(0.0, Vector3::zeros()); BLOCK];
-        for group in touching.pairs[..touching.len].chunks(BLOCK) {
+        for group in touching[..len].chunks(BLOCK) {
             self.geometry::<HOLDS, B>(&chunk, group, &mut geometry);
             for (&k, contact) in group.iter().zip(&geometry) {
                 self.evaluate(&mut chunk, k as usize, contact, window);
             }
         }
-        touching.len
+        len
     }
 
     /// The particles and image offset of the chunk's pair `k`.
@@ -456,70 +451,81 @@ where
         &self.laws[s[i] as usize * self.species + s[j] as usize]
     }
 
-    /// Pass 1, the overlap test alone (the exact test `sphere_sphere` makes): collect the
-    /// touching pairs of the chunk without a data-dependent branch, and forget the pairs that
-    /// separated. Pass 2 runs the law on the touching ones only, so the unpredictable
-    /// touch/apart branch of a mixed list is not taken per pair. With `HOLDS` (adhesive laws)
-    /// a live pair whose contact still holds ([`mdr_contact::normal::NormalLaw::holds`]) counts
-    /// as touching and is evaluated at its negative overlap until its law lets go; without it
-    /// the hold test is compiled away. Not inlined: the loop then keeps its slices and
-    /// counters in registers instead of sharing them with the law's.
+    /// Pass 1, the overlap test alone (the exact test `sphere_sphere` makes): write the indexes
+    /// of the chunk's touching pairs to the front of `touching` without a data-dependent branch,
+    /// forget the pairs that separated, and return how many touch. Pass 2 runs the law on the
+    /// touching ones only, so the unpredictable touch/apart branch of a mixed list is not taken
+    /// per pair. With `HOLDS` (adhesive laws) a live pair whose contact still holds
+    /// ([`mdr_contact::normal::NormalLaw::holds`]) counts as touching and is evaluated at its
+    /// negative overlap until its law lets go; without it the hold test is compiled away. Not
+    /// inlined: the loop then keeps its slices and its count in registers instead of sharing
+    /// them with the law's; the count is a local rather than a field of an output struct, so
+    /// that it is not stored and reloaded at every pair.
     #[inline(never)]
     fn touching<const HOLDS: bool, B: WorkBooks>(
         &self,
         chunk: &mut ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
+        touching: &mut [u16; CHUNK],
         ended: &mut Vec<EndedContact>,
-    ) -> Touching {
+    ) -> usize {
         let (position, radius) = (&self.particles.position[..], &self.particles.radius[..]);
         let offsets = &self.offsets;
-        let (pi, pj, image) = (chunk.i, chunk.j, chunk.image);
-        let mut touching = Touching {
-            pairs: [0u16; CHUNK],
-            len: 0,
-        };
-        for (k, ((&i, &j), &image)) in pi.iter().zip(pj).zip(image).enumerate() {
+        let ChunkPairs {
+            i: pi,
+            j: pj,
+            image,
+            history,
+            active,
+            ..
+        } = chunk;
+        let history = &**history;
+        let mut len = 0;
+        for (k, (((&i, &j), &image), active)) in pi
+            .iter()
+            .zip(pj.iter())
+            .zip(image.iter())
+            .zip(active.iter_mut())
+            .enumerate()
+        {
             let (i, j) = (i as usize, j as usize);
             let xj = position[j] + offsets[image as usize].position;
             let dist2 = (position[i] - xj).norm_squared();
             let reach = radius[i] + radius[j];
             let touch = !(dist2 >= reach * reach || dist2 == 0.0);
             let held = HOLDS
-                && chunk.active[k]
+                && *active
                 && dist2 != 0.0
-                && self
-                    .laws(i, j)
-                    .0
-                    .normal
-                    .holds(&chunk.history[k].contact.normal);
-            touching.pairs[touching.len] = k as u16;
-            touching.len += usize::from(touch | held);
-            if chunk.active[k] & !(touch | held) {
-                self.separate(chunk, k, ended);
+                && self.laws(i, j).0.normal.holds(&history[k].contact.normal);
+            touching[len] = k as u16;
+            len += usize::from(touch | held);
+            if *active & !(touch | held) {
+                self.record_ended(i, j, &history[k], ended);
+                *active = false;
             }
         }
-        touching
+        len
     }
 
-    /// The chunk's live pair `k` separated: the rapier pipeline path drops the entry; this one
-    /// marks the pair inactive and leaves its history as it is (a pair that touches again
-    /// starts from the default, in `evaluate`).
+    /// Record, where asked to, that the live pair `(i, j)` with history `history` separated. The
+    /// rapier pipeline path drops such an entry; this one marks the pair inactive (the caller)
+    /// and leaves its history as it is (a pair that touches again starts from the default, in
+    /// `evaluate`).
     #[inline(always)]
-    fn separate<B: WorkBooks>(
+    fn record_ended<B: WorkBooks>(
         &self,
-        chunk: &mut ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
-        k: usize,
+        i: usize,
+        j: usize,
+        history: &NeighbourListHistory<N, T, R, B>,
         ended: &mut Vec<EndedContact>,
     ) {
         if self.record {
-            let (i, j, _) = self.pair(chunk, k);
             ended.push(EndedContact::of(
                 i as u32,
                 ContactPartner::Sphere(j as u32),
                 self.laws(i, j),
-                &chunk.history[k],
+                history,
             ));
         }
-        chunk.active[k] = false;
     }
 
     /// Overlap and normal of the touching pairs `group` of the chunk (`HOLDS`: at any distance,
