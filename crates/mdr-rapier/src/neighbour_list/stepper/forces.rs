@@ -330,6 +330,16 @@ impl Window<'_> {
     }
 }
 
+/// The touching pairs of a chunk, by index in the chunk.
+struct Touching {
+    pairs: [u16; CHUNK],
+    len: usize,
+}
+
+/// The overlap and normal of a group of touching pairs (pass 2): made once per block, not once
+/// per chunk, so that a chunk does not spend a store per entry setting it up.
+type Geometry = [(f64, Vector3<f64>); BLOCK];
+
 /// What one block of the pair pass found.
 struct BlockOutcome {
     block: usize,
@@ -368,6 +378,7 @@ where
         if b % 2 == 0 {
             self.start_sums(&mut window);
         }
+        let mut geometry: Geometry = [(0.0, Vector3::zeros()); BLOCK];
         let mut touching = 0;
         for sub in (0..history.len()).step_by(CHUNK) {
             let len = (history.len() - sub).min(CHUNK);
@@ -383,9 +394,9 @@ where
             // The adhesive test once per chunk: each instance of `chunk` compiles its own
             // overlap test and geometry.
             touching += if self.adhesive {
-                self.chunk::<true, B>(chunk, &mut window, &mut ended)
+                self.chunk::<true, B>(chunk, &mut geometry, &mut window, &mut ended)
             } else {
-                self.chunk::<false, B>(chunk, &mut window, &mut ended)
+                self.chunk::<false, B>(chunk, &mut geometry, &mut window, &mut ended)
             };
         }
         BlockOutcome {
@@ -416,22 +427,21 @@ where
     fn chunk<const HOLDS: bool, B: WorkBooks>(
         &self,
         mut chunk: ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
+        geometry: &mut Geometry,
         window: &mut Window<'_>,
         ended: &mut Vec<EndedContact>,
     ) -> usize {
-        let mut touching = [0u16; CHUNK];
-        let len = self.touching::<HOLDS, B>(&mut chunk, &mut touching, ended);
+        let touching = self.touching::<HOLDS, B>(&mut chunk, ended);
         // Per group of touching pairs: first the geometry (a square root and a division per
         // pair, independent of each other, so they overlap instead of heading each pair's
         // dependency chain through the law), then the law.
-        let mut geometry = [(0.0, Vector3::zeros()); BLOCK];
-        for group in touching[..len].chunks(BLOCK) {
-            self.geometry::<HOLDS, B>(&chunk, group, &mut geometry);
-            for (&k, contact) in group.iter().zip(&geometry) {
+        for group in touching.pairs[..touching.len].chunks(BLOCK) {
+            self.geometry::<HOLDS, B>(&chunk, group, geometry);
+            for (&k, contact) in group.iter().zip(geometry.iter()) {
                 self.evaluate(&mut chunk, k as usize, contact, window);
             }
         }
-        len
+        touching.len
     }
 
     /// The particles and image offset of the chunk's pair `k`.
@@ -451,81 +461,70 @@ where
         &self.laws[s[i] as usize * self.species + s[j] as usize]
     }
 
-    /// Pass 1, the overlap test alone (the exact test `sphere_sphere` makes): write the indexes
-    /// of the chunk's touching pairs to the front of `touching` without a data-dependent branch,
-    /// forget the pairs that separated, and return how many touch. Pass 2 runs the law on the
-    /// touching ones only, so the unpredictable touch/apart branch of a mixed list is not taken
-    /// per pair. With `HOLDS` (adhesive laws) a live pair whose contact still holds
-    /// ([`mdr_contact::normal::NormalLaw::holds`]) counts as touching and is evaluated at its
-    /// negative overlap until its law lets go; without it the hold test is compiled away. Not
-    /// inlined: the loop then keeps its slices and its count in registers instead of sharing
-    /// them with the law's; the count is a local rather than a field of an output struct, so
-    /// that it is not stored and reloaded at every pair.
+    /// Pass 1, the overlap test alone (the exact test `sphere_sphere` makes): collect the
+    /// touching pairs of the chunk without a data-dependent branch, and forget the pairs that
+    /// separated. Pass 2 runs the law on the touching ones only, so the unpredictable
+    /// touch/apart branch of a mixed list is not taken per pair. With `HOLDS` (adhesive laws)
+    /// a live pair whose contact still holds ([`mdr_contact::normal::NormalLaw::holds`]) counts
+    /// as touching and is evaluated at its negative overlap until its law lets go; without it
+    /// the hold test is compiled away. Not inlined: the loop then keeps its slices and
+    /// counters in registers instead of sharing them with the law's.
     #[inline(never)]
     fn touching<const HOLDS: bool, B: WorkBooks>(
         &self,
         chunk: &mut ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
-        touching: &mut [u16; CHUNK],
         ended: &mut Vec<EndedContact>,
-    ) -> usize {
+    ) -> Touching {
         let (position, radius) = (&self.particles.position[..], &self.particles.radius[..]);
         let offsets = &self.offsets;
-        let ChunkPairs {
-            i: pi,
-            j: pj,
-            image,
-            history,
-            active,
-            ..
-        } = chunk;
-        let history = &**history;
-        let mut len = 0;
-        for (k, (((&i, &j), &image), active)) in pi
-            .iter()
-            .zip(pj.iter())
-            .zip(image.iter())
-            .zip(active.iter_mut())
-            .enumerate()
-        {
+        let (pi, pj, image) = (chunk.i, chunk.j, chunk.image);
+        let mut touching = Touching {
+            pairs: [0u16; CHUNK],
+            len: 0,
+        };
+        for (k, ((&i, &j), &image)) in pi.iter().zip(pj).zip(image).enumerate() {
             let (i, j) = (i as usize, j as usize);
             let xj = position[j] + offsets[image as usize].position;
             let dist2 = (position[i] - xj).norm_squared();
             let reach = radius[i] + radius[j];
             let touch = !(dist2 >= reach * reach || dist2 == 0.0);
             let held = HOLDS
-                && *active
+                && chunk.active[k]
                 && dist2 != 0.0
-                && self.laws(i, j).0.normal.holds(&history[k].contact.normal);
-            touching[len] = k as u16;
-            len += usize::from(touch | held);
-            if *active & !(touch | held) {
-                self.record_ended(i, j, &history[k], ended);
-                *active = false;
+                && self
+                    .laws(i, j)
+                    .0
+                    .normal
+                    .holds(&chunk.history[k].contact.normal);
+            touching.pairs[touching.len] = k as u16;
+            touching.len += usize::from(touch | held);
+            if chunk.active[k] & !(touch | held) {
+                self.separate(chunk, k, ended);
             }
         }
-        len
+        touching
     }
 
-    /// Record, where asked to, that the live pair `(i, j)` with history `history` separated. The
-    /// rapier pipeline path drops such an entry; this one marks the pair inactive (the caller)
-    /// and leaves its history as it is (a pair that touches again starts from the default, in
-    /// `evaluate`).
+    /// The chunk's live pair `k` separated: the rapier pipeline path drops the entry; this one
+    /// marks the pair inactive and leaves its history as it is (a pair that touches again
+    /// starts from the default, in `evaluate`).
     #[inline(always)]
-    fn record_ended<B: WorkBooks>(
+    fn separate<B: WorkBooks>(
         &self,
-        i: usize,
-        j: usize,
-        history: &NeighbourListHistory<N, T, R, B>,
+        chunk: &mut ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
+        k: usize,
         ended: &mut Vec<EndedContact>,
     ) {
         if self.record {
+            let (i, j, _) = self.pair(chunk, k);
             ended.push(EndedContact::of(
                 i as u32,
                 ContactPartner::Sphere(j as u32),
                 self.laws(i, j),
-                history,
+                &chunk.history[k],
             ));
         }
+        chunk.active[k] = false;
     }
 
     /// Overlap and normal of the touching pairs `group` of the chunk (`HOLDS`: at any distance,
