@@ -68,8 +68,10 @@ mod integrate;
 mod rebuild;
 mod restart;
 
-/// Pairs per parallel work item of the force loops.
-const CHUNK: usize = 2048;
+/// Pairs per chunk of a block's sphere pair loop: pass 1 (the overlap test) runs over a chunk,
+/// then pass 2 (geometry and law) over its touching pairs. Small enough that the positions and
+/// radii pass 1 reads are still in the core's first-level cache when pass 2 reads them again.
+const CHUNK: usize = 256;
 /// Particle–surface pairs per chunk of the parallel surface pass.
 const SURFACE_CHUNK: usize = 256;
 /// Touching pairs per block of the two-stage pair loop (geometry, then law).

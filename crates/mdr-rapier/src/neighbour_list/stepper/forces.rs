@@ -330,17 +330,21 @@ impl Window<'_> {
     }
 }
 
+/// The touching pairs of a chunk, by index in the chunk.
+struct Touching {
+    pairs: [u16; CHUNK],
+    len: usize,
+}
+
+/// The overlap and normal of a group of touching pairs (pass 2): made once per block, not once
+/// per chunk, so that a chunk does not spend a store per entry setting it up.
+type Geometry = [(f64, Vector3<f64>); BLOCK];
+
 /// What one block of the pair pass found.
 struct BlockOutcome {
     block: usize,
     touching: usize,
     ended: Vec<EndedContact>,
-}
-
-/// The touching pairs of a chunk, by index in the chunk.
-struct Touching {
-    pairs: [u16; CHUNK],
-    len: usize,
 }
 
 impl<N, T, D, R> PairPass<'_, N, T, D, R>
@@ -374,6 +378,7 @@ where
         if b % 2 == 0 {
             self.start_sums(&mut window);
         }
+        let mut geometry: Geometry = [(0.0, Vector3::zeros()); BLOCK];
         let mut touching = 0;
         for sub in (0..history.len()).step_by(CHUNK) {
             let len = (history.len() - sub).min(CHUNK);
@@ -389,9 +394,9 @@ where
             // The adhesive test once per chunk: each instance of `chunk` compiles its own
             // overlap test and geometry.
             touching += if self.adhesive {
-                self.chunk::<true, B>(chunk, &mut window, &mut ended)
+                self.chunk::<true, B>(chunk, &mut geometry, &mut window, &mut ended)
             } else {
-                self.chunk::<false, B>(chunk, &mut window, &mut ended)
+                self.chunk::<false, B>(chunk, &mut geometry, &mut window, &mut ended)
             };
         }
         BlockOutcome {
@@ -422,6 +427,7 @@ where
     fn chunk<const HOLDS: bool, B: WorkBooks>(
         &self,
         mut chunk: ChunkPairs<'_, NeighbourListHistory<N, T, R, B>>,
+        geometry: &mut Geometry,
         window: &mut Window<'_>,
         ended: &mut Vec<EndedContact>,
     ) -> usize {
@@ -429,10 +435,9 @@ where
         // Per group of touching pairs: first the geometry (a square root and a division per
         // pair, independent of each other, so they overlap instead of heading each pair's
         // dependency chain through the law), then the law.
-        let mut geometry = [(0.0, Vector3::zeros()); BLOCK];
         for group in touching.pairs[..touching.len].chunks(BLOCK) {
-            self.geometry::<HOLDS, B>(&chunk, group, &mut geometry);
-            for (&k, contact) in group.iter().zip(&geometry) {
+            self.geometry::<HOLDS, B>(&chunk, group, geometry);
+            for (&k, contact) in group.iter().zip(geometry.iter()) {
                 self.evaluate(&mut chunk, k as usize, contact, window);
             }
         }
