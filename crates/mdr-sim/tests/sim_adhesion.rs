@@ -430,21 +430,25 @@ normal = [0.0, 0.0, -1.0]
     text
 }
 
+/// Tolerance of the per-pair rebounds against the validator: the largest measured difference
+/// is the sphere–sphere pair's, 0.08 % (0.48846 against 0.48809; the walls' are below 0.01 %).
+const PAIR_TOLERANCE: f64 = 3e-3;
+
 /// Each material pair runs its own mixed work of adhesion, on both force paths. In one scene of
 /// powder spheres (`Δγ`), spheres of another material (`4Δγ`), a steel floor (0) and a sticky
 /// ceiling (`4Δγ`), compared with the validator `mdr-impact` at each pair's `Δγ_ij`:
 /// - powder spheres on the steel floor (`Δγ_ij = 0`) rebound with the validator's
-///   non-adhesive `e_n` to 1 %, slowly (elastic) at a speed where the powder–ceiling pair
+///   non-adhesive `e_n` to 0.3 %, slowly (elastic) at a speed where the powder–ceiling pair
 ///   (`2Δγ`) sticks, and fast (plastic);
 /// - a powder sphere thrown as slowly at the ceiling sticks, and one thrown at twice that
-///   pair's sticking speed rebounds with the validator's `e_n` at `2Δγ` to 1 %;
+///   pair's sticking speed rebounds with the validator's `e_n` at `2Δγ` to 0.3 %;
 /// - a powder sphere and a sphere of the other material (`√(Δγ · 4Δγ) = 2Δγ`) thrown at each
-///   other rebound with the validator's sphere–sphere `e_n` at `2Δγ` to 1 % at twice their
+///   other rebound with the validator's sphere–sphere `e_n` at `2Δγ` to 0.3 % at twice their
 ///   sticking speed, and stick below it.
 ///
 /// One `Δγ` bound to every pair fails it: the largest (`2Δγ`) sticks the floor's sphere, and
 /// the validator's `e_n` at the powder's or the other material's own `Δγ` is checked to miss
-/// the sphere–sphere rebound by more than the tolerance.
+/// the sphere–sphere rebound by more than 3 %, ten times the tolerance.
 #[test]
 fn each_material_pair_runs_its_own_work_of_adhesion_on_both_force_paths() {
     let wall = pair();
@@ -551,19 +555,19 @@ fn each_material_pair_runs_its_own_work_of_adhesion_on_both_force_paths() {
              ({e_ceiling:.5}), pair e_n {e34:.5} ({e_pair:.5})"
         );
         assert!(
-            (e0 / e_floor - 1.0).abs() < 0.01,
+            (e0 / e_floor - 1.0).abs() < PAIR_TOLERANCE,
             "{force_path}: floor {e0}"
         );
         assert!(
-            (e7 / e_floor_fast - 1.0).abs() < 0.01,
+            (e7 / e_floor_fast - 1.0).abs() < PAIR_TOLERANCE,
             "{force_path}: floor {e7}"
         );
         assert!(
-            (e2 / e_ceiling - 1.0).abs() < 0.01,
+            (e2 / e_ceiling - 1.0).abs() < PAIR_TOLERANCE,
             "{force_path}: ceiling {e2}"
         );
         assert!(
-            (e34 / e_pair - 1.0).abs() < 0.01,
+            (e34 / e_pair - 1.0).abs() < PAIR_TOLERANCE,
             "{force_path}: pair {e34}"
         );
         // Stuck: still within the neck's reach (a few nm) of what it hit, where a rebound at
