@@ -11,7 +11,7 @@
 
 use crate::coeffs::{CoeffTable, PairModel};
 use crate::error::PluginError;
-use crate::history::{load, store, HistoryLayout, PairLaw, PluginNormalLaw};
+use crate::history::{self, load, store, HistoryLayout, PairLaw, PluginNormalLaw};
 use mdr_contact::material::ContactPair;
 use mdr_contact::model::ContactInput;
 use mdr_contact::normal::{AdhesiveMdrLaw, MdrLaw};
@@ -193,28 +193,8 @@ unsafe fn release<N: PluginNormalLaw, const ROLLING: bool>(
     overlap: f64,
     dt: f64,
 ) {
-    let (mut state, mut roll_state) = load::<N, ROLLING>(values);
-    bound.law.update(
-        &mut state,
-        &ContactInput {
-            overlap,
-            normal: Vector3::z(),
-            relative_velocity: Vector3::zeros(),
-            dt,
-        },
-    );
-    if ROLLING {
-        bound.rolling.update(
-            &mut roll_state,
-            &RollingInput {
-                normal: Vector3::z(),
-                rotation_increment: Vector3::zeros(),
-                normal_force: 0.0,
-                normal_stiffness: 0.0,
-            },
-        );
-    }
-    store::<N, ROLLING>(values, &state, &roll_state);
+    let state = load::<N, ROLLING>(values);
+    history::release::<N, ROLLING>(&bound.law, &bound.rolling, state, values, overlap, dt);
 }
 
 /// The global energy and virial of one call, summed before they are added to LAMMPS's.

@@ -19,9 +19,9 @@ use crate::error::PluginError;
 use crate::PairModel;
 use mdr_contact::damping::HertzianViscousLaw;
 use mdr_contact::material::ContactPair;
-use mdr_contact::model::{ContactLaw, ContactState, NoBooks};
+use mdr_contact::model::{ContactInput, ContactLaw, ContactState, NoBooks};
 use mdr_contact::normal::{AdhesiveMdrLaw, AdhesiveMdrState, MdrLaw, MdrState, NormalLaw};
-use mdr_contact::rolling::EpsdRollingState;
+use mdr_contact::rolling::{EpsdRollingLaw, EpsdRollingState, RollingInput, RollingLaw};
 use mdr_contact::tangential::{MindlinLaw, MindlinState};
 use nalgebra::Vector3;
 
@@ -224,4 +224,39 @@ pub fn store<N: PluginNormalLaw, const ROLLING: bool>(
         values[8] = rolling.stiffness;
         values[9] = rolling.dissipated_work;
     }
+}
+
+/// A contact whose spheres (or sphere and wall) separated, and whose neck, for an adhesive law,
+/// let go: the law sees the separation (MDR keeps `d_max` for a re-touch, the Mindlin and
+/// rolling springs are released) and the state is written to `values`; no force.
+#[inline(always)]
+pub fn release<N: PluginNormalLaw, const ROLLING: bool>(
+    law: &PairLaw<N>,
+    rolling: &EpsdRollingLaw,
+    (mut state, mut roll_state): (PluginState<N::State>, EpsdRollingState),
+    values: &mut [f64],
+    overlap: f64,
+    dt: f64,
+) {
+    law.update(
+        &mut state,
+        &ContactInput {
+            overlap,
+            normal: Vector3::z(),
+            relative_velocity: Vector3::zeros(),
+            dt,
+        },
+    );
+    if ROLLING {
+        rolling.update(
+            &mut roll_state,
+            &RollingInput {
+                normal: Vector3::z(),
+                rotation_increment: Vector3::zeros(),
+                normal_force: 0.0,
+                normal_stiffness: 0.0,
+            },
+        );
+    }
+    store::<N, ROLLING>(values, &state, &roll_state);
 }

@@ -21,7 +21,7 @@
 use crate::coeffs::{CoeffLine, CoeffTable, PairModel};
 use crate::compute::MdrdemAtoms;
 use crate::error::PluginError;
-use crate::history::{load, store, HistoryLayout, PairLaw, PluginNormalLaw};
+use crate::history::{load, release, store, HistoryLayout, PairLaw, PluginNormalLaw};
 use mdr_contact::material::{effective_modulus, effective_shear_modulus, ContactPair};
 use mdr_contact::model::ContactInput;
 use mdr_contact::normal::{AdhesiveMdrLaw, MdrLaw};
@@ -277,29 +277,8 @@ unsafe fn wall_with<N: PluginNormalLaw, const ROLLING: bool, const UPDATE: bool>
             if !UPDATE {
                 continue;
             }
-            // Separated, near the wall: the law sees the gap (MDR keeps d_max for a re-touch,
-            // the Mindlin and rolling springs are released); no force.
-            law.update(
-                &mut state,
-                &ContactInput {
-                    overlap,
-                    normal: Vector3::z(),
-                    relative_velocity: Vector3::zeros(),
-                    dt,
-                },
-            );
-            if ROLLING {
-                rolling.update(
-                    &mut roll_state,
-                    &RollingInput {
-                        normal: Vector3::z(),
-                        rotation_increment: Vector3::zeros(),
-                        normal_force: 0.0,
-                        normal_stiffness: 0.0,
-                    },
-                );
-            }
-            store::<N, ROLLING>(values, &state, &roll_state);
+            // Separated, near the wall: no force.
+            release::<N, ROLLING>(law, rolling, (state, roll_state), values, overlap, dt);
             continue;
         }
         let (v, w) = if replay {
