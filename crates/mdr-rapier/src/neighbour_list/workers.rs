@@ -11,15 +11,71 @@
 //! pool work the moment it appears, for as long as its closure runs: what MPI ranks and
 //! OpenMP's active wait policy do. Which thread takes which work does not change any result of
 //! the stepper (every sum has an order fixed by the particle count and the lists).
+//!
+//! A pool of `n ≥ 2` threads runs at most `n − 1` runs at once ([`with_workers_awake`] waits for
+//! a free place, running the pool's other work meanwhile). rapier's step hands its tree
+//! optimisation to another thread of the pool and blocks its own thread until it is done
+//! (`PhysicsPipeline::join_deferred_bvh_optimize` waits on a channel): with as many runs as
+//! threads, every thread could block in that wait with the optimisations queued behind them, and
+//! the runs would never finish. One thread always left free of runs takes them.
 
 use std::cell::Cell;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
+use std::time::Duration;
 
 thread_local! {
     /// How many [`with_workers_awake`] closures run on this thread (nested, or one run that a
     /// waiting thread took up).
     static RUNS: Cell<usize> = const { Cell::new(0) };
+}
+
+/// Threads that hold a run, per pool size. rayon does not name a pool, so pools of the same size
+/// share a count: runs of two such pools may wait for each other, never for long, and never
+/// more than the rule for one pool asks.
+static RUNNING_THREADS: Mutex<Vec<(usize, usize)>> = Mutex::new(Vec::new());
+
+/// Take a place among the `pool − 1` threads of a pool of `pool` threads that may hold a run,
+/// if one is free.
+fn try_take_place(pool: usize) -> bool {
+    let mut running = lock(&RUNNING_THREADS);
+    let index = match running.iter().position(|&(size, _)| size == pool) {
+        Some(index) => index,
+        None => {
+            running.push((pool, 0));
+            running.len() - 1
+        }
+    };
+    let taken = &mut running[index].1;
+    if *taken + 1 < pool {
+        *taken += 1;
+        true
+    } else {
+        false
+    }
+}
+
+/// Give back a place taken by [`try_take_place`].
+fn give_back_place(pool: usize) {
+    let mut running = lock(&RUNNING_THREADS);
+    if let Some(entry) = running.iter_mut().find(|(size, _)| *size == pool) {
+        entry.1 = entry.1.saturating_sub(1);
+    }
+}
+
+/// Wait, running the pool's other work (the runs under way need it), until this thread may hold
+/// a run. A thread that already holds one (a run started inside a run's wait) keeps its place:
+/// the number of threads that can block inside a run does not grow.
+fn wait_for_place(pool: usize) -> bool {
+    if RUNS.with(Cell::get) > 0 {
+        return false;
+    }
+    while !try_take_place(pool) {
+        if rayon::yield_now() != Some(rayon::Yield::Executed) {
+            std::thread::sleep(Duration::from_micros(50));
+        }
+    }
+    true
 }
 
 /// Run `f` on the current thread with the other threads of the current rayon pool kept awake:
@@ -30,14 +86,19 @@ thread_local! {
 /// Several runs may share a pool (tests, or Python threads each running a scene): a thread that
 /// is running one never waits for another's end (it declines the other's wait), so that no two
 /// runs can each hold up the other; a thread that waits for one run takes up the pool's other
-/// work as it comes, another run included.
+/// work as it comes, another run included. At most `n − 1` threads of a pool of `n` hold runs at
+/// once (a run started on a thread that holds one shares its place): a further run first waits,
+/// running the pool's other work, so that one thread is always free for what a run's step hands
+/// off and then waits for (rapier's tree optimisation; the module documentation says why).
 pub fn with_workers_awake<R>(f: impl FnOnce() -> R) -> R {
     let Some(me) = rayon::current_thread_index() else {
         return f();
     };
-    if rayon::current_num_threads() < 2 {
+    let pool = rayon::current_num_threads();
+    if pool < 2 {
         return f();
     }
+    let took_place = wait_for_place(pool);
     let stop = Arc::new(AtomicBool::new(false));
     let flag = Arc::clone(&stop);
     // One copy per thread of the pool; the caller's own copy returns at once (it runs when the
@@ -54,16 +115,20 @@ pub fn with_workers_awake<R>(f: impl FnOnce() -> R) -> R {
             }
         }
     });
-    /// Stops the waiting threads when `f` returns or unwinds, and ends this thread's run.
-    struct Release(Arc<AtomicBool>);
+    /// Stops the waiting threads when `f` returns or unwinds, ends this thread's run, and gives
+    /// back the place it took (`Some(pool size)`).
+    struct Release(Arc<AtomicBool>, Option<usize>);
     impl Drop for Release {
         fn drop(&mut self) {
             self.0.store(true, Ordering::Release);
             RUNS.with(|runs| runs.set(runs.get() - 1));
+            if let Some(pool) = self.1 {
+                give_back_place(pool);
+            }
         }
     }
     RUNS.with(|runs| runs.set(runs.get() + 1));
-    let _release = Release(stop);
+    let _release = Release(stop, took_place.then_some(pool));
     f()
 }
 
