@@ -1,5 +1,6 @@
 //! Every `mdr-dem` command line that README.md and docs/*.md show, in their code blocks and in
-//! inline code that starts with `mdr-dem `, names subcommands and flags that the program has:
+//! inline code that starts with `mdr-dem ` or a subcommand, names subcommands and flags that the
+//! program has:
 //! each subcommand is listed by its parent's `--help` and each `--flag` by the subcommand's
 //! `--help`. A made-up flag or subcommand is caught (the negative controls below).
 
@@ -25,9 +26,12 @@ fn documents() -> Vec<PathBuf> {
     docs
 }
 
+/// The program's subcommands, which inline code may name without the program (`sim run …`).
+const TOP_LEVEL: [&str; 4] = ["impact", "sim", "bench", "verify"];
+
 /// The `mdr-dem` invocations of a Markdown text, each as its arguments after the program name:
 /// the lines of fenced code blocks (continuation lines joined, `#` comments dropped) and inline
-/// code spans starting with `mdr-dem `. `cargo run [--release] -- ARGS` counts as `mdr-dem
+/// code spans starting with `mdr-dem ` or with a subcommand of [`TOP_LEVEL`]. `cargo run [--release] -- ARGS` counts as `mdr-dem
 /// ARGS` where it runs the workspace's own program (no `-p`, `--example` or `--bin` of another).
 fn invocations(text: &str) -> Vec<Vec<String>> {
     let mut found = Vec::new();
@@ -50,8 +54,13 @@ fn invocations(text: &str) -> Vec<Vec<String>> {
             found.extend(invocations_in_command(code));
         } else {
             for (k, span) in line.split('`').enumerate() {
-                if k % 2 == 1 && span.starts_with("mdr-dem ") {
+                if k % 2 == 0 {
+                    continue;
+                }
+                if span.starts_with("mdr-dem ") {
                     found.extend(invocations_in_command(span));
+                } else if TOP_LEVEL.iter().any(|c| span.starts_with(&format!("{c} "))) {
+                    found.extend(invocations_in_command(&format!("mdr-dem {span}")));
                 }
             }
         }
@@ -62,7 +71,10 @@ fn invocations(text: &str) -> Vec<Vec<String>> {
 /// The invocations in one shell command line (several where it chains commands).
 fn invocations_in_command(code: &str) -> Vec<Vec<String>> {
     let mut found = Vec::new();
-    for part in code.split(['|', ';', '>', '<', '(', ')']).flat_map(|p| p.split("&&")) {
+    for part in code
+        .split(['|', ';', '>', '<', '(', ')'])
+        .flat_map(|p| p.split("&&"))
+    {
         let words: Vec<&str> = part.split_whitespace().collect();
         let program = words.iter().position(|w| {
             Path::new(w.trim_matches(['"', '\'']))
@@ -148,9 +160,11 @@ fn missing(help: &mut Help, args: &[String]) -> Vec<String> {
             // A word where a subcommand is required (a group's help lists commands and takes
             // no positional argument).
             let group = !known.is_empty() && !help.of(&path).contains("Arguments:");
-            if group && path.len() < 2 && arg.chars().all(|c| c.is_ascii_lowercase() || c == '-')
-            {
-                problems.push(format!("subcommand `{}`", [&path[..], &[arg.to_owned()]].concat().join(" ")));
+            if group && path.len() < 2 && arg.chars().all(|c| c.is_ascii_lowercase() || c == '-') {
+                problems.push(format!(
+                    "subcommand `{}`",
+                    [&path[..], &[arg.to_owned()]].concat().join(" ")
+                ));
                 return problems;
             }
             in_subcommands = false;
@@ -158,7 +172,9 @@ fn missing(help: &mut Help, args: &[String]) -> Vec<String> {
         if let Some(flag) = arg.strip_prefix("--") {
             let name = format!("--{}", flag.split('=').next().unwrap_or(""));
             if name.len() > 2
-                && name[2..].chars().all(|c| c.is_ascii_alphanumeric() || c == '-')
+                && name[2..]
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '-')
                 && !lists_flag(help.of(&path), &name)
             {
                 problems.push(format!("`mdr-dem {} {name}`", path.join(" ")));
@@ -186,19 +202,20 @@ fn every_documented_command_line_names_existing_subcommands_and_flags() {
             }
         }
     }
-    // The docs show well over a hundred command lines; far fewer means the parser lost them.
-    assert!(checked > 100, "only {checked} command lines found");
+    // The docs show about 140 command lines; far fewer means the parser lost them.
+    assert!(checked > 110, "only {checked} command lines found");
     assert!(problems.is_empty(), "{}", problems.join("\n"));
 }
 
 #[test]
 fn a_made_up_flag_or_subcommand_is_caught() {
     let mut help = Help::default();
-    let text = "```sh\nmdr-dem impact curve --v0-max 2 --no-such-flag 3\n```\n\
-                Inline: `mdr-dem sim run scenes/drop.toml --frobnicate`, and `mdr-dem impact \
-                wobble --v0 1`.\n```sh\ncargo run --release -- bench bed --not-a-flag\n```\n";
+    let text = "```sh\nmdr-dem impact curve --v-max 2 --no-such-flag 3\n```\n\
+                Inline: `mdr-dem sim run scenes/drop.toml --frobnicate`, `mdr-dem impact \
+                wobble --v0 1` and `verify --plott DIR`.\n```sh\ncargo run --release -- bench bed \
+                --not-a-flag\n```\n";
     let found: Vec<Vec<String>> = invocations(text);
-    assert_eq!(found.len(), 4, "{found:?}");
+    assert_eq!(found.len(), 5, "{found:?}");
     let problems: Vec<String> = found
         .iter()
         .flat_map(|args| missing(&mut help, args))
@@ -209,6 +226,7 @@ fn a_made_up_flag_or_subcommand_is_caught() {
             "`mdr-dem impact curve --no-such-flag`",
             "`mdr-dem sim run --frobnicate`",
             "subcommand `impact wobble`",
+            "`mdr-dem verify --plott`",
             "`mdr-dem bench bed --not-a-flag`",
         ]
     );
@@ -217,7 +235,7 @@ fn a_made_up_flag_or_subcommand_is_caught() {
 #[test]
 fn existing_flags_pass() {
     let mut help = Help::default();
-    let text = "```sh\nmdr-dem impact curve --v0-max 2 --law mdr \\\n  --qc 1e5\n\
+    let text = "```sh\nmdr-dem impact curve --v-max 2 --law mdr \\\n  --qc 1e5\n\
                 ./target/release/mdr-dem sim run scenes/drop.toml --out out/drop  # comment --x\n```\n";
     let found = invocations(text);
     assert_eq!(found.len(), 2, "{found:?}");
