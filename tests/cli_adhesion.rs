@@ -2,7 +2,9 @@
 //! `impact trace --json` keys, the fit of Δγ, and bad values refused naming the flag in every
 //! command that takes it.
 
-use std::process::{Command, Output};
+mod common;
+
+use common::{mdr_dem, stdout};
 
 const GLASS: [&str; 8] = [
     "--radius",
@@ -15,24 +17,8 @@ const GLASS: [&str; 8] = [
     "2500",
 ];
 
-fn mdr_dem(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
-        .args(args)
-        .output()
-        .expect("run mdr-dem")
-}
-
 fn with_glass<'a>(args: &[&'a str]) -> Vec<&'a str> {
     args.iter().copied().chain(GLASS).collect()
-}
-
-fn stdout(output: &Output) -> String {
-    assert!(
-        output.status.success(),
-        "failed: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    String::from_utf8(output.stdout.clone()).unwrap()
 }
 
 #[test]

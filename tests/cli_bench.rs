@@ -1,16 +1,13 @@
 //! `mdr-dem bench make-bed` and `mdr-dem bench bed`: the JSON contract, trajectories
 //! that do not depend on the number of threads, and bad values named by their flag.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-use std::sync::OnceLock;
+mod common;
 
-fn mdr_dem(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
-        .args(args)
-        .output()
-        .expect("run mdr-dem")
-}
+use common::mdr_dem;
+
+use std::path::{Path, PathBuf};
+
+use std::sync::OnceLock;
 
 /// A small settled bed written by the generator, once for all tests: 150 spheres of diameter 1
 /// and density 1 poured from a 38-layer lattice (its top at z ≈ 41, a fall of ≈ 9 time units)

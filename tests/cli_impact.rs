@@ -1,31 +1,11 @@
 //! The `mdr-dem impact …` command line: output contracts (CSV headers, JSON keys, files) and
 //! every bad flag value exiting non-zero with a message that names the flag.
 
-use std::process::{Command, Output};
+mod common;
 
-fn mdr_dem(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
-        .args(args)
-        .output()
-        .expect("run mdr-dem")
-}
+use common::{mdr_dem, scratch, stdout};
 
-/// A fresh temporary directory, removed when dropped.
-fn scratch(name: &str) -> tempfile::TempDir {
-    tempfile::Builder::new()
-        .prefix(&format!("mdr-dem-cli-{name}-"))
-        .tempdir()
-        .unwrap()
-}
-
-fn stdout(output: &Output) -> String {
-    assert!(
-        output.status.success(),
-        "failed: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    String::from_utf8(output.stdout.clone()).unwrap()
-}
+use std::process::Command;
 
 #[test]
 fn curve_csv_contract() {

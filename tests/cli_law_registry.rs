@@ -3,24 +3,11 @@
 //! which `cargo test` builds this program with) runs from `mdr-dem sim run` as its analytic
 //! solution, its scene key's range error derived from its declaration.
 
+mod common;
+
+use common::{mdr_dem, stdout};
+
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn mdr_dem(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
-        .args(args)
-        .output()
-        .expect("run mdr-dem")
-}
-
-fn stdout(output: &Output) -> String {
-    assert!(
-        output.status.success(),
-        "failed: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    String::from_utf8(output.stdout.clone()).unwrap()
-}
 
 /// The built-in drop scene with a linear spring `k_n = 10⁴ N/m` on a 5 mm sphere (1 mm fall).
 fn spring_drop(dir: &Path, stiffness: &str) -> std::path::PathBuf {

@@ -1,14 +1,11 @@
 //! The `mdr-dem sim drop|pair` command line: the CSV contract, the material/law flags
 //! and `--config` shared with `mdr-dem impact`, and bad values named by their flag.
 
-use std::process::{Command, Output};
+mod common;
 
-fn mdr_dem(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
-        .args(args)
-        .output()
-        .expect("run mdr-dem")
-}
+use common::mdr_dem;
+
+use std::process::Output;
 
 /// The rows of a successful `v0_m_per_s,e_n,steps,stuck` CSV on stdout.
 fn rows(output: &Output) -> Vec<Vec<f64>> {

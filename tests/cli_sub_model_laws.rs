@@ -3,26 +3,13 @@
 //! parameters (`--mu`, `bench bed --rolling`) take their help and their range check from the
 //! declarations.
 
+mod common;
+
+use common::{mdr_dem, stdout};
+
 use mdr_contact::params::Declared;
 use mdr_contact::rolling::EpsdRolling;
 use mdr_contact::tangential::Mindlin;
-use std::process::{Command, Output};
-
-fn mdr_dem(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
-        .args(args)
-        .output()
-        .expect("run mdr-dem")
-}
-
-fn stdout(output: &Output) -> String {
-    assert!(
-        output.status.success(),
-        "failed: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    String::from_utf8(output.stdout.clone()).unwrap()
-}
 
 #[test]
 fn sim_laws_lists_the_sub_models_after_the_normal_laws() {

@@ -1,14 +1,11 @@
 //! `mdr-dem verify`: `--test N` runs one test, `--quick` the CI resolution (coarser than the
 //! default), `--plot DIR` writes the figures, and a bad test number is refused by its flag.
 
-use std::process::{Command, Output};
+mod common;
 
-fn mdr_dem(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
-        .args(args)
-        .output()
-        .expect("run mdr-dem")
-}
+use common::mdr_dem;
+
+use std::process::Output;
 
 fn passed(output: &Output) -> String {
     let text = String::from_utf8_lossy(&output.stdout).into_owned();

@@ -26,7 +26,9 @@
 #      run to 1e-11 diameters; the same runs with histories dropped on migration must NOT;
 #   6. fix wall/mdrdem: the paper's Fig. 2 (e_n on a steel zplane at 0.3, 1, 3 m/s against the
 #      closed form, also continued from a restart file mid-contact), region walls (a plane, the
-#      inside of a region sphere with side in, the outside of one with side out), a sliding plastic wall
+#      inside of a region sphere with side in, the outside of one with side out; a region
+#      cylinder and a region cone from inside and outside, a block and a prism against the closed
+#      form for the wall's curvature; an ellipsoid or a union refused by name), a sliding plastic wall
 #      contact across the rank boundary and across a restart (with negative controls), bad lines;
 #   7. LAMMPS's granular examples with the plugin (examples/lammps/in.drum, in.flatwall,
 #      in.chute, shortened), 1 and 2 ranks, with and without fix balance;
@@ -190,6 +192,26 @@ for shape in "shell -0.024" "ball 0.01"; do
   check 'abs(v[0]-v[1]) <= 5e-7*v[1] and abs(v[1]-v[2]) > 1e-3' "wall-region-sphere-$1-impact" "$e_region_sphere" "$region_reference" "$e_plane"
 done
 
+# Every region style a wall takes, each hit head-on at 1 m/s from the side the region keeps the
+# sphere on, against the closed form for the wall's principal radii of curvature (0 flat,
+# negative concave): a region cylinder from inside (R = 4 cm: -0.04 0, as the zcylinder) and
+# from outside (1 cm: 0.01 0); a region cone (tan(half angle) = 0.4) where its radius is 3 cm,
+# from inside and outside: around the axis 3 cm / cos(half angle), straight along its side;
+# the floor of a region block and the top face of a tilted region prism (flat: the plane's e_n).
+cone=$(python3 -c 'import math; print(0.03 * math.sqrt(1.16))')
+for shape in "cylin -0.04 0" "cylout 0.01 0" "conein -$cone 0" "coneout $cone 0" "block 0 0" "prism 0 0"; do
+  set -- $shape
+  region_reference=$(cargo run -q --release --locked -p mdr-lammps --example impact_reference --manifest-path "$root/Cargo.toml" \
+    -- radii "$2" "$3" 0.635e-2 1 | cut -d' ' -f2)
+  e_region=$("${lmp[@]}" -in "$inputs/in.wall-impact" -var plugin "$plugin" -var speed 1 -var wall "$1" | sed -n 's/^EN //p')
+  echo "1 m/s, region $1 (radii $2 $3): e_n $e_region, closed form $region_reference (a plane's $e_plane)"
+  if [ "$2" = 0 ]; then
+    check 'abs(v[0]-v[1]) <= 5e-7*v[1] and abs(v[1]-v[2]) <= 1e-12*v[2]' "wall-region-$1-impact" "$e_region" "$region_reference" "$e_plane"
+  else
+    check 'abs(v[0]-v[1]) <= 5e-7*v[1] and abs(v[1]-v[2]) > 1e-3' "wall-region-$1-impact" "$e_region" "$region_reference" "$e_plane"
+  fi
+done
+
 echo "== fix wall/mdrdem: history across the rank boundary and across a restart"
 slide=(-in "$inputs/in.wall-slide" -var plugin "$plugin")
 restarted=(-in "$inputs/in.wall-slide-restarted" -var plugin "$plugin" -var restart_file slide.restart)
@@ -223,6 +245,8 @@ create_box 1 box
 plugin load $plugin
 pair_style mdrdem
 pair_coeff * * $good
+region egg ellipsoid 0.5 0.5 0.5 0.1 0.2 0.3
+region both union 2 box egg
 fix w all wall/mdrdem $line
 IN
   set +e
@@ -247,6 +271,8 @@ $good zplane abc NULL|zplane lo
 $good zplane 0|zplane
 $good zcylinder -1|zcylinder radius
 $good region nowhere|region
+$good region egg|region egg is of style ellipsoid
+$good region both|region both is of style union
 $good xplane 0 NULL|xplane
 $good zplane 0 NULL wiggle q 0.1 1|wiggle
 $good zplane 0 NULL wiggle z 0.1 0|wiggle period

@@ -1,6 +1,7 @@
 //! The settled-bed system of `mdr-dem bench bed` on the GPU ([`GpuBed`]): one species on the
 //! floor `z = 0` in the x/y periodic box.
 
+use crate::accessors::system_accessors;
 use crate::device::{GpuContext, GpuError};
 use crate::law::{BoundLaws, DeviceLaw, GpuLaws};
 use crate::system::{Plane, System, SystemSpec};
@@ -98,46 +99,11 @@ impl GpuBed {
         })
     }
 
-    /// Particles.
-    pub fn len(&self) -> usize {
-        self.system.len()
-    }
-
-    /// Whether there are no particles (never: [`GpuBed::new`] refuses an empty bed).
-    pub fn is_empty(&self) -> bool {
-        self.system.len() == 0
-    }
-
-    /// Steps done.
-    pub fn steps(&self) -> u64 {
-        self.system.steps()
-    }
+    system_accessors!();
 
     /// The contact model.
     pub fn laws(&self) -> GpuLaws {
         self.laws
-    }
-
-    /// Bytes of every device buffer of the system (particles, lists, histories, grid).
-    pub fn device_bytes(&self) -> u64 {
-        self.system.device_bytes()
-    }
-
-    /// `steps` steps: per step, the rebuild decision, the list build when due (indirect
-    /// dispatches of zero size otherwise, so the host never waits inside a batch), the forces
-    /// and the integration. Waits for the device at the end and checks the overflow flags.
-    pub fn step(&mut self, steps: usize) -> Result<(), GpuError> {
-        self.system.step(steps)
-    }
-
-    /// Neighbour-list builds so far.
-    pub fn rebuilds(&self) -> Result<u64, GpuError> {
-        self.system.rebuilds()
-    }
-
-    /// Positions only (what a comparison or a checksum needs).
-    pub fn positions(&self) -> Result<Vec<Vector3<f64>>, GpuError> {
-        self.system.positions()
     }
 
     /// The whole state, read back (its wall slots are the floor contacts, one per particle).

@@ -21,6 +21,7 @@
 //! ```
 #![warn(missing_docs)]
 
+mod accessors;
 mod bed;
 mod bench;
 mod device;

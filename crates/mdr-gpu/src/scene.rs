@@ -6,6 +6,7 @@
 //! removed wall, a sink, restitution mode, the rapier pipeline path, the stiffness-viscous
 //! damping law, Thornton's LIGGGHTS unloading branch or a normal law without a device kernel.
 
+use crate::accessors::system_accessors;
 use crate::device::{GpuContext, GpuError};
 use crate::law::{
     adhesive_constants, bound_constants, hertz_constants, mdr_law_constants, thornton_constants,
@@ -493,45 +494,12 @@ impl GpuScene {
         })
     }
 
-    /// Particles.
-    pub fn len(&self) -> usize {
-        self.system.len()
-    }
-
-    /// Whether there are no particles (never: an empty scene is refused).
-    pub fn is_empty(&self) -> bool {
-        self.system.len() == 0
-    }
+    system_accessors!();
 
     /// The scene's wall (`[[walls]]` index) of each wall plane, in the device's order (a box
     /// gives five or six).
     pub fn wall_of_plane(&self) -> &[usize] {
         &self.wall_of_plane
-    }
-
-    /// Steps done.
-    pub fn steps(&self) -> u64 {
-        self.system.steps()
-    }
-
-    /// Bytes of every device buffer of the system.
-    pub fn device_bytes(&self) -> u64 {
-        self.system.device_bytes()
-    }
-
-    /// `steps` steps (see [`crate::GpuBed::step`]).
-    pub fn step(&mut self, steps: usize) -> Result<(), GpuError> {
-        self.system.step(steps)
-    }
-
-    /// Neighbour-list builds so far.
-    pub fn rebuilds(&self) -> Result<u64, GpuError> {
-        self.system.rebuilds()
-    }
-
-    /// Positions.
-    pub fn positions(&self) -> Result<Vec<Vector3<f64>>, GpuError> {
-        self.system.positions()
     }
 
     /// The whole state, read back (wall slot `particle · planes + plane`).

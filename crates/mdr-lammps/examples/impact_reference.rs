@@ -7,8 +7,11 @@
 //! docs/lammps.md); with `sphere R_S` first, of a steel sphere on a steel sphere of radius `R_S`
 //! that does not move (`R_S > 0`: from outside, `R = 1/(1/r + 1/R_S)`; `R_S < 0`: inside a
 //! spherical shell of radius `|R_S|`, `R = 1/(1/r − 1/|R_S|)`).
-//! Usage: `impact_reference [wall | cylinder R_C | sphere R_S] RADIUS SPEED...` (m, m/s); prints
-//! `speed e_n` lines.
+//! With `radii R_A R_B` first, of a steel sphere on a steel wall of principal radii of curvature
+//! `R_A`, `R_B` (0: flat in that direction, negative: concave; `R = √(R′ R″)`,
+//! `1/R′ = 1/r + 1/R_A`, `1/R″ = 1/r + 1/R_B`, Johnson, *Contact Mechanics* §4.2).
+//! Usage: `impact_reference [wall | cylinder R_C | sphere R_S | radii R_A R_B] RADIUS SPEED...`
+//! (m, m/s); prints `speed e_n` lines.
 //!
 //! With `adhesive [wall] W E NU DENSITY QC THETA RADIUS SPEED...` first (J/m², Pa, -, kg/m³,
 //! N/m, -, m, m/s): adhesive impacts of two equal spheres (or of a sphere on a half-space of its
@@ -77,6 +80,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     } else {
         None
     };
+    let radii = if words.first().is_some_and(|w| w == "radii") {
+        words.remove(0);
+        let r_a = words.remove(0).parse::<f64>()?;
+        Some((r_a, words.remove(0).parse::<f64>()?))
+    } else {
+        None
+    };
     let args: Vec<f64> = words
         .iter()
         .map(|a| a.parse::<f64>())
@@ -101,6 +111,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             flat.effective_modulus(),
             flat.effective_shear_modulus(),
             1.0 / (1.0 / radius + 1.0 / rs),
+            flat.reduced_mass(),
+        )?
+    } else if let Some((r_a, r_b)) = radii {
+        let flat = ContactPair::sphere_on_half_space(*radius, &steel, &steel)?;
+        let along = |r_wall: f64| {
+            if r_wall == 0.0 {
+                *radius
+            } else {
+                1.0 / (1.0 / radius + 1.0 / r_wall)
+            }
+        };
+        ContactPair::new(
+            flat.effective_modulus(),
+            flat.effective_shear_modulus(),
+            (along(r_a) * along(r_b)).sqrt(),
             flat.reduced_mass(),
         )?
     } else if wall {

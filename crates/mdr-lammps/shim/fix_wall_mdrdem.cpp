@@ -66,6 +66,7 @@ FixWallMdrdem::FixWallMdrdem(LAMMPS *lmp, int narg, char **arg) :
   lo = -BIG;
   hi = BIG;
   cylradius = 0.0;
+  region_curvature = FLAT;
   if (style == "xplane" || style == "yplane" || style == "zplane") {
     wallstyle = style == "xplane" ? XPLANE : style == "yplane" ? YPLANE : ZPLANE;
     if (iarg + 3 > narg) error->all(FLERR, "fix wall/mdrdem: {} needs lo and hi (a number or NULL)", style);
@@ -85,9 +86,7 @@ FixWallMdrdem::FixWallMdrdem(LAMMPS *lmp, int narg, char **arg) :
   } else {
     wallstyle = REGION;
     if (iarg + 2 > narg) error->all(FLERR, "fix wall/mdrdem: region needs a region ID");
-    idregion = arg[iarg + 1];
-    region = domain->get_region_by_id(idregion);
-    if (region == nullptr) error->all(FLERR, "fix wall/mdrdem: region {} does not exist", idregion);
+    set_region(arg[iarg + 1]);
     tmax = region->tmax;
     iarg += 2;
   }
@@ -193,8 +192,8 @@ void FixWallMdrdem::init()
   neck_coefficient.assign(atom->ntypes + 1, 0.0);
   for (int t = 1; t <= atom->ntypes; t++) neck_coefficient[t] = mdrdem_wall_neck_coefficient(wall, t);
   if (wallstyle == REGION) {
-    region = domain->get_region_by_id(idregion);
-    if (region == nullptr) error->all(FLERR, "fix wall/mdrdem: region {} does not exist", idregion);
+    const std::string id = idregion;
+    set_region(id.c_str());
     if (region->tmax > tmax)
       error->all(FLERR, "fix wall/mdrdem: region {} changed its shape", idregion);
   }
@@ -257,7 +256,7 @@ void FixWallMdrdem::candidates(int i, double wlo, double whi, const double *vwal
     if (!region->match(x[0], x[1], x[2])) return;
     const int nc = region->surface(x[0], x[1], x[2], reach);
     if (nc > tmax) error->one(FLERR, "fix wall/mdrdem: too many contacts of one sphere with region {}", idregion);
-    const bool sphere = strcmp(region->style, "sphere") == 0;
+    const std::size_t first = out.size();
     for (int ic = 0; ic < nc; ic++) {
       auto &rc = region->contact[ic];
       if (rc.r <= 0.0) continue;
@@ -267,14 +266,91 @@ void FixWallMdrdem::candidates(int i, double wlo, double whi, const double *vwal
       c.branch[2] = rc.delz;
       c.vwall[0] = c.vwall[1] = c.vwall[2] = 0.0;
       if (region->dynamic_check()) region->velocity_contact(c.vwall, x, ic);
-      // LAMMPS's regions report a curved surface's size, negative where it is concave: the
-      // sphere its radius (RegSphere::surface_interior/exterior), the cylinder and the cone
-      // twice the radius (RegCylinder, RegCone)
-      c.radii[0] = sphere ? rc.radius : 0.5 * rc.radius;
-      c.radii[1] = sphere ? rc.radius : 0.0;
+      // The wall's principal radii of curvature (0 flat, negative concave) from the size
+      // LAMMPS's regions report (Region::Contact::radius, 0 on flat faces): a sphere its radius,
+      // negative inside (RegSphere), both directions alike; a cylinder twice its radius,
+      // negative inside (RegCylinder), straight along its axis; a cone twice its radius at the
+      // contact point, negative on both sides (RegCone), so the side is the region's.
+      c.radii[0] = c.radii[1] = 0.0;
+      if (region_curvature == SPHERE) {
+        c.radii[0] = c.radii[1] = rc.radius;
+      } else if (region_curvature == CYLINDER) {
+        c.radii[0] = 0.5 * rc.radius;
+      } else if (region_curvature == CONE && rc.radius != 0.0) {
+        c.radii[0] = (region->interior ? -0.5 : 0.5) * std::fabs(rc.radius);
+      }
       out.push_back(c);
     }
+    // A cone's side curves around the axis with radius rho / cos(half angle) (Meusnier: the
+    // circle of radius rho about the axis is tilted by the half angle from the side's normal
+    // section) and is straight along the side. After the loop: cone_secant asks the region again.
+    if (region_curvature == CONE)
+      for (std::size_t k = first; k < out.size(); k++)
+        if (out[k].radii[0] != 0.0)
+          out[k].radii[0] *= cone_secant(x, out[k].branch, std::fabs(out[k].radii[0]), reach);
   }
+}
+
+/* The region of a `region ID` wall, refused by name where its contacts do not say how the wall
+   curves: the styles whose Region::Contact::radius is the curvature the law needs (block, plane
+   and prism flat; sphere, cylinder and cone curved), not an ellipsoid (one size for two
+   principal curvatures) or a union or intersection (which does not say which member a contact
+   is on). */
+void FixWallMdrdem::set_region(const char *id)
+{
+  idregion = id;
+  region = domain->get_region_by_id(idregion);
+  if (region == nullptr) error->all(FLERR, "fix wall/mdrdem: region {} does not exist", idregion);
+  const char *style = region->style;
+  if (strcmp(style, "block") == 0 || strcmp(style, "plane") == 0 || strcmp(style, "prism") == 0)
+    region_curvature = FLAT;
+  else if (strcmp(style, "sphere") == 0)
+    region_curvature = SPHERE;
+  else if (strcmp(style, "cylinder") == 0)
+    region_curvature = CYLINDER;
+  else if (strcmp(style, "cone") == 0)
+    region_curvature = CONE;
+  else
+    error->all(FLERR,
+               "fix wall/mdrdem: region {} is of style {}, whose contacts do not give the wall's "
+               "curvature; the region styles of a wall are block, plane, prism, sphere, cylinder "
+               "and cone",
+               idregion, style);
+}
+
+/* 1 / cos(half angle) of the cone's side at the contact of the sphere at x (branch: from the
+   contact point to x, rho: the cone's radius there). The cone's radius grows by sin(half angle)
+   per unit length along the side and not around the axis, so its radius at the contact points of
+   two spheres moved off x across the normal by eps gives sin(half angle). */
+double FixWallMdrdem::cone_secant(const double *x, const double *branch, double rho, double reach)
+{
+  const double len = std::sqrt(branch[0] * branch[0] + branch[1] * branch[1] + branch[2] * branch[2]);
+  const double n[3] = {branch[0] / len, branch[1] / len, branch[2] / len};
+  // t1: the coordinate axis least along n, made normal to n; t2 = n x t1
+  int a = 0;
+  for (int d = 1; d < 3; d++)
+    if (std::fabs(n[d]) < std::fabs(n[a])) a = d;
+  double t1[3] = {-n[a] * n[0], -n[a] * n[1], -n[a] * n[2]};
+  t1[a] += 1.0;
+  const double l1 = std::sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+  for (double &t : t1) t /= l1;
+  const double t2[3] = {n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2],
+                        n[0] * t1[1] - n[1] * t1[0]};
+  const double eps = 1.0e-6 * rho;
+  double sin2 = 0.0;
+  for (const double *t : {static_cast<const double *>(t1), t2}) {
+    double xp[3] = {x[0] + eps * t[0], x[1] + eps * t[1], x[2] + eps * t[2]};
+    const int nc = region->surface(xp[0], xp[1], xp[2], reach);
+    double rho_p = -1.0;
+    for (int ic = 0; ic < nc; ic++)
+      if (region->contact[ic].radius != 0.0) rho_p = 0.5 * std::fabs(region->contact[ic].radius);
+    if (rho_p < 0.0)
+      error->one(FLERR, "fix wall/mdrdem: region {}: the cone's side is not found next to a contact",
+                 idregion);
+    const double slope = (rho_p - rho) / eps;
+    sin2 += slope * slope;
+  }
+  return 1.0 / std::sqrt(std::max(1.0 - sin2, 1.0e-12));
 }
 
 double *FixWallMdrdem::find_slot(int i, int iwall)

@@ -39,6 +39,8 @@ class FixWallMdrdem : public Fix {
 
  private:
   enum WallStyle { XPLANE = 0, YPLANE = 1, ZPLANE = 2, ZCYLINDER, REGION };
+  // How a region style's contacts carry the wall's curvature (Region::Contact::radius).
+  enum RegionCurvature { FLAT, SPHERE, CYLINDER, CONE };
   struct Candidate {    // one wall surface within the neighbour skin of a sphere
     int iwall;
     double branch[3], vwall[3], radii[2];
@@ -48,6 +50,8 @@ class FixWallMdrdem : public Fix {
   void candidates(int i, double wlo, double whi, const double *vwall_base,
                   std::vector<Candidate> &out);
   double *find_slot(int i, int iwall);
+  void set_region(const char *id);
+  double cone_secant(const double *x, const double *branch, double rho, double reach);
 
   void *wall;    // the Rust wall (its line and per-type models)
   int dnum;      // history values per contact
@@ -57,6 +61,7 @@ class FixWallMdrdem : public Fix {
   double lo, hi, cylradius;
   std::string idregion;
   class Region *region;
+  int region_curvature;
   int wiggle, wshear, axis;
   double amplitude, period, wiggle_omega, vshear;
   bigint time_origin;

@@ -10,12 +10,13 @@
 //! `−ℓ n × F` on each body (plus the rolling torque).
 
 use crate::coeffs::{CoeffTable, PairModel};
+use crate::contact::{add3, respond, vec3};
 use crate::error::PluginError;
 use crate::history::{self, load, store, HistoryLayout, PairLaw, PluginNormalLaw};
 use mdr_contact::material::ContactPair;
 use mdr_contact::model::ContactInput;
 use mdr_contact::normal::{AdhesiveMdrLaw, MdrLaw};
-use mdr_contact::rolling::{EpsdRollingLaw, RollingInput, RollingLaw, RollingModel};
+use mdr_contact::rolling::{EpsdRollingLaw, RollingModel};
 use nalgebra::Vector3;
 
 /// Per-atom arrays of LAMMPS (`atom->x[0]` etc.: `3 × nall` contiguous doubles).
@@ -252,18 +253,6 @@ unsafe fn tally_contact<N: PluginNormalLaw>(
     }
 }
 
-#[inline(always)]
-unsafe fn vec3(p: *const f64, i: usize) -> Vector3<f64> {
-    Vector3::new(*p.add(3 * i), *p.add(3 * i + 1), *p.add(3 * i + 2))
-}
-
-#[inline(always)]
-unsafe fn add3(p: *mut f64, i: usize, v: &Vector3<f64>) {
-    *p.add(3 * i) += v.x;
-    *p.add(3 * i + 1) += v.y;
-    *p.add(3 * i + 2) += v.z;
-}
-
 /// One call for a whole neighbour list.
 ///
 /// With `list.history_update == 0` the law updates a copy of each contact's state and neither
@@ -441,31 +430,24 @@ unsafe fn compute_rows<N: PluginNormalLaw, const ROLLING: bool, const UPDATE: bo
             let wj = vec3(atoms.omega, j);
             let relative_velocity = (vec3(atoms.v, i) - vec3(atoms.v, j))
                 - (wi * lever_i + wj * lever_j).cross(&normal);
-            let out = bound.law.update(
-                &mut state,
+            let response = respond::<N, ROLLING>(
+                &bound.law,
+                &bound.rolling,
+                (&mut state, &mut roll_state),
                 &ContactInput {
                     overlap,
                     normal,
                     relative_velocity,
                     dt,
                 },
+                (wi - wj) * dt,
             );
-            let force = out.force;
-            let moment = normal.cross(&force);
-            let mut torque_on_i = moment * -lever_i;
-            let mut torque_on_j = moment * -lever_j;
+            let force = response.force;
+            let mut torque_on_i = response.moment * -lever_i;
+            let mut torque_on_j = response.moment * -lever_j;
             if ROLLING {
-                let roll = bound.rolling.update(
-                    &mut roll_state,
-                    &RollingInput {
-                        normal,
-                        rotation_increment: (wi - wj) * dt,
-                        normal_force: out.normal_force,
-                        normal_stiffness: out.normal.stiffness,
-                    },
-                );
-                torque_on_i += roll.torque;
-                torque_on_j -= roll.torque;
+                torque_on_i += response.rolling_torque;
+                torque_on_j -= response.rolling_torque;
             }
             if UPDATE {
                 store::<N, ROLLING>(values, &state, &roll_state);

@@ -11,6 +11,7 @@
 
 pub mod coeffs;
 pub mod compute;
+mod contact;
 pub mod error;
 pub mod ffi;
 pub mod history;

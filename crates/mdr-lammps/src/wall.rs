@@ -20,12 +20,13 @@
 
 use crate::coeffs::{CoeffLine, CoeffTable, PairModel};
 use crate::compute::MdrdemAtoms;
+use crate::contact::{add3, respond, vec3};
 use crate::error::PluginError;
 use crate::history::{load, release, store, HistoryLayout, PairLaw, PluginNormalLaw};
 use mdr_contact::material::{effective_modulus, effective_shear_modulus, ContactPair};
 use mdr_contact::model::ContactInput;
 use mdr_contact::normal::{AdhesiveMdrLaw, MdrLaw};
-use mdr_contact::rolling::{EpsdRollingLaw, RollingInput, RollingLaw, RollingModel};
+use mdr_contact::rolling::{EpsdRollingLaw, RollingModel};
 use nalgebra::Vector3;
 
 /// One wall: its line and, per sphere type, the model of a contact with it.
@@ -195,18 +196,6 @@ unsafe fn wall_law<N: PluginNormalLaw>(
     }
 }
 
-#[inline(always)]
-unsafe fn vec3(p: *const f64, i: usize) -> Vector3<f64> {
-    Vector3::new(*p.add(3 * i), *p.add(3 * i + 1), *p.add(3 * i + 2))
-}
-
-#[inline(always)]
-unsafe fn add3(p: *mut f64, i: usize, v: &Vector3<f64>) {
-    *p.add(3 * i) += v.x;
-    *p.add(3 * i + 1) += v.y;
-    *p.add(3 * i + 2) += v.z;
-}
-
 /// Whether two keys are equal, without a call (a `[u64; 5]` comparison compiles to `memcmp`).
 #[inline(always)]
 fn same_key(a: &[u64; 5], b: &[u64; 5]) -> bool {
@@ -293,35 +282,29 @@ unsafe fn wall_with<N: PluginNormalLaw, const ROLLING: bool, const UPDATE: bool>
         let normal = branch * (1.0 / distance);
         let lever = radius - 0.5 * overlap;
         let relative_velocity = v - vec3(contacts.wall_velocity, c) - (w * lever).cross(&normal);
-        let out = law.update(
-            &mut state,
+        let response = respond::<N, ROLLING>(
+            law,
+            rolling,
+            (&mut state, &mut roll_state),
             &ContactInput {
                 overlap,
                 normal,
                 relative_velocity,
                 dt,
             },
+            w * dt,
         );
-        let mut torque = normal.cross(&out.force) * -lever;
+        let mut torque = response.moment * -lever;
         if ROLLING {
-            let roll = rolling.update(
-                &mut roll_state,
-                &RollingInput {
-                    normal,
-                    rotation_increment: w * dt,
-                    normal_force: out.normal_force,
-                    normal_stiffness: out.normal.stiffness,
-                },
-            );
-            torque += roll.torque;
+            torque += response.rolling_torque;
         }
         if UPDATE {
             *row = 1.0;
             store::<N, ROLLING>(values, &state, &roll_state);
         }
-        add3(atoms.f, i, &out.force);
+        add3(atoms.f, i, &response.force);
         add3(atoms.torque, i, &torque);
-        total += out.force;
+        total += response.force;
     }
     Ok(total)
 }

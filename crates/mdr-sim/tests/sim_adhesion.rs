@@ -31,33 +31,29 @@ fn pair() -> ContactPair {
     ContactPair::sphere_on_half_space(RADIUS, &glass(), &glass()).unwrap()
 }
 
+/// A `[[material]]` table of glass named `name`, with work of adhesion `gamma` (J/m²) where it
+/// is positive.
+fn material_block(name: &str, gamma: f64) -> String {
+    let key = if gamma > 0.0 {
+        format!("work_of_adhesion_j_per_m2 = {gamma:e}\n")
+    } else {
+        String::new()
+    };
+    format!(
+        "[[material]]\nname = \"{name}\"\nyoungs_pa = {YOUNGS:e}\npoisson_ratio = {POISSON:?}\n\
+         density_kg_per_m3 = {DENSITY:?}\n{key}\n"
+    )
+}
+
 /// The validator's head-on impact at `speed`: `(e_n, stuck)`.
 fn validator(speed: f64, gamma: f64) -> (f64, bool) {
-    let out = Impact::new(
-        pair(),
-        NormalSpec::Mdr(MdrElastoPlastic::new(QC, THETA).unwrap()),
-        speed,
-    )
-    .work_of_adhesion(gamma)
-    .run()
-    .unwrap();
-    (out.normal_restitution, out.stuck)
+    validator_of(pair(), speed, gamma)
 }
 
 /// The validator's sticking speed (m/s): the largest speed at which the sphere sticks, by
 /// bisection between a speed that sticks and one that rebounds.
 fn sticking_speed() -> f64 {
-    let (mut lo, mut hi) = (0.01, 10.0);
-    assert!(validator(lo, GAMMA).1 && !validator(hi, GAMMA).1);
-    for _ in 0..30 {
-        let mid = (lo * hi).sqrt();
-        if validator(mid, GAMMA).1 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    lo
+    sticking_speed_between(pair(), GAMMA, (0.01, 10.0))
 }
 
 /// A glass sphere thrown at `speed` (no gravity) at a glass wall from a gap of 0.2 % of its
@@ -66,13 +62,6 @@ fn throw(speed: f64, sphere_gamma: f64, wall_gamma: f64, coupling: &str) -> Stri
     let t_c = pair().hertz_contact_time(speed);
     let gap = 0.002 * RADIUS;
     let duration = gap / speed + 12.0 * t_c;
-    let key = |g: f64| {
-        if g > 0.0 {
-            format!("work_of_adhesion_j_per_m2 = {g:e}")
-        } else {
-            String::new()
-        }
-    };
     format!(
         r#"
 [run]
@@ -86,20 +75,7 @@ energy_interval_s = {energy:e}
 headline = "drop"
 coupling = "{coupling}"
 
-[[material]]
-name = "sphere_glass"
-youngs_pa = {YOUNGS:e}
-poisson_ratio = {POISSON:?}
-density_kg_per_m3 = {DENSITY:?}
-{sphere}
-
-[[material]]
-name = "wall_glass"
-youngs_pa = {YOUNGS:e}
-poisson_ratio = {POISSON:?}
-density_kg_per_m3 = {DENSITY:?}
-{wall}
-
+{sphere}{wall}
 [contact]
 normal = "mdr"
 critical_line_load_n_per_m = {QC:?}
@@ -121,8 +97,8 @@ point_m = [0.0, 0.0, 0.0]
 normal = [0.0, 0.0, 1.0]
 "#,
         energy = t_c / 50.0,
-        sphere = key(sphere_gamma),
-        wall = key(wall_gamma),
+        sphere = material_block("sphere_glass", sphere_gamma),
+        wall = material_block("wall_glass", wall_gamma),
         lo = -RADIUS,
         hi = 1.001 * RADIUS,
         top = gap + 2.01 * RADIUS,
@@ -334,7 +310,12 @@ fn validator_of(pair: ContactPair, speed: f64, gamma: f64) -> (f64, bool) {
 
 /// The validator's sticking speed (m/s) of `pair` with work of adhesion `gamma`, by bisection.
 fn sticking_speed_of(pair: ContactPair, gamma: f64) -> f64 {
-    let (mut lo, mut hi) = (0.001, 20.0);
+    sticking_speed_between(pair, gamma, (0.001, 20.0))
+}
+
+/// The validator's sticking speed (m/s) of `pair` with work of adhesion `gamma`, by bisection
+/// between `lo`, a speed that sticks, and `hi`, one that rebounds.
+fn sticking_speed_between(pair: ContactPair, gamma: f64, (mut lo, mut hi): (f64, f64)) -> f64 {
     assert!(validator_of(pair, lo, gamma).1 && !validator_of(pair, hi, gamma).1);
     for _ in 0..30 {
         let mid = (lo * hi).sqrt();
@@ -366,17 +347,6 @@ const CEILING: f64 = 40.0 * RADIUS;
 /// floor's adhesive, no two meeting pairs mixing alike): `balls` between a steel floor at
 /// `z = 0` and a sticky ceiling at [`CEILING`], no gravity, for `duration` (s).
 fn mixed_scene(balls: &[Ball], max_speed: f64, duration: f64, force_path: &str) -> String {
-    let material = |name: &str, gamma: f64| {
-        let key = if gamma > 0.0 {
-            format!("work_of_adhesion_j_per_m2 = {gamma:e}\n")
-        } else {
-            String::new()
-        };
-        format!(
-            "[[material]]\nname = \"{name}\"\nyoungs_pa = {YOUNGS:e}\npoisson_ratio = {POISSON:?}\n\
-             density_kg_per_m3 = {DENSITY:?}\n{key}\n"
-        )
-    };
     let mut text = format!(
         r#"
 [run]
@@ -406,10 +376,10 @@ material = "sticky"
 point_m = [0.0, 0.0, {CEILING:e}]
 normal = [0.0, 0.0, -1.0]
 "#,
-        powder = material("powder", POWDER),
-        other = material("other", OTHER),
-        steel = material("steel", 0.0),
-        sticky = material("sticky", STICKY),
+        powder = material_block("powder", POWDER),
+        other = material_block("other", OTHER),
+        steel = material_block("steel", 0.0),
+        sticky = material_block("sticky", STICKY),
     );
     for b in balls {
         let [x, y, z] = b.centre;
