@@ -62,7 +62,10 @@ pub fn exit_code(err: &anyhow::Error) -> u8 {
             Some(mdr_gpu::GpuRunError::Gpu(e)) if gpu_refused_input(e) => return EXIT_REFUSED,
             _ => {}
         }
-        if cause.downcast_ref::<mdr_gpu::GpuError>().is_some_and(gpu_refused_input) {
+        if cause
+            .downcast_ref::<mdr_gpu::GpuError>()
+            .is_some_and(gpu_refused_input)
+        {
             return EXIT_REFUSED;
         }
         if let Some(e) = cause.downcast_ref::<SimError>() {

@@ -153,7 +153,11 @@ fn same_folder(a: &Path, b: &Path) -> bool {
 /// An output folder holding the files of another run is refused unless `--overwrite` is given,
 /// and then those runs' files are removed. A resumed run continues its own folder (the one its
 /// checkpoint is in) without `--overwrite`; the run loop removes the files past the checkpoint.
-pub(super) fn prepare_output_folder(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Result<()> {
+pub(super) fn prepare_output_folder(
+    args: &RunArgs,
+    scene: &mdr_sim::Scene,
+    out: &Path,
+) -> anyhow::Result<()> {
     let own = args
         .resume
         .as_deref()

@@ -271,7 +271,7 @@ impl GpuRun<'_> {
             let energy_due = k.is_multiple_of(energy_every) || last;
             let every_step = self.tracker.needs_every_step();
             if frame_due || energy_due || every_step {
-                self.take_samples(frame_due, energy_due, last, options)?;
+                self.take_samples(frame_due, energy_due, options)?;
             }
             if last {
                 break;
@@ -347,13 +347,13 @@ impl GpuRun<'_> {
         }
     }
 
-    /// The samples of step `k`: the state read back, the headline tracker's step, the energy
+    /// The samples of the current step (`frame_due`, `energy_due`: also at the run's last
+    /// step): the state read back, the headline tracker's step, the energy
     /// row, the frame; the wall guard and the finite-state check.
     fn take_samples(
         &mut self,
         frame_due: bool,
         energy_due: bool,
-        last: bool,
         options: &GpuRunOptions,
     ) -> Result<(), GpuRunError> {
         let scene = self.scene;
@@ -377,7 +377,7 @@ impl GpuRun<'_> {
             let row = self.energy_row(&sample);
             self.energy.push(row);
         }
-        if frame_due || last {
+        if frame_due {
             if let Some(reason) = non_finite(&sample.state) {
                 return Err(self.stop(reason));
             }
@@ -408,12 +408,17 @@ impl GpuRun<'_> {
             ..GpuEnergyRow::default()
         };
         let (mass, radius) = (self.gpu.masses(), self.gpu.radii());
-        for i in 0..s.position.len() {
-            let (m, r) = (mass[i], radius[i]);
-            row.kinetic_translational_j += 0.5 * m * s.linvel[i].norm_squared();
+        for (((x, v), w), (&m, &r)) in s
+            .position
+            .iter()
+            .zip(&s.linvel)
+            .zip(&s.angvel)
+            .zip(mass.iter().zip(radius))
+        {
+            row.kinetic_translational_j += 0.5 * m * v.norm_squared();
             // Solid sphere: I = (2/5) m r².
-            row.kinetic_rotational_j += 0.5 * 0.4 * m * r * r * s.angvel[i].norm_squared();
-            row.gravitational_j -= m * g.dot(&s.position[i]);
+            row.kinetic_rotational_j += 0.5 * 0.4 * m * r * r * w.norm_squared();
+            row.gravitational_j -= m * g.dot(x);
         }
         row.contacts = (s.pairs.iter().filter(|p| p.active).count()
             + s.floor.iter().filter(|w| w.is_some()).count()) as u64;
