@@ -53,7 +53,7 @@ pub struct GpuRunOptions {
     pub quiet: bool,
     /// Stop at this step (tests).
     pub stop_at_step: Option<u64>,
-    /// Set from outside (Ctrl-C) to stop within [`STEPS_PER_CHECK`] steps.
+    /// Set from outside (Ctrl-C) to stop within 1,000 steps.
     pub interrupt: Option<Arc<AtomicBool>>,
     /// Skip the VTK frames.
     pub no_frames: bool,
@@ -550,11 +550,9 @@ fn contacts_per_particle(state: &GpuState) -> Vec<u32> {
         counts[pair.i as usize] += 1;
         counts[pair.j as usize] += 1;
     }
-    if state.walls > 0 {
-        for (slot, contact) in state.floor.iter().enumerate() {
-            if contact.is_some() {
-                counts[slot / state.walls] += 1;
-            }
+    for (slot, contact) in state.floor.iter().enumerate() {
+        if let (Some(_), Some(i)) = (contact, slot.checked_div(state.walls)) {
+            counts[i] += 1;
         }
     }
     counts
