@@ -6,6 +6,7 @@ pub mod sim;
 pub mod sim_laws;
 pub mod sim_ring;
 pub mod sim_run;
+pub mod sim_run_gpu;
 pub mod verify;
 
 use mdr_sim::SimError;
@@ -56,6 +57,17 @@ pub fn exit_code(err: &anyhow::Error) -> u8 {
         if cause.is::<Refused>() {
             return EXIT_REFUSED;
         }
+        match cause.downcast_ref::<mdr_gpu::GpuRunError>() {
+            Some(mdr_gpu::GpuRunError::Stopped { .. }) => return EXIT_GUARD,
+            Some(mdr_gpu::GpuRunError::Gpu(e)) if gpu_refused_input(e) => return EXIT_REFUSED,
+            _ => {}
+        }
+        if cause
+            .downcast_ref::<mdr_gpu::GpuError>()
+            .is_some_and(gpu_refused_input)
+        {
+            return EXIT_REFUSED;
+        }
         if let Some(e) = cause.downcast_ref::<SimError>() {
             if e.is_guard() {
                 return EXIT_GUARD;
@@ -66,6 +78,15 @@ pub fn exit_code(err: &anyhow::Error) -> u8 {
         }
     }
     EXIT_FAILED
+}
+
+/// Whether a GPU error refuses the input (a scene the GPU path lacks a part of, a setting out
+/// of range) rather than reports a failure.
+fn gpu_refused_input(e: &mdr_gpu::GpuError) -> bool {
+    matches!(
+        e,
+        mdr_gpu::GpuError::Unsupported(_) | mdr_gpu::GpuError::OutOfRange { .. }
+    )
 }
 
 /// The error's message and its causes, each cause once: a cause whose text the message already

@@ -1,8 +1,10 @@
-//! `mdr-dem sim run SCENE.toml [--resume CHECKPOINT] [--quiet] [--out DIR] [--overwrite] [--check] [--threads T]`: a
-//! granular scene from a TOML file. Checks the file, runs it with a progress bar, writes VTK
-//! frames, the energy books, plots and checkpoints; Ctrl-C writes a final checkpoint and exits
-//! with status 130, printing the command that continues the run.
+//! `mdr-dem sim run SCENE.toml [--resume CHECKPOINT] [--quiet] [--out DIR] [--overwrite] [--check] [--threads T]
+//! [--device cpu|gpu]`: a granular scene from a TOML file. Checks the file, runs it with a
+//! progress bar, writes VTK frames, the energy books, plots and checkpoints; Ctrl-C writes a
+//! final checkpoint and exits with status 130, printing the command that continues the run.
+//! `--device gpu` runs a force-mode scene on the GPU path (`sim_run_gpu`).
 
+use super::bench::DeviceArg;
 use super::{Exit, Refused, EXIT_INTERRUPTED};
 use anyhow::Context;
 use clap::Args;
@@ -38,10 +40,33 @@ pub struct RunArgs {
     /// Replace the run(s) whose files are in the output folder (refused without it).
     #[arg(long)]
     pub overwrite: bool,
+    /// Where the steps run (`gpu`: force-mode scenes whose walls are planes and boxes, on a
+    /// device with 64-bit floats; it writes the frames, the kinetic and gravitational energy
+    /// books and the headline, and no checkpoints: docs/gpu.md).
+    #[arg(long, value_enum, default_value_t = DeviceArg::Cpu)]
+    pub device: DeviceArg,
+    /// With `--device gpu`: run a scene that asks for checkpoints (`checkpoint_interval_s`)
+    /// without them (the GPU run writes none).
+    #[arg(long)]
+    pub no_checkpoints: bool,
+    /// With `--device gpu`: neighbour slots per particle (1 to 64).
+    #[arg(long, default_value_t = 16)]
+    pub max_neighbours: u32,
+    /// With `--device gpu`: particles per cell of the binning grid (1 to 64).
+    #[arg(long, default_value_t = 12)]
+    pub cell_capacity: u32,
 }
 
 /// Run `mdr-dem sim run`.
 pub fn run(args: &RunArgs) -> anyhow::Result<()> {
+    if args.device == DeviceArg::Cpu && args.no_checkpoints {
+        return Err(Refused(
+            "--no-checkpoints is for --device gpu (which writes no checkpoints); the CPU run \
+             always writes them"
+                .to_owned(),
+        )
+        .into());
+    }
     let pool = args.threads.map(super::rayon_pool).transpose()?;
     let scene = match load_scene(&args.scene) {
         Ok(scene) => scene,
@@ -71,6 +96,9 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
         scene.total_steps(),
         out.display()
     );
+    if args.device == DeviceArg::Gpu {
+        return super::sim_run_gpu::run(args, &scene, &out);
+    }
     if args.check {
         let estimate = || mdr_sim::run::estimate_run_time(&scene, Duration::from_secs(1));
         let estimate = match &pool {
@@ -94,7 +122,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<()> {
 
 /// `--out`, else the folder of the run a resumed checkpoint belongs to (the parent of its
 /// `checkpoints/` folder), else `out/<run name>`.
-fn output_folder(args: &RunArgs, scene: &mdr_sim::Scene) -> PathBuf {
+pub(super) fn output_folder(args: &RunArgs, scene: &mdr_sim::Scene) -> PathBuf {
     if let Some(out) = &args.out {
         return out.clone();
     }
@@ -125,7 +153,11 @@ fn same_folder(a: &Path, b: &Path) -> bool {
 /// An output folder holding the files of another run is refused unless `--overwrite` is given,
 /// and then those runs' files are removed. A resumed run continues its own folder (the one its
 /// checkpoint is in) without `--overwrite`; the run loop removes the files past the checkpoint.
-fn prepare_output_folder(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Result<()> {
+pub(super) fn prepare_output_folder(
+    args: &RunArgs,
+    scene: &mdr_sim::Scene,
+    out: &Path,
+) -> anyhow::Result<()> {
     let own = args
         .resume
         .as_deref()
@@ -283,7 +315,7 @@ fn resume_command(args: &RunArgs, out: &Path, checkpoint: Option<&Path>) -> Stri
 }
 
 /// `word` quoted for a POSIX shell where it holds anything but letters, digits and `_./:=+-`.
-fn shell_word(word: &str) -> String {
+pub(super) fn shell_word(word: &str) -> String {
     let plain = !word.is_empty()
         && word
             .chars()

@@ -1,7 +1,7 @@
 //! The neighbour-list path of mdr-dem on the GPU: wgpu compute shaders in f64 (Vulkan, Metal or
 //! DX12 with `SHADER_F64`) running the settled-bed system of `mdr-dem bench bed` ([`GpuBed`])
 //! and force-mode scenes whose walls are planes and boxes ([`GpuScene`]; others are refused by
-//! [`gpu_scene_support`]) with the CPU path's arithmetic: the same law formulas (Hertz, MDR,
+//! [`gpu_scene_support`]; `sim run --device gpu` is [`run_gpu_scene`]) with the CPU path's arithmetic: the same law formulas (Hertz, MDR,
 //! Thornton or adhesive MDR normal, Mindlin tangential, Hertzian viscous damping, optionally
 //! rolling resistance) bound per species pair, the same integrator order, the same list and
 //! history semantics ([`GpuLaws`]).
@@ -26,6 +26,7 @@ mod bed;
 mod bench;
 mod device;
 mod law;
+mod run;
 mod scene;
 mod system;
 
@@ -37,4 +38,8 @@ pub use bench::{
 pub use device::{GpuContext, GpuError};
 pub use law::{GpuLaws, GpuNormalLaw};
 pub use mdr_rapier::neighbour_list::bed::BENCH_THETA_RATIO;
+pub use run::{
+    gpu_run_support, run_gpu_scene, GpuEnergyRow, GpuRunError, GpuRunOptions, GpuRunSummary,
+    GPU_ENERGY_COLUMNS,
+};
 pub use scene::{gpu_scene_support, GpuScene};

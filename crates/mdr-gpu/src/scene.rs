@@ -433,6 +433,10 @@ fn scene_laws(scene: &Scene, planes: &[(usize, Plane)]) -> Result<SceneLaws, Gpu
 pub struct GpuScene {
     system: System,
     wall_of_plane: Vec<usize>,
+    planes: Vec<Plane>,
+    /// Each particle's mass and radius (its species').
+    mass: Vec<f64>,
+    radius: Vec<f64>,
 }
 
 impl GpuScene {
@@ -458,6 +462,14 @@ impl GpuScene {
             None => None,
         };
         let (species, _) = scene_species(scene);
+        let mass = species
+            .iter()
+            .map(|&s| laws.species_table[s as usize].mass)
+            .collect();
+        let radius = species
+            .iter()
+            .map(|&s| laws.species_table[s as usize].radius)
+            .collect();
         let position: Vec<_> = scene.particles.iter().map(|p| p.position).collect();
         let linvel: Vec<_> = scene.particles.iter().map(|p| p.velocity).collect();
         let angvel = vec![Vector3::zeros(); position.len()];
@@ -491,6 +503,9 @@ impl GpuScene {
         Ok(Self {
             system,
             wall_of_plane: planes.iter().map(|p| p.0).collect(),
+            planes: planes.iter().map(|p| p.1).collect(),
+            mass,
+            radius,
         })
     }
 
@@ -500,6 +515,28 @@ impl GpuScene {
     /// gives five or six).
     pub fn wall_of_plane(&self) -> &[usize] {
         &self.wall_of_plane
+    }
+
+    /// `steps` steps, then the forces of the next one: the state read back holds `x_k`,
+    /// `v_k` and the contacts at `x_k`, where the CPU run takes its samples (see
+    /// [`crate::GpuBed::step`] for the steps).
+    pub fn step_and_evaluate(&mut self, steps: usize) -> Result<(), GpuError> {
+        self.system.step_and_evaluate(steps)
+    }
+
+    /// Each particle's mass (kg), as the CPU stepper's species table has it.
+    pub fn masses(&self) -> &[f64] {
+        &self.mass
+    }
+
+    /// Each particle's radius (m).
+    pub fn radii(&self) -> &[f64] {
+        &self.radius
+    }
+
+    /// The wall planes, in the device's order.
+    pub(crate) fn planes(&self) -> &[Plane] {
+        &self.planes
     }
 
     /// The whole state, read back (wall slot `particle · planes + plane`).

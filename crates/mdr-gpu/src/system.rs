@@ -275,6 +275,9 @@ pub(crate) struct System {
     wall_words: u32,
     device_bytes: u64,
     steps: u64,
+    /// The forces of step `steps` are evaluated and its integration is still to come
+    /// ([`System::step_and_evaluate`]).
+    pending_integration: bool,
 }
 
 impl std::fmt::Debug for System {
@@ -743,6 +746,7 @@ impl System {
             wall_words,
             device_bytes,
             steps: 0,
+            pending_integration: false,
         })
     }
 
@@ -765,9 +769,36 @@ impl System {
     /// dispatches of zero size otherwise, so the host never waits inside a batch), the forces
     /// and the integration. Waits for the device at the end and checks the overflow flags.
     pub fn step(&mut self, steps: usize) -> Result<(), GpuError> {
-        let mut left = steps;
-        while left > 0 {
-            let batch = left.min(STEPS_PER_SUBMIT);
+        self.advance(steps, false)
+    }
+
+    /// `steps` steps, then the next step's forces without its integration: the state read
+    /// back then holds `x_k`, `v_k` and the contacts of the force pass at `x_k`, as the CPU
+    /// run samples them. The next [`System::step`] or [`System::step_and_evaluate`] begins
+    /// with that integration, so the dispatches are those of plain steps.
+    pub fn step_and_evaluate(&mut self, steps: usize) -> Result<(), GpuError> {
+        self.advance(steps, true)
+    }
+
+    /// The kernels of `steps` steps in batches of [`STEPS_PER_SUBMIT`], finishing a pending
+    /// integration first; `evaluate`: end with the next step's forces.
+    fn advance(&mut self, steps: usize, evaluate: bool) -> Result<(), GpuError> {
+        // The kernel sequence: `true` for a step's forces (decision, build, forces), `false`
+        // for its integration.
+        let mut sequence = Vec::with_capacity(2 * steps + 1);
+        let mut pending = self.pending_integration;
+        for _ in 0..steps {
+            if !pending {
+                sequence.push(true);
+            }
+            sequence.push(false);
+            pending = false;
+        }
+        if evaluate && !pending {
+            sequence.push(true);
+            pending = true;
+        }
+        for batch in sequence.chunks(2 * STEPS_PER_SUBMIT) {
             let scopes = ErrorScopes::push(&self.device);
             let mut encoder = self
                 .device
@@ -780,29 +811,33 @@ impl System {
                     timestamp_writes: None,
                 });
                 let p = &self.pipelines;
-                for _ in 0..batch {
-                    pass.set_bind_group(0, &self.decide_group, &[]);
-                    pass.set_pipeline(&p.decide);
-                    pass.dispatch_workgroups(1, 1, 1);
-                    pass.set_bind_group(0, &self.bind_group, &[]);
-                    pass.set_pipeline(&p.clear_cells);
-                    pass.dispatch_workgroups_indirect(&self.buffers.indirect, 12);
-                    pass.set_pipeline(&p.bin);
-                    pass.dispatch_workgroups_indirect(&self.buffers.indirect, 0);
-                    pass.set_pipeline(&p.search);
-                    pass.dispatch_workgroups_indirect(&self.buffers.indirect, 0);
-                    pass.set_pipeline(&p.forces);
-                    pass.dispatch_workgroups(self.groups.0, self.groups.1, 1);
-                    pass.set_pipeline(&p.integrate);
-                    pass.dispatch_workgroups(self.groups.0, self.groups.1, 1);
+                for &forces in batch {
+                    if forces {
+                        pass.set_bind_group(0, &self.decide_group, &[]);
+                        pass.set_pipeline(&p.decide);
+                        pass.dispatch_workgroups(1, 1, 1);
+                        pass.set_bind_group(0, &self.bind_group, &[]);
+                        pass.set_pipeline(&p.clear_cells);
+                        pass.dispatch_workgroups_indirect(&self.buffers.indirect, 12);
+                        pass.set_pipeline(&p.bin);
+                        pass.dispatch_workgroups_indirect(&self.buffers.indirect, 0);
+                        pass.set_pipeline(&p.search);
+                        pass.dispatch_workgroups_indirect(&self.buffers.indirect, 0);
+                        pass.set_pipeline(&p.forces);
+                        pass.dispatch_workgroups(self.groups.0, self.groups.1, 1);
+                    } else {
+                        pass.set_bind_group(0, &self.bind_group, &[]);
+                        pass.set_pipeline(&p.integrate);
+                        pass.dispatch_workgroups(self.groups.0, self.groups.1, 1);
+                    }
                 }
             }
             self.queue.submit([encoder.finish()]);
             scopes.pop()?;
-            self.steps += batch as u64;
-            left -= batch;
+            self.steps += batch.iter().filter(|&&forces| !forces).count() as u64;
             self.check_status()?;
         }
+        self.pending_integration = pending;
         Ok(())
     }
 

@@ -84,15 +84,23 @@ pub fn write_particles(path: &Path, frame: &ParticleFrame) -> std::io::Result<()
         polys: None,
         strips: None,
         data: Attributes {
-            point: vec![
-                Attribute::scalars("radius_m", 1).with_data(frame.radius.clone()),
-                Attribute::vectors("velocity_m_per_s").with_data(flat(&frame.velocity)),
-                Attribute::vectors("angular_velocity_rad_per_s")
-                    .with_data(flat(&frame.angular_velocity)),
-                Attribute::scalars("contacts", 1).with_data(frame.contacts.clone()),
-                Attribute::scalars("plastic_work_j", 1).with_data(frame.plastic_work.clone()),
-                Attribute::scalars("id", 1).with_data(frame.id.clone()),
-            ],
+            point: [
+                Some(Attribute::scalars("radius_m", 1).with_data(frame.radius.clone())),
+                Some(Attribute::vectors("velocity_m_per_s").with_data(flat(&frame.velocity))),
+                Some(
+                    Attribute::vectors("angular_velocity_rad_per_s")
+                        .with_data(flat(&frame.angular_velocity)),
+                ),
+                Some(Attribute::scalars("contacts", 1).with_data(frame.contacts.clone())),
+                // A run that keeps no plastic work (the GPU path's) leaves the field out.
+                (frame.plastic_work.len() == frame.position.len()).then(|| {
+                    Attribute::scalars("plastic_work_j", 1).with_data(frame.plastic_work.clone())
+                }),
+                Some(Attribute::scalars("id", 1).with_data(frame.id.clone())),
+            ]
+            .into_iter()
+            .flatten()
+            .collect(),
             cell: Vec::new(),
         },
     };

@@ -1,0 +1,217 @@
+//! `mdr-dem sim run --device gpu` from the command line: a sphere dropped onto a plane run on
+//! both devices prints the same headline and writes the same files but the checkpoints; a CPU
+//! checkpoint given to `--resume` with `--device gpu` is refused by the flag's name (exit 2),
+//! as are a scene asking for checkpoints (unless `--no-checkpoints`), a wall the GPU lacks and
+//! `--no-checkpoints` on the CPU. Needs a Vulkan device with 64-bit floats (lavapipe on a
+//! machine without a GPU, docs/gpu.md).
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn mdr_dem(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
+}
+
+/// The steel sphere of `scenes/drop.toml` 10 µm above the plane, approaching it at 0.5 m/s:
+/// 250 steps cover the bounce.
+const DROP: &str = r#"
+[run]
+name = "drop"
+duration_s = 2.0e-4
+dt_s = 8.0e-7
+max_speed_m_per_s = 0.6
+output_interval_s = 5.0e-5
+energy_interval_s = 1.0e-5
+headline = "drop"
+
+[gravity]
+acceleration_m_per_s2 = [0.0, 0.0, -9.81]
+
+[[material]]
+name = "steel"
+youngs_pa = 2.0e11
+poisson_ratio = 0.286
+density_kg_per_m3 = 7800.0
+
+[contact]
+normal = "mdr"
+critical_line_load_n_per_m = 3.8e5
+hardening_ratio = 0.37
+
+[[particles]]
+material = "steel"
+placement = "csv"
+file = "drop.csv"
+
+[[walls]]
+kind = "plane"
+material = "steel"
+point_m = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+"#;
+
+fn drop_dir() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("drop.csv"),
+        "x_m,y_m,z_m,radius_m,vx_m_per_s,vy_m_per_s,vz_m_per_s\n\
+         0.0,0.0,0.00636,0.00635,0.0,0.0,-0.5\n",
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("drop.toml"), DROP).unwrap();
+    dir
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// The files of a run's folder, relative to it, sorted.
+fn files(dir: &Path) -> Vec<String> {
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        if path.is_dir() {
+            names.extend(files(&path).into_iter().map(|f| format!("{name}/{f}")));
+        } else {
+            names.push(name);
+        }
+    }
+    names.sort();
+    names
+}
+
+#[test]
+fn sim_run_on_the_gpu_prints_the_cpu_runs_headline_and_refuses_what_it_lacks() {
+    let dir = drop_dir();
+    let path = dir.path();
+    let cpu = mdr_dem(
+        &["sim", "run", "drop.toml", "--quiet", "--out", "cpu"],
+        path,
+    );
+    assert!(cpu.status.success(), "{}", text(&cpu.stderr));
+    let gpu = mdr_dem(
+        &[
+            "sim",
+            "run",
+            "drop.toml",
+            "--quiet",
+            "--out",
+            "gpu",
+            "--device",
+            "gpu",
+        ],
+        path,
+    );
+    let (stdout, stderr) = (text(&gpu.stdout), text(&gpu.stderr));
+    assert!(gpu.status.success(), "{stderr}");
+    assert!(stderr.contains("energy guard"), "{stderr}");
+    // The headline's lines (the impact, the rebound, e_n and the law's closed form) are the
+    // CPU run's to the printed digits.
+    let headline = |out: &str| -> Vec<String> {
+        out.lines()
+            .filter(|l| l.contains("e_n"))
+            .map(str::to_owned)
+            .collect()
+    };
+    let cpu_headline = headline(&text(&cpu.stdout));
+    assert_eq!(cpu_headline.len(), 2, "{}", text(&cpu.stdout));
+    assert_eq!(headline(&stdout), cpu_headline, "{stdout}");
+    // `done: t = …, N steps` as on the CPU (then the wall time and the adapter).
+    let done = |out: &str| -> String {
+        let line = out.lines().find(|l| l.starts_with("done: ")).unwrap_or("");
+        line[..line.find(" in ").unwrap_or(0)].to_owned()
+    };
+    assert!(!done(&stdout).is_empty(), "{stdout}");
+    assert_eq!(done(&stdout), done(&text(&cpu.stdout)));
+    // The same files but the checkpoints.
+    let cpu_files: Vec<_> = files(&path.join("cpu"))
+        .into_iter()
+        .filter(|f| !f.starts_with("checkpoints/"))
+        .collect();
+    assert_eq!(files(&path.join("gpu")), cpu_files);
+
+    // A CPU checkpoint does not resume on the GPU: refused by the flag's name.
+    let checkpoint = files(&path.join("cpu"))
+        .into_iter()
+        .find(|f| f.starts_with("checkpoints/"))
+        .unwrap();
+    let resumed = mdr_dem(
+        &[
+            "sim",
+            "run",
+            "drop.toml",
+            "--out",
+            "cpu",
+            "--device",
+            "gpu",
+            "--resume",
+            &format!("cpu/{checkpoint}"),
+        ],
+        path,
+    );
+    let stderr = text(&resumed.stderr);
+    assert_eq!(resumed.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("--resume"), "{stderr}");
+    assert!(stderr.contains("reads no checkpoint"), "{stderr}");
+
+    // Checkpoints asked for: refused, unless --no-checkpoints.
+    std::fs::write(
+        path.join("ckpt.toml"),
+        DROP.replace(
+            "headline = \"drop\"",
+            "headline = \"drop\"\ncheckpoint_interval_s = 1.0e-4",
+        ),
+    )
+    .unwrap();
+    let refused = mdr_dem(
+        &["sim", "run", "ckpt.toml", "--device", "gpu", "--check"],
+        path,
+    );
+    let stderr = text(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("checkpoint_interval_s"), "{stderr}");
+    let accepted = mdr_dem(
+        &[
+            "sim",
+            "run",
+            "ckpt.toml",
+            "--device",
+            "gpu",
+            "--check",
+            "--no-checkpoints",
+        ],
+        path,
+    );
+    assert!(accepted.status.success(), "{}", text(&accepted.stderr));
+    let cpu_flag = mdr_dem(
+        &["sim", "run", "drop.toml", "--check", "--no-checkpoints"],
+        path,
+    );
+    let stderr = text(&cpu_flag.stderr);
+    assert_eq!(cpu_flag.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("--no-checkpoints"), "{stderr}");
+
+    // A wall the GPU lacks, named.
+    let hopper = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hopper.toml");
+    let refused = mdr_dem(
+        &[
+            "sim",
+            "run",
+            &hopper.display().to_string(),
+            "--device",
+            "gpu",
+            "--check",
+            "--no-checkpoints",
+        ],
+        path,
+    );
+    let stderr = text(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("`kind = \"cylinder\"`"), "{stderr}");
+}
