@@ -83,6 +83,8 @@ pub struct AdhesiveMdrLaw {
     work_of_adhesion: f64,
     /// `√(2π Δγ / E*)`: `Δl_max(a) = detach_coefficient · √a`.
     detach_coefficient: f64,
+    /// `2π Δγ / E*`: `Δl_max(a)² = this · a`.
+    detach_coefficient_sq: f64,
     /// `(3/2) π Δγ R`.
     pull_off: f64,
     /// `1/R`.
@@ -246,12 +248,14 @@ impl AdhesiveMdrLaw {
         let modulus = mdr.effective_modulus();
         let radius = mdr.effective_radius();
         let theta = mdr.hardening_ratio();
-        let detach_coefficient = (2.0 * PI * work_of_adhesion / modulus).sqrt();
+        let detach_coefficient_sq = 2.0 * PI * work_of_adhesion / modulus;
+        let detach_coefficient = detach_coefficient_sq.sqrt();
         let inv_radius = 1.0 / radius;
         Self {
             mdr,
             work_of_adhesion,
             detach_coefficient,
+            detach_coefficient_sq,
             pull_off: 1.5 * PI * work_of_adhesion * radius,
             inv_radius,
             crater_volume_coefficient: 2.0 / 3.0 * (1.0 - theta) * radius.sqrt(),
@@ -331,12 +335,13 @@ impl AdhesiveMdrLaw {
         }
     }
 
-    /// Unloading with stretched springs at the edge in every case [`Self::retreated_edge`]
-    /// does not cover (no spring touching, a root on the other branch, `ε > 1/2`): the edge
-    /// holds or retreats by [`Self::retreat_by_halley`], the force from (A3); where that finds
-    /// no root of (A5) on the attached disc, `d` is below the smallest `δ` over it (A7) and the
-    /// contact lets go. With the work the springs that let go held (eq. A6). A held neck with no
-    /// spring touching costs one evaluation of (A5) at the previous edge.
+    /// Unloading with stretched springs at the edge in every case [`Self::held_neck`] and
+    /// [`Self::unload_on_branch`] do not cover (a neck whose edge spring is past its limit, a
+    /// root on the other branch, `ε > 1/2`): the edge holds or retreats by
+    /// [`Self::retreat_by_halley`], the force from (A3); where that finds no root of (A5) on the
+    /// attached disc, `d` is below the smallest `δ` over it (A7) and the contact lets go. With
+    /// the work the springs that let go held (eq. A6).
+    #[cold]
     fn unload_by_iteration(
         &self,
         max_overlap: f64,
@@ -460,6 +465,64 @@ impl AdhesiveMdrLaw {
         best
     }
 
+    /// The neck held by adhesion alone (no spring touching, `a_t = 0`) at overlap `d`: the edge
+    /// at `previous` holds while its spring's elongation `h(a) − d` is within
+    /// `Δl_max(a) = c√a` (A5), and the force is (A3) on the attached disc; `None` when the
+    /// edge's spring is past its limit (the edge retreats or the contact lets go). With no
+    /// spring touching, `d ≤ h(0) ≤ h(a)`: the elongation is not negative and the test
+    /// `(h(a) − d)² ≤ c² a` needs no square root.
+    #[inline]
+    fn held_neck(&self, max_overlap: f64, previous: f64, d: f64) -> Option<NormalResponse> {
+        let crater = self.crater(max_overlap);
+        let elongation = crater.height(previous) - d;
+        if elongation * elongation > self.detach_coefficient_sq * previous {
+            return None;
+        }
+        let two_modulus = 2.0 * self.mdr.effective_modulus();
+        Some(NormalResponse {
+            force: two_modulus * (previous * d - crater.integral(previous)),
+            contact_radius: previous,
+            stiffness: two_modulus * previous,
+        })
+    }
+
+    /// Unloading with springs touching out to `a_t = touching.contact_radius` (> 0) and
+    /// stretched springs beyond it: the edge holds while it lies inside the root of (A5) on the
+    /// touching radius's branch of the crater ([`Self::retreated_edge`]), and retreats to it
+    /// otherwise (δ is convex in √a and below d at the touching radius); `None` where the
+    /// series does not reach or the root lies on the other branch.
+    #[inline]
+    fn unload_on_branch(
+        &self,
+        state: &mut AdhesiveMdrState,
+        touching: &NormalResponse,
+        max_overlap: f64,
+        d: f64,
+    ) -> Option<NormalResponse> {
+        let a_t = touching.contact_radius;
+        let previous = state.contact_radius;
+        let (branch, inner) = self.branch(max_overlap, d);
+        let root = a_t + self.retreated_edge(branch, a_t)?;
+        // On the flattened branch the root must lie inside the plastic radius, b² = R s.
+        if inner
+            && root * root >= self.mdr.effective_radius() * (max_overlap - self.mdr.yield_overlap())
+        {
+            return None;
+        }
+        let a = if root < previous { root } else { previous };
+        state.adhesive_work += self.annulus_work(previous, a);
+        state.contact_radius = a;
+        // The disc beyond the touching radius pulls
+        // `2E* ∫_{a_t}^{a} (h − d) dx = (2E*κ/3)(a − a_t)²(a + 2a_t)` (A13); the attached
+        // springs are elastic on unloading: 2 E* a.
+        let annulus = a - a_t;
+        Some(NormalResponse {
+            force: touching.force - branch.pull_coefficient * annulus * annulus * (a + 2.0 * a_t),
+            contact_radius: a,
+            stiffness: 2.0 * self.mdr.effective_modulus() * a,
+        })
+    }
+
     /// The elastic JKR pull-off force `(3/2) π Δγ R` (N).
     pub fn jkr_pull_off_force(&self) -> f64 {
         self.pull_off
@@ -496,32 +559,14 @@ impl NormalLaw for AdhesiveMdrLaw {
             state.contact_radius = a_t;
             return touching;
         }
-        // Unloading with stretched springs at the edge (a new maximum always touches wider):
-        // the edge holds while it lies inside the root of (A5), and retreats to it otherwise
-        // (δ is convex in √a and below d at the touching radius).
-        let (branch, inner) = self.branch(max_overlap, d);
-        // With no spring touching (`a_t = 0`) ε is infinite and the series declines.
-        if let Some(retreat) = self.retreated_edge(branch, a_t) {
-            let root = a_t + retreat;
-            // On the flattened branch the root must lie inside the plastic radius, b² = R s.
-            let on_branch = !inner
-                || root * root
-                    < self.mdr.effective_radius() * (max_overlap - self.mdr.yield_overlap());
-            if on_branch {
-                let a = if root < previous { root } else { previous };
-                state.adhesive_work += self.annulus_work(previous, a);
-                state.contact_radius = a;
-                // The disc beyond the touching radius pulls
-                // `2E* ∫_{a_t}^{a} (h − d) dx = (2E*κ/3)(a − a_t)²(a + 2a_t)` (A13); the
-                // attached springs are elastic on unloading: 2 E* a.
-                let annulus = a - a_t;
-                return NormalResponse {
-                    force: touching.force
-                        - branch.pull_coefficient * annulus * annulus * (a + 2.0 * a_t),
-                    contact_radius: a,
-                    stiffness: 2.0 * self.mdr.effective_modulus() * a,
-                };
+        // Unloading with stretched springs at the edge (a new maximum always touches wider).
+        if a_t == 0.0 {
+            // No spring touches: the neck is held by adhesion alone, or lets go.
+            if let Some(response) = self.held_neck(max_overlap, previous, d) {
+                return response;
             }
+        } else if let Some(response) = self.unload_on_branch(state, &touching, max_overlap, d) {
+            return response;
         }
         let (response, work) = self.unload_by_iteration(max_overlap, previous, d, a_t);
         state.adhesive_work += work;
@@ -564,7 +609,9 @@ impl NormalLaw for AdhesiveMdrLaw {
     }
 
     fn holds(&self, state: &AdhesiveMdrState) -> bool {
-        self.work_of_adhesion > 0.0 && state.contact_radius > 0.0
+        // Both tests without a branch between them: the pair loop asks this of every listed
+        // pair.
+        (self.work_of_adhesion > 0.0) & (state.contact_radius > 0.0)
     }
 
     /// `min δ(a')` over the attached disc `0 < a' ≤ a` (eq. A7).
@@ -733,5 +780,77 @@ mod tests {
         let limit = law.critical_elongation(a);
         let gap = crater.height(a) - d - limit;
         assert!(gap.abs() <= 1e-12 * limit, "{gap:e}");
+    }
+
+    /// A neck held by adhesion alone (no spring touching: the overlap below the crater's
+    /// residual depth, or apart) holds at its edge while the edge spring's elongation
+    /// `h(a) − d` is within `Δl_max(a) = √(2π a Δγ/E*)` (A5), with the force of (A3) on the
+    /// attached disc, here against Simpson's rule on the crater's profile written out anew;
+    /// just past that overlap the edge retreats or lets go. Kills a hold test that holds past
+    /// the limit (`4c²a` for `c²a`); one that declines too early only costs time, as the
+    /// iteration then holds the edge itself.
+    #[test]
+    fn neck_with_no_touching_spring_holds_to_its_edge_limit() {
+        let pair = ContactPair::paper_fig2();
+        let params = MdrElastoPlastic::paper();
+        let (r, e) = (pair.effective_radius(), pair.effective_modulus());
+        let plain = params.bind(&pair).unwrap();
+        let max_overlap = 8.0 * plain.yield_overlap();
+        let s = max_overlap - plain.yield_overlap();
+        let theta = plain.hardening_ratio();
+        let depth = (1.0 - theta) * s;
+        let b = (r * s).sqrt();
+        let profile = |x: f64| {
+            if x < b {
+                theta * x * x / r + depth
+            } else {
+                x * x / r
+            }
+        };
+        let simpson = |lo: f64, hi: f64| {
+            let n = 64;
+            let step = (hi - lo) / n as f64;
+            let inner: f64 = (1..n)
+                .map(|k| profile(lo + k as f64 * step) * if k % 2 == 1 { 4.0 } else { 2.0 })
+                .sum();
+            (profile(lo) + profile(hi) + inner) * step / 3.0
+        };
+        // An edge beyond the plastic radius whose limit lies apart (d < 0), and one inside it
+        // whose limit lies in the residual crater (0 < d < h(0)): Δγ such that
+        // Δl_max(a) = 2 (h(a) − h(0)), so the limit overlap 2h(0) − h(a) is below h(0).
+        for a in [1.2 * b, 0.9 * b] {
+            let limit = 2.0 * (profile(a) - depth);
+            let gamma = e * limit * limit / (2.0 * PI * a);
+            let law = AdhesiveMdr::new(params, gamma)
+                .unwrap()
+                .bind(&pair)
+                .unwrap();
+            let at_limit = profile(a) - limit;
+            assert!(at_limit < depth);
+            let unload = |d: f64| {
+                let mut state = AdhesiveMdrState {
+                    max_overlap,
+                    contact_radius: a,
+                    adhesive_work: 0.0,
+                };
+                (law.update(&mut state, d), state)
+            };
+            for d in [at_limit + 1e-9 * limit, 0.5 * (at_limit + depth)] {
+                let (response, state) = unload(d);
+                assert_eq!(state.contact_radius, a, "edge {a}, d = {d}");
+                let integral = simpson(0.0, a.min(b)) + simpson(a.min(b), a);
+                let expected = 2.0 * e * (a * d - integral);
+                assert!(
+                    (response.force - expected).abs() <= 1e-12 * 2.0 * e * a * profile(a),
+                    "edge {a}, d = {d}: {} vs {expected}",
+                    response.force
+                );
+                assert_eq!(response.stiffness, 2.0 * e * a);
+                assert_eq!(state.adhesive_work, 0.0);
+            }
+            let (_, state) = unload(at_limit - 1e-9 * limit);
+            assert!(state.contact_radius < a, "edge {a}: held past its limit");
+            assert!(state.adhesive_work > 0.0);
+        }
     }
 }
