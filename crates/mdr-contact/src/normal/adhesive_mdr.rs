@@ -352,7 +352,10 @@ impl AdhesiveMdrLaw {
         let crater = self.crater(max_overlap);
         let a = self.retreat_by_halley(&crater, previous, d, touching);
         if a == 0.0 {
-            return (NormalResponse::default(), self.let_go_work(&crater, previous));
+            return (
+                NormalResponse::default(),
+                self.let_go_work(&crater, previous),
+            );
         }
         let two_modulus = 2.0 * self.mdr.effective_modulus();
         let response = NormalResponse {
