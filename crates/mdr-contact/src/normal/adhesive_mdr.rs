@@ -335,9 +335,9 @@ impl AdhesiveMdrLaw {
         }
     }
 
-    /// Unloading with stretched springs at the edge in every case [`Self::held_neck`] and
-    /// [`Self::unload_on_branch`] do not cover (a neck whose edge spring is past its limit, a
-    /// root on the other branch, `ε > 1/2`): the edge holds or retreats by
+    /// Unloading with stretched springs at the edge in every case [`Self::unload_on_branch`] and
+    /// [`Self::held_edge`] do not cover (the edge spring past its limit where the series does
+    /// not apply: no spring touching, a root on the other branch, `ε > 1/2`): the edge holds or retreats by
     /// [`Self::retreat_by_halley`], the force from (A3); where that finds no root of (A5) on the
     /// attached disc, `d` is below the smallest `δ` over it (A7) and the contact lets go. With
     /// the work the springs that let go held (eq. A6).
@@ -468,14 +468,15 @@ impl AdhesiveMdrLaw {
         best
     }
 
-    /// The neck held by adhesion alone (no spring touching, `a_t = 0`) at overlap `d`: the edge
-    /// at `previous` holds while its spring's elongation `h(a) − d` is within
+    /// The edge at `previous` on unloading where [`Self::unload_on_branch`] does not apply (no
+    /// spring touching, `a_t = 0`: the neck held by adhesion alone; `ε > 1/2`; a root on the
+    /// other branch): it holds while its spring's elongation `h(a) − d` is within
     /// `Δl_max(a) = c√a` (A5), and the force is (A3) on the attached disc; `None` when the
-    /// edge's spring is past its limit (the edge retreats or the contact lets go). With no
-    /// spring touching, `d ≤ h(0) ≤ h(a)`: the elongation is not negative and the test
+    /// edge's spring is past its limit (the edge retreats or the contact lets go). The edge
+    /// lies beyond the touching radius, `h(a) > d`: the elongation is positive and the test
     /// `(h(a) − d)² ≤ c² a` needs no square root.
     #[inline]
-    fn held_neck(&self, max_overlap: f64, previous: f64, d: f64) -> Option<NormalResponse> {
+    fn held_edge(&self, max_overlap: f64, previous: f64, d: f64) -> Option<NormalResponse> {
         let crater = self.crater(max_overlap);
         let elongation = crater.height(previous) - d;
         if elongation * elongation > self.detach_coefficient_sq * previous {
@@ -563,12 +564,12 @@ impl NormalLaw for AdhesiveMdrLaw {
             return touching;
         }
         // Unloading with stretched springs at the edge (a new maximum always touches wider).
-        if a_t == 0.0 {
-            // No spring touches: the neck is held by adhesion alone, or lets go.
-            if let Some(response) = self.held_neck(max_overlap, previous, d) {
+        if a_t > 0.0 {
+            if let Some(response) = self.unload_on_branch(state, &touching, max_overlap, d) {
                 return response;
             }
-        } else if let Some(response) = self.unload_on_branch(state, &touching, max_overlap, d) {
+        }
+        if let Some(response) = self.held_edge(max_overlap, previous, d) {
             return response;
         }
         let (response, work) = self.unload_by_iteration(max_overlap, previous, d, a_t);
