@@ -597,42 +597,27 @@ fn edge_phi(c: Crater, detach: f64, t: f64, d: f64) -> f64 {
     return crater_height(c, t * t) - detach * t - d;
 }
 
-// An edge that retreated on the branch `h = κx² + h₀` the springs touch (`Retreat`);
-// `found` is false where `AdhesiveMdrLaw::retreated_edge` returns `None`.
-struct Retreat {
-    found: bool,
-    retreat: f64,
-    kappa: f64,
+// `edge_series` (docs/theory.md, eq. A12): `y/ε` with `y = u² − 1` of the largest root of
+// `u⁴ − εu − 1 = 0`, to `ε⁸`: round-off for `ε ≤ 1/16`.
+fn edge_series(eps: f64) -> f64 {
+    let e2 = eps * eps;
+    let high = 55.0lf / 131072.0lf + eps * (-9.0lf / 32768.0lf + eps * (1547.0lf / 16777216.0lf));
+    return 0.5lf + e2 * (-1.0lf / 64.0lf + eps * (1.0lf / 128.0lf + eps * (-9.0lf / 4096.0lf + e2 * high)));
 }
 
-// `AdhesiveMdrLaw::retreated_edge`: the series root of the edge quartic (eq. A12) and one
-// Halley step, for `ε ≤ 1/2` on the branch of the touching radius.
-fn retreated_edge(law: Law, c: Crater, touching: f64, d: f64) -> Retreat {
-    var none = Retreat(false, 0.0lf, 0.0lf);
-    let inner = touching * touching < c.plastic_radius_sq;
-    var excess = d;
-    var kappa = c.inv_radius;
-    if inner {
-        excess = d - c.depth;
-        kappa = c.theta * c.inv_radius;
-    }
-    let eps = law.detach_coefficient * sqrt(touching) / excess;
-    if eps > 0.5lf {
-        return none;
-    }
+// `edge_series_tail`: the series' terms `ε¹⁰`–`ε¹²`.
+fn edge_series_tail(eps: f64) -> f64 {
     let e2 = eps * eps;
-    let x0 = eps * (0.25lf - eps * (1.0lf / 32.0lf))
-        + e2 * e2 * (7.0lf / 2048.0lf - eps * (1.0lf / 512.0lf) + 39.0lf / 65536.0lf * e2);
-    let f = x0 * (4.0lf + x0 * (6.0lf + x0 * (4.0lf + x0))) - eps * (1.0lf + x0);
-    let u = 1.0lf + x0;
-    let u2 = u * u;
-    let slope = 4.0lf * u2 * u - eps;
-    let x = x0 - 2.0lf * f * slope / (2.0lf * slope * slope - 12.0lf * f * u2);
-    let retreat = touching * x * (2.0lf + x);
-    if inner && (touching + retreat) * (touching + retreat) >= c.plastic_radius_sq {
-        return none;
-    }
-    return Retreat(true, retreat, kappa);
+    let e4 = e2 * e2;
+    return e4 * e4 * e2
+        * (-11799.0lf / 536870912.0lf + eps * (65.0lf / 4194304.0lf + eps * (-189805.0lf / 34359738368.0lf)));
+}
+
+// `edge_newton_step`: one Newton step on the quartic in `y`.
+fn edge_newton_step(y: f64, eps: f64) -> f64 {
+    let r = sqrt(1.0lf + y);
+    let f = y * (2.0lf + y) - eps * r;
+    return y - 2.0lf * r * f / (4.0lf * r * (1.0lf + y) - eps);
 }
 
 // `AdhesiveMdrLaw::retreat_by_halley`: Halley's method from the right, for the cases the
@@ -692,40 +677,52 @@ fn adhesive_mdr_law(law: Law, state: ptr<function, vec3<f64>>, d: f64) -> Normal
     let touching = mdr_law(law, &plain, d);
     (*state).x = plain.x;
     let previous = (*state).y;
-    if touching.radius >= previous {
-        (*state).y = touching.radius;
+    let a_t = touching.radius;
+    if a_t >= previous {
+        (*state).y = a_t;
         return touching;
     }
     let c = crater_of(law, plain.x);
-    let a_t = touching.radius;
-    var a = previous;
-    var retreat = Retreat(false, 0.0lf, 0.0lf);
-    var series = false;
+    let two_modulus = 2.0lf * law.effective_modulus;
+    // `AdhesiveMdrLaw::branch`: the flattened branch where `d < s`, as `mdr_law` takes it.
+    let s = plain.x - law.yield_displacement;
+    let inner = d < s;
+    var kappa = c.inv_radius;
+    if inner {
+        kappa = c.theta * c.inv_radius;
+    }
     if a_t > 0.0lf {
-        let r = retreated_edge(law, c, a_t, d);
-        if r.found {
-            series = true;
-            let edge = a_t + r.retreat;
-            if edge < previous {
-                a = edge;
-                retreat = r;
+        // `AdhesiveMdrLaw::retreated_edge`: `ε = (c/κ) a_t^{−3/2}`, `a_t ε = (c/κ)/√a_t`.
+        let scale = law.detach_coefficient / kappa / sqrt(a_t);
+        let eps = scale / a_t;
+        if eps <= 0.5lf {
+            var retreat = scale * edge_series(eps);
+            if eps > 1.0lf / 16.0lf {
+                let y = eps * (edge_series(eps) + edge_series_tail(eps));
+                retreat = a_t * edge_newton_step(y, eps);
+            }
+            let root = a_t + retreat;
+            if !inner || root * root < law.effective_radius * s {
+                var a = previous;
+                if root < previous {
+                    a = root;
+                }
+                let annulus = a - a_t;
+                (*state).y = a;
+                out.force = touching.force
+                    - 2.0lf / 3.0lf * law.effective_modulus * kappa * annulus * annulus * (a + 2.0lf * a_t);
+                out.radius = a;
+                out.stiffness = two_modulus * a;
+                return out;
             }
         }
     }
-    if !series {
-        a = retreat_by_halley(law, c, previous, d, a_t);
-    }
+    let a = retreat_by_halley(law, c, previous, d, a_t);
     (*state).y = a;
     if a == 0.0lf {
         return out;
     }
-    let two_modulus = 2.0lf * law.effective_modulus;
-    if retreat.found {
-        out.force = touching.force
-            - two_modulus * retreat.kappa / 3.0lf * retreat.retreat * retreat.retreat * (a + 2.0lf * a_t);
-    } else {
-        out.force = two_modulus * (a * d - crater_integral(c, a));
-    }
+    out.force = two_modulus * (a * d - crater_integral(c, a));
     out.radius = a;
     out.stiffness = two_modulus * a;
     return out;
