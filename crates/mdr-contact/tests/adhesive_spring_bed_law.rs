@@ -295,6 +295,14 @@ fn the_pull_off_force_and_the_parameters() {
     assert_eq!(bound.bed().covered_half_width(), 0.5);
     assert_eq!(bound.bed().heights(), &[0.00390625, 0.03515625]);
 
+    // Two springs over L = 1 (one stored at x = 0.5, g = 0.25, k_z = E* Δx = 4 N/m): at
+    // d = 0.3 it stores w f²/(2 k_z) with f = 0.2 N.
+    let two = AdhesiveSpringBed::new(bed(Q_C, THETA).n_springs(2).unwrap(), gamma).unwrap();
+    assert_close(
+        "stored energy, k_z = 4",
+        two.elastic_energy(&AdhesiveSpringBedState::default(), 0.3),
+        2.0 * 0.2 * 0.2 / 8.0,
+    );
     assert!(matches!(
         AdhesiveSpringBed::new(bed(Q_C, THETA), -1.0),
         Err(ContactError::OutOfRange {

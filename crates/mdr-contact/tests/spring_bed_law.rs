@@ -106,11 +106,20 @@ fn the_bed_lays_out_its_springs_and_keeps_its_parameters() {
     assert_eq!(two.positions(), &[0.5]);
     assert_eq!(two.weights(), &[2.0]);
     assert_eq!(two.covered_half_width(), 1.0);
+    // Its spring (g = 0.25, k_z = E* Δx = 4 N/m) at d = 0.3 stores w f²/(2 k_z), f = 0.2 N.
+    assert_close(
+        "stored energy, k_z = 4",
+        two.elastic_energy(&SpringBedState::default(), 0.3),
+        2.0 * 0.2 * 0.2 / 8.0,
+    );
 
     // A spacing gives n = ⌈2L/Δx⌉ springs.
     let sphere = Sphere::new(1.0).unwrap();
     let spaced = SpringBed::with_spacing(sphere, E_STAR, Q_C, THETA, 1.0, 0.5).unwrap();
     assert_eq!((spaced.spring_count(), spaced.spacing()), (4, 0.5));
+    let spaced = SpringBed::with_spacing(sphere, E_STAR, Q_C, THETA, 1.25, 0.5).unwrap();
+    assert_eq!((spaced.spring_count(), spaced.spacing()), (5, 0.5));
+    assert_eq!(spaced.covered_half_width(), 1.25);
     let spaced = SpringBed::with_spacing(sphere, E_STAR, Q_C, THETA, 1.0, 0.3).unwrap();
     assert_eq!(spaced.spring_count(), 7);
     assert_close("Δx = 2L/7", spaced.spacing(), 2.0 / 7.0);
