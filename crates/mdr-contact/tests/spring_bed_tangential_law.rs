@@ -131,3 +131,22 @@ fn parameters_are_checked() {
         })
     ));
 }
+
+#[test]
+fn a_spring_within_the_round_off_guard_of_its_limit_is_not_in_the_stick_zone() {
+    // The stick zone takes the springs whose |u| is below their slip limit by more than the
+    // 1e-12 relative guard that tells a spring slipped back to its limit (to round-off) from a
+    // sticking one. The inner spring's limit is μ f_z/(G* Δx) = 0.375 m; the outer spring
+    // (limit 0.175 m) slips.
+    let bed = normal_bed();
+    let law = SpringBedTangential::from_parts(3.0, MU).unwrap();
+    let mut normal = SpringBedState::default();
+    bed.update(&mut normal, 1.0);
+    let limit = MU * 1.875 / (0.5 * 3.0);
+    let mut state = SpringBedTangentialState::default();
+    law.update(&bed, &normal, &mut state, limit * (1.0 - 1e-12));
+    assert_eq!(law.stick_radius(&bed, &normal, &state), 0.0);
+    let mut state = SpringBedTangentialState::default();
+    law.update(&bed, &normal, &mut state, limit * (1.0 - 2e-12));
+    assert_eq!(law.stick_radius(&bed, &normal, &state), 0.25);
+}
