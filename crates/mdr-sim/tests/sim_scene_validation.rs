@@ -5,6 +5,8 @@ mod common;
 
 use mdr_sim::scene::validate::parse_scene;
 use mdr_sim::scene::{Problems, Severity};
+use mdr_sim::walls::WallPiece;
+use nalgebra::Vector3;
 use std::path::Path;
 
 fn good() -> String {
@@ -104,6 +106,53 @@ fn every_unknown_key_is_reported_at_once() {
         unknown[1].message.contains("radius_m"),
         "the message lists the allowed keys: {p}"
     );
+}
+
+#[test]
+fn range_checks_hold_at_their_bounds() {
+    // (0, inf): zero is outside.
+    let e = error_on(
+        &good().replace("duration_s = 0.01", "duration_s = 0.0"),
+        "duration_s",
+    );
+    assert!(e.message.contains("(0, inf)"), "{e}");
+    // [0, inf): zero is inside, a negative value outside.
+    let text = good().replace("jitter_fraction = 0.8", "jitter_fraction = 0.0");
+    assert!(!problems(&text).has_errors(), "{}", problems(&text));
+    let e = error_on(
+        &good().replace("jitter_fraction = 0.8", "jitter_fraction = -0.1"),
+        "jitter_fraction",
+    );
+    assert!(e.message.contains("[0, inf)"), "{e}");
+    // A direction must be non-zero, and is made a unit vector.
+    let e = error_on(
+        &good().replace("normal = [0.0, 0.0, 1.0]", "normal = [0.0, 0.0, 0.0]"),
+        "walls[0].normal",
+    );
+    assert!(e.message.contains("non-zero"), "{e}");
+    let text = good().replace("normal = [0.0, 0.0, 1.0]", "normal = [0.0, 0.0, 2.5]");
+    let scene = parse_scene(Path::new("scene.toml"), &text).unwrap();
+    match &scene.walls[0].pieces[..] {
+        [WallPiece::HalfSpace { normal, .. }] => assert_eq!(*normal, Vector3::z()),
+        other => panic!("expected one half-space, got {other:?}"),
+    }
+}
+
+#[test]
+fn a_wall_takes_the_material_it_names() {
+    let text = good()
+        .replace(
+            "[contact]",
+            "[[material]]\nname = \"steel\"\nyoungs_pa = 2.0e11\npoisson_ratio = 0.3\n\
+             density_kg_per_m3 = 7800.0\n\n[contact]",
+        )
+        .replace(
+            "kind = \"plane\"\nmaterial = \"grain\"",
+            "kind = \"plane\"\nmaterial = \"steel\"",
+        );
+    let scene = parse_scene(Path::new("scene.toml"), &text).unwrap();
+    assert_eq!(scene.materials[1].0, "steel");
+    assert_eq!(scene.walls[0].material, 1);
 }
 
 #[test]
