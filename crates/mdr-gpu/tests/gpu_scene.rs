@@ -194,10 +194,20 @@ const VELOCITY_RELATIVE: f64 = 1e-14;
 const ANGULAR_VELOCITY_RELATIVE: f64 = 1e-14;
 
 fn within(d: &SceneDifferences) -> bool {
-    d.position_diameters < POSITION_DIAMETERS
-        && d.velocity_relative < VELOCITY_RELATIVE
-        && d.angular_velocity_relative < ANGULAR_VELOCITY_RELATIVE
+    within_tolerances(d, 1.0)
 }
+
+/// Within the tolerances times `factor`.
+fn within_tolerances(d: &SceneDifferences, factor: f64) -> bool {
+    d.position_diameters < factor * POSITION_DIAMETERS
+        && d.velocity_relative < factor * VELOCITY_RELATIVE
+        && d.angular_velocity_relative < factor * ANGULAR_VELOCITY_RELATIVE
+}
+
+/// The adhesive scene's tolerances over the others: measured on lavapipe after 300 steps,
+/// positions 1.1e-14 diameters, velocities 4.4e-15 and angular velocities 7.9e-15 of the
+/// largest (round-off grows faster through the necks' let-go).
+const ADHESIVE_FACTOR: f64 = 4.0;
 
 #[test]
 fn a_polydisperse_box_scene_matches_the_cpu_path() {
@@ -314,15 +324,15 @@ fn scenes_the_gpu_lacks_a_part_of_are_refused_by_name() {
 }
 
 /// Works of adhesion (J/m²) of the adhesive box scene's materials: the pairs adhere with
-/// `√(Δγ_i Δγ_j)`: stiff–stiff and stiff–box 0.05, stiff–soft and soft–box 0.1, soft–soft 0.2.
-const STIFF_ADHESION: f64 = 0.05;
-const SOFT_ADHESION: f64 = 0.2;
+/// `√(Δγ_i Δγ_j)`: stiff–stiff and stiff–box 0.5, stiff–soft and soft–box 1.0, soft–soft 2.0.
+const STIFF_ADHESION: f64 = 0.5;
+const SOFT_ADHESION: f64 = 2.0;
 
 /// The test scene with a work of adhesion per material (the JKR pull-off force of two soft
-/// spheres, `(3/2) π Δγ R` = 1.2 mN, is 1.4 times a soft sphere's weight): each material pair
-/// runs its own mixed value on the
-/// GPU as on the CPU path, within the tolerances of the scene without adhesion (measured: see
-/// the printed figures), with contacts held apart by their necks at the end. Negative control:
+/// spheres, `(3/2) π Δγ R` = 12 mN, is 14 times a soft sphere's weight): each material pair
+/// runs its own mixed value on the GPU as on the CPU path, within [`ADHESIVE_FACTOR`] times the
+/// tolerances of the scene without adhesion, with a contact held apart by its neck at the end.
+/// Negative control:
 /// the GPU with one work of adhesion for every pair (the largest, as the scene's law carries
 /// it) misses the CPU path by far more.
 #[test]
@@ -371,12 +381,12 @@ fn a_two_material_adhesive_scene_matches_the_cpu_path_pair_by_pair() {
     assert_eq!(walls, cpu.wall_contacts);
     assert!(held > 0, "some pairs hold at negative overlap");
     assert_eq!(gpu.asymmetric_pairs, 0);
-    assert!(within(&d), "{d:?}");
+    assert!(within_tolerances(&d, ADHESIVE_FACTOR), "{d:?}");
     // One work of adhesion for every pair, on the GPU only.
     let mut one = scene.clone();
     one.contact.works_of_adhesion.clear();
     assert!((one.contact.pair_work_of_adhesion(0, 0) / SOFT_ADHESION - 1.0).abs() < 1e-12);
     let d = scene_differences(&gpu_run(&ctx, &one), &cpu);
     eprintln!("adhesive, one work of adhesion for every pair: {d:?}");
-    assert!(!within(&d), "{d:?}");
+    assert!(!within_tolerances(&d, 1e3 * ADHESIVE_FACTOR), "{d:?}");
 }
