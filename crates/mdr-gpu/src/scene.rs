@@ -300,7 +300,11 @@ where
         for a in 0..materials.len() {
             for b in a..materials.len() {
                 if let Some(values) = scene.contact.pair_normal_values(a, b) {
-                    stepper.set_pair_normal(materials[a], materials[b], N::from_values(&values)?)?;
+                    stepper.set_pair_normal(
+                        materials[a],
+                        materials[b],
+                        N::from_values(&values)?,
+                    )?;
                 }
             }
         }

@@ -346,11 +346,7 @@ fn a_two_material_adhesive_scene_matches_the_cpu_path_pair_by_pair() {
     );
     assert_eq!(scene.contact.normal.law, "adhesive_mdr");
     let mixed = (STIFF_ADHESION * SOFT_ADHESION).sqrt();
-    for (a, b, w) in [
-        (0, 0, STIFF_ADHESION),
-        (0, 1, mixed),
-        (1, 1, SOFT_ADHESION),
-    ] {
+    for (a, b, w) in [(0, 0, STIFF_ADHESION), (0, 1, mixed), (1, 1, SOFT_ADHESION)] {
         assert!((scene.contact.pair_work_of_adhesion(a, b) / w - 1.0).abs() < 1e-12);
     }
     gpu_scene_support(&scene).unwrap();

@@ -650,8 +650,7 @@ impl RestitutionHooks {
         let bodies = ctx.bodies;
         let (c1, c2) = (ctx.collider1, ctx.collider2);
         let (rb1, rb2) = (ctx.rigid_body1, ctx.rigid_body2);
-        let Some((law, work_of_adhesion, mass)) = self.pair_law(bodies, (rb1, rb2), c1, c2)
-        else {
+        let Some((law, work_of_adhesion, mass)) = self.pair_law(bodies, (rb1, rb2), c1, c2) else {
             return;
         };
         let Some(dt) = self.dt.filter(|_| self.prepared) else {
@@ -705,8 +704,7 @@ impl RestitutionHooks {
             && kinetic <= law.stored_energy(state.max_overlap, state.max_overlap)
         {
             1.0
-        } else if let Ok(impact) = adhesive_impact(&law, work_of_adhesion, &state, mass, approach)
-        {
+        } else if let Ok(impact) = adhesive_impact(&law, work_of_adhesion, &state, mass, approach) {
             self.history.commit(slot, impact.state.max_overlap);
             impact.restitution
         } else {

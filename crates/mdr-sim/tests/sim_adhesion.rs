@@ -429,7 +429,8 @@ normal = [0.0, 0.0, -1.0]
 }
 
 /// Tolerance of the per-pair rebounds against the validator: the largest measured difference
-/// is the sphere–sphere pair's, 0.08 % (0.48846 against 0.48809; the walls' are below 0.01 %).
+/// is the sphere–sphere pair's, 0.08 % in force mode (0.48846 against 0.48809; the walls' are
+/// below 0.01 %) and 0.07 % in restitution mode (0.48841; the ceiling's 0.03 %).
 const PAIR_TOLERANCE: f64 = 3e-3;
 
 /// Each material pair runs its own mixed work of adhesion, on both force paths and in
@@ -538,11 +539,7 @@ fn each_material_pair_runs_its_own_work_of_adhesion_on_both_force_paths_and_in_r
         ),
     ];
     let max_speed = fast.max(u_fast);
-    for force_path in [
-        "",
-        "force_path = \"rapier\"",
-        "coupling = \"restitution\"",
-    ] {
+    for force_path in ["", "force_path = \"rapier\"", "coupling = \"restitution\""] {
         let text = mixed_scene(&balls, max_speed, duration, force_path);
         let summary = run(&text, "adhesion-pairs");
         let p = &summary.particles;
