@@ -56,13 +56,6 @@ pub fn gpu_scene_support(scene: &Scene) -> Result<(), GpuError> {
     if scene.force_path == ForcePath::Rapier {
         return refuse("`force_path = \"rapier\"` is the CPU's rapier pipeline path".into());
     }
-    if !scene.contact.works_of_adhesion.is_empty() {
-        return refuse(
-            "its materials mix to different works of adhesion per pair \
-             (`[[material]] work_of_adhesion_j_per_m2`): the GPU binds one value for every pair"
-                .into(),
-        );
-    }
     for wall in &scene.walls {
         let j = wall.index;
         let kind = scene.source.walls.get(j).map(|w| w.kind);
@@ -240,7 +233,8 @@ type Moduli = (Vec<(f64, f64)>, Vec<(f64, f64)>);
 
 /// Bind the scene's laws with normal model `normal` on a stepper holding the first particle of
 /// each species and the walls' planes (a law depends on the materials and the species, not
-/// on the shape), as the CPU path's stepper binds them; the normal constants by
+/// on the shape), as the CPU path's stepper binds them (with each material pair's own normal
+/// values where the scene gives them: the mixed work of adhesion); the normal constants by
 /// `constants(law, E*, R)` with the pair's `E*` and `R` from `moduli` (`None`: the law keeps
 /// them itself).
 fn bind_scene<N, F>(
@@ -251,7 +245,7 @@ fn bind_scene<N, F>(
     constants: F,
 ) -> Result<SceneLaws, GpuError>
 where
-    N: NormalModel,
+    N: NormalModel + Declared,
     N::Law: Clone,
     F: Fn(&N::Law, f64, f64) -> Result<LawConstants, GpuError>,
 {
@@ -290,7 +284,7 @@ fn bind_with<N, R, F>(
     constants: F,
 ) -> Result<SceneLaws, GpuError>
 where
-    N: NormalModel,
+    N: NormalModel + Declared,
     N::Law: Clone,
     R: RollingModel,
     R::Law: Clone,
@@ -302,6 +296,20 @@ where
         .iter()
         .map(|(_, m)| stepper.insert_material(*m))
         .collect();
+    // The scene's material pairs with their own values of its law (as the CPU path's build).
+    if N::DECLARATION.name == scene.contact.normal.law {
+        for a in 0..materials.len() {
+            for b in a..materials.len() {
+                if let Some(values) = scene.contact.pair_normal_values(a, b) {
+                    stepper.set_pair_normal(
+                        materials[a],
+                        materials[b],
+                        N::from_values(&values)?,
+                    )?;
+                }
+            }
+        }
+    }
     for (j, plane) in planes {
         let material = materials[scene.walls[*j].material];
         stepper.insert_surface(

@@ -2,8 +2,8 @@
 //! their own normal model (the adhesive MDR law with the pair's work of adhesion `Δγ_ij`, say)
 //! in place of its contact model's, and every other pair with the model's. The table is read
 //! where laws are bound (once per species pair on the neighbour-list path, once per new
-//! contact on the rapier pipeline path), never per contact update: the pair loop runs one law
-//! type, monomorphised, whatever value each pair carries.
+//! contact on the rapier pipeline path, once per impact in restitution mode), never per contact
+//! update: the pair loop runs one law type, monomorphised, whatever value each pair carries.
 
 use crate::particles::MaterialHandle;
 use mdr_contact::damping::DampingModel;

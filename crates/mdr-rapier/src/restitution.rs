@@ -11,13 +11,19 @@
 //! ([`RestitutionHooks::maintain`]) a pair whose surfaces are more than the history reach apart
 //! (one effective radius by default, [`RestitutionHooks::history_reach`]) loses its crater,
 //! whatever rapier's prediction distance and AABB margins keep in its narrow phase.
+//!
+//! The law is bound per material pair: every pair runs the hooks' MDR law and work of
+//! adhesion, except the pairs of materials given their own with
+//! [`RestitutionHooks::set_pair_normal`] (a scene's mixed `Δγ_ij` per material pair,
+//! docs/theory.md §9.3), read where an impact's law is bound.
 
 use crate::error::{positive, CouplingError, Result};
+use crate::pair_models::PairNormals;
 use crate::particles::{MaterialHandle, ParticleSet, SphereBuilder};
 use crate::registration::{add_restitution_flags, check_restitution_flags};
 use crate::restitution_law::adhesive_impact;
 use crate::store::PairKey;
-use mdr_contact::normal::{MdrElastoPlastic, MdrLaw, MdrState, NormalModel};
+use mdr_contact::normal::{AdhesiveMdr, MdrElastoPlastic, MdrLaw, MdrState, NormalModel};
 use mdr_contact::ContactPair;
 use rapier3d_f64::prelude::*;
 use std::collections::HashMap;
@@ -254,6 +260,8 @@ pub struct RestitutionReport {
 pub struct RestitutionHooks {
     model: MdrElastoPlastic,
     work_of_adhesion: f64,
+    /// The laws of the material pairs bound with their own (MDR parameters, `Δγ`).
+    pair_normals: PairNormals<AdhesiveMdr>,
     friction: FrictionRule,
     /// The step of the last [`RestitutionHooks::prepare`].
     dt: Option<f64>,
@@ -290,6 +298,7 @@ impl RestitutionHooks {
         Ok(Self {
             model,
             work_of_adhesion: 0.0,
+            pair_normals: PairNormals::default(),
             friction: rule,
             dt: None,
             declared_dt: None,
@@ -313,9 +322,58 @@ impl RestitutionHooks {
         Ok(self)
     }
 
-    /// The work of adhesion `Δγ` (J/m²).
+    /// The work of adhesion `Δγ` (J/m²) of the pairs without a law of their own
+    /// ([`RestitutionHooks::set_pair_normal`]).
     pub fn work_of_adhesion(&self) -> f64 {
         self.work_of_adhesion
+    }
+
+    /// Bind the impacts between materials `a` and `b` (sphere–sphere and sphere–surface,
+    /// either order) with the adhesive MDR law `normal` (its MDR parameters and work of
+    /// adhesion, zero for the plain MDR law) in place of the hooks' own: e.g. a scene's mixed
+    /// `Δγ_ij = √(Δγ_i Δγ_j)` per material pair (docs/theory.md §9.3). Each impact binds its
+    /// pair's law when it happens, so this may be called between steps; a pair's crater
+    /// history stays as it is.
+    ///
+    /// ```
+    /// use mdr_rapier::mdr_contact::normal::AdhesiveMdr;
+    /// use mdr_rapier::prelude::*;
+    ///
+    /// let model = MdrElastoPlastic::paper();
+    /// let mut hooks = RestitutionHooks::new(model, 0.0)
+    ///     .unwrap()
+    ///     .with_work_of_adhesion(0.5)
+    ///     .unwrap();
+    /// let powder = hooks.particles_mut().insert_material(Material::paper_steel());
+    /// let steel = hooks.particles_mut().insert_material(Material::paper_steel());
+    /// // Powder on steel adheres with √(0.5 · 0) = 0: the plain MDR law's rebound.
+    /// hooks
+    ///     .set_pair_normal(powder, steel, AdhesiveMdr::new(model, 0.0).unwrap())
+    ///     .unwrap();
+    /// assert_eq!(hooks.pair_normal(steel, powder).work_of_adhesion(), 0.0);
+    /// assert_eq!(hooks.pair_normal(powder, powder).work_of_adhesion(), 0.5);
+    /// ```
+    pub fn set_pair_normal(
+        &mut self,
+        a: MaterialHandle,
+        b: MaterialHandle,
+        normal: AdhesiveMdr,
+    ) -> Result<()> {
+        self.particles.material(a)?;
+        self.particles.material(b)?;
+        self.pair_normals.set(a, b, normal);
+        Ok(())
+    }
+
+    /// The law of the impacts between materials `a` and `b`: the one set by
+    /// [`RestitutionHooks::set_pair_normal`], else the hooks' MDR law with their work of
+    /// adhesion.
+    pub fn pair_normal(&self, a: MaterialHandle, b: MaterialHandle) -> AdhesiveMdr {
+        match self.pair_normals.get(a, b) {
+            Some(normal) => *normal,
+            None => AdhesiveMdr::new(self.model, self.work_of_adhesion)
+                .expect("the hooks' work of adhesion is checked when set"),
+        }
     }
 
     /// Keep a pair's impact history while the gap between its surfaces is below `reach`
@@ -550,14 +608,15 @@ impl RestitutionHooks {
         }
     }
 
-    /// The pair quantities and the bound law of two registered colliders.
+    /// The bound law of two registered colliders, its work of adhesion (J/m²) and the pair's
+    /// reduced mass (kg).
     fn pair_law(
         &self,
         bodies: &RigidBodySet,
         ctx_bodies: (Option<RigidBodyHandle>, Option<RigidBodyHandle>),
         c1: ColliderHandle,
         c2: ColliderHandle,
-    ) -> Option<(MdrLaw, f64)> {
+    ) -> Option<(MdrLaw, f64, f64)> {
         let p1 = self.particles.get(c1)?;
         let p2 = self.particles.get(c2)?;
         let radius = match (p1.radius(), p2.radius()) {
@@ -579,7 +638,11 @@ impl RestitutionHooks {
         };
         let (e_star, g_star) = self.particles.pair_moduli(p1.material, p2.material);
         let pair = ContactPair::new(e_star, g_star, radius, mass).ok()?;
-        Some((self.model.bind(&pair).ok()?, mass))
+        let (model, work_of_adhesion) = match self.pair_normals.get(p1.material, p2.material) {
+            Some(normal) => (normal.params(), normal.work_of_adhesion()),
+            None => (&self.model, self.work_of_adhesion),
+        };
+        Some((model.bind(&pair).ok()?, work_of_adhesion, mass))
     }
 
     /// The law's part of `modify_solver_contacts`.
@@ -587,7 +650,7 @@ impl RestitutionHooks {
         let bodies = ctx.bodies;
         let (c1, c2) = (ctx.collider1, ctx.collider2);
         let (rb1, rb2) = (ctx.rigid_body1, ctx.rigid_body2);
-        let Some((law, mass)) = self.pair_law(bodies, (rb1, rb2), c1, c2) else {
+        let Some((law, work_of_adhesion, mass)) = self.pair_law(bodies, (rb1, rb2), c1, c2) else {
             return;
         };
         let Some(dt) = self.dt.filter(|_| self.prepared) else {
@@ -637,13 +700,11 @@ impl RestitutionHooks {
         self.impacts.fetch_add(1, Ordering::Relaxed);
         // Energy that fits within the old unloading branch is returned without adhesion:
         // elastic re-impact (docs/theory.md §4); skip the root solve.
-        let restitution = if self.work_of_adhesion == 0.0
+        let restitution = if work_of_adhesion == 0.0
             && kinetic <= law.stored_energy(state.max_overlap, state.max_overlap)
         {
             1.0
-        } else if let Ok(impact) =
-            adhesive_impact(&law, self.work_of_adhesion, &state, mass, approach)
-        {
+        } else if let Ok(impact) = adhesive_impact(&law, work_of_adhesion, &state, mass, approach) {
             self.history.commit(slot, impact.state.max_overlap);
             impact.restitution
         } else {

@@ -182,10 +182,8 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
             match &mut coupling {
                 Coupling::RapierPipeline(s) => s.set_pair_normal(ma, mb, &values)?,
                 Coupling::NeighbourList(s) => s.set_pair_normal(ma, mb, &values)?,
-                Coupling::Restitution(_) => {
-                    return Err(SimError::Build(
-                        "restitution mode runs one work of adhesion for every pair".to_owned(),
-                    ))
+                Coupling::Restitution(h) => {
+                    h.set_pair_normal(ma, mb, AdhesiveMdr::from_values(&values)?)?
                 }
             }
         }

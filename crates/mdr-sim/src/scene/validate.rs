@@ -631,7 +631,7 @@ impl Checker<'_, '_> {
         }
 
         if let Some(contact) = &mut contact {
-            self.adhesion(&file, &gammas, &particles, &walls_out, contact);
+            self.adhesion(&gammas, &particles, &walls_out, contact);
         }
 
         // Placement against placement and walls, within each group's allowance.

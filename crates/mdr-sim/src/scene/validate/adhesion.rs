@@ -3,13 +3,9 @@
 //! `Δγ_ij = √(Δγ_i Δγ_j)` (docs/theory.md §9, "Pair mixing"). A scene whose materials give
 //! adhesion runs the adhesive MDR law (`adhesive_mdr`) in place of `normal = "mdr"`, bound per
 //! material pair with that pair's `Δγ_ij` (a pair with `Δγ_ij = 0` runs the MDR law's result
-//! exactly). Restitution mode takes one `Δγ` for every impact, so there the pairs that can
-//! meet must mix to one value.
+//! exactly), in force mode on both paths and in restitution mode alike.
 
 use super::*;
-
-/// Largest relative spread of the pairs' mixed `Δγ` read as one value (round-off of the mix).
-const SAME_MIX: f64 = 1e-12;
 
 impl Checker<'_, '_> {
     /// The materials' `Δγ_i` (J/m²; 0 where not given), each checked (finite, ≥ 0).
@@ -43,7 +39,6 @@ impl Checker<'_, '_> {
     /// `gammas` per material, the spheres and walls that meet.
     pub(super) fn adhesion(
         &mut self,
-        file: &SceneFile,
         gammas: &[f64],
         particles: &[ParticleInit],
         walls: &[Wall],
@@ -56,7 +51,6 @@ impl Checker<'_, '_> {
             .key("material")
             .index(first)
             .key("work_of_adhesion_j_per_m2");
-        let name = |m: usize| file.material[m].name.as_str();
         if contact.normal.law != MdrElastoPlastic::DECLARATION.name {
             let message = if contact.normal.law == AdhesiveMdr::DECLARATION.name {
                 "is given per material while [contact] normal = \"adhesive_mdr\" sets one \
@@ -96,33 +90,12 @@ impl Checker<'_, '_> {
                 meet(a, w.material);
             }
         }
-        let (lo, hi) = pairs.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), p| {
-            (lo.min(p.2), hi.max(p.2))
-        });
-        if pairs.is_empty() || hi == 0.0 {
+        let hi = pairs.iter().fold(0.0_f64, |hi, p| hi.max(p.2));
+        if hi == 0.0 {
             return;
         }
-        let restitution = file.run.coupling == CouplingMode::Restitution;
-        if restitution && hi - lo > SAME_MIX * hi {
-            let list: Vec<String> = pairs
-                .iter()
-                .map(|&(a, b, g)| format!("{}–{}: {g:.6e} J/m²", name(a), name(b)))
-                .collect();
-            self.error(
-                &key,
-                format!(
-                    "the material pairs that meet in this scene mix (Δγ_ij = √(Δγ_i Δγ_j)) to \
-                     different works of adhesion ({}); restitution mode (coupling = \
-                     \"restitution\") runs one Δγ for every impact: give the materials that meet \
-                     values that mix to one Δγ (e.g. equal ones), or use coupling = \"force\", \
-                     which binds each pair's own Δγ",
-                    list.join(", ")
-                ),
-            );
-            return;
-        }
-        // The scene's law carries the largest value of the pairs that meet; in force mode each
-        // material pair is bound with its own.
+        // The scene's law carries the largest value of the pairs that meet; each material pair
+        // is bound with its own.
         let values = vec![contact.normal.values[0], contact.normal.values[1], hi];
         match AdhesiveMdr::from_values(&values) {
             Ok(_) => {
@@ -130,9 +103,7 @@ impl Checker<'_, '_> {
                     law: AdhesiveMdr::DECLARATION.name,
                     values,
                 };
-                if !restitution {
-                    contact.works_of_adhesion = gammas.to_vec();
-                }
+                contact.works_of_adhesion = gammas.to_vec();
             }
             Err(e) => self.error(&key, e.to_string()),
         }
