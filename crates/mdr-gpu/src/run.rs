@@ -365,6 +365,11 @@ impl GpuRun<'_> {
         if let Some(reason) = self.wall_guard(&sample.state) {
             return Err(self.stop(reason));
         }
+        if frame_due {
+            if let Some(reason) = non_finite(&sample.state) {
+                return Err(self.stop(reason));
+            }
+        }
         let view = ParticleView {
             position: &sample.state.position,
             velocity: &sample.state.linvel,
@@ -378,16 +383,6 @@ impl GpuRun<'_> {
             self.energy.push(row);
         }
         if frame_due {
-            if let Some(reason) = non_finite(&sample.state) {
-                return Err(self.stop(reason));
-            }
-            let view = ParticleView {
-                position: &sample.state.position,
-                velocity: &sample.state.linvel,
-                radius: self.gpu.radii(),
-                mass: self.gpu.masses(),
-                contacts: &sample.contacts,
-            };
             let headline = self.tracker.sample(scene, self.time(), &view);
             self.samples.push(headline);
             if !options.no_frames {
@@ -514,28 +509,11 @@ impl GpuRun<'_> {
         )
         .map_err(output(&svg))?;
         files.push(svg);
-        if !names.is_empty() && !self.samples.is_empty() {
-            let series: Vec<(&str, Vec<(f64, f64)>)> = names
-                .iter()
-                .enumerate()
-                .map(|(i, n)| {
-                    (
-                        *n,
-                        self.samples.iter().map(|s| (s.time, s.values[i])).collect(),
-                    )
-                })
-                .collect();
-            let path = out.join(format!("{name}_headline.svg"));
-            let report = self.tracker.report(self.scene, &self.samples);
-            plot::write_chart(
-                &path,
-                &format!("{name}: headline"),
-                "time (s)",
-                &plot::axis_label(names),
-                &series,
-                &mdr_sim::headline::reference_lines(&report, &self.samples),
-            )
-            .map_err(output(&path))?;
+        if let Some(path) = self
+            .tracker
+            .write_chart(self.scene, &self.samples, out)
+            .map_err(|(path, e)| output(&path)(e))?
+        {
             files.push(path);
         }
         Ok(())

@@ -218,6 +218,38 @@ impl Tracker {
     ) -> std::io::Result<()> {
         series_csv::write_series_csv(path, self.series_names(), samples)
     }
+
+    /// Plot the headline time series with the literature's [`reference_lines`] as
+    /// `NAME_headline.svg` in `out`: its path, or `None` (nothing written) for a scene without
+    /// series or samples. An error comes with the path it concerns.
+    pub fn write_chart(
+        &self,
+        scene: &Scene,
+        samples: &[HeadlineSample],
+        out: &std::path::Path,
+    ) -> Result<Option<std::path::PathBuf>, (std::path::PathBuf, std::io::Error)> {
+        let names = self.series_names();
+        if names.is_empty() || samples.is_empty() {
+            return Ok(None);
+        }
+        let series: Vec<(&str, Vec<(f64, f64)>)> = names
+            .iter()
+            .enumerate()
+            .map(|(i, n)| (*n, samples.iter().map(|s| (s.time, s.values[i])).collect()))
+            .collect();
+        let path = out.join(format!("{}_headline.svg", scene.name));
+        let report = self.report(scene, samples);
+        crate::output::plot::write_chart(
+            &path,
+            &format!("{}: headline", scene.name),
+            "time (s)",
+            &crate::output::plot::axis_label(names),
+            &series,
+            &reference_lines(&report, samples),
+        )
+        .map_err(|e| (path.clone(), e))?;
+        Ok(Some(path))
+    }
 }
 
 /// The literature's prediction drawn next to a headline's time series, as labelled lines in the

@@ -211,47 +211,33 @@ pub fn write_csv(path: &Path, rows: &[EnergyRow]) -> std::io::Result<()> {
 /// Write the `columns` of the rows (names of [`EnergyRow`]'s fields, in that order) as CSV
 /// atomically: a run that keeps only some of the books writes only those.
 pub fn write_csv_columns(path: &Path, rows: &[EnergyRow], columns: &[&str]) -> std::io::Result<()> {
+    let io = |e: csv::Error| std::io::Error::other(e);
+    // Every field through serde once (a default row first, so that the header is written even
+    // without rows), then read back and projected onto `columns`.
     let mut full = csv::Writer::from_writer(Vec::new());
-    full.serialize(EnergyRow::default())
-        .map_err(std::io::Error::other)?;
-    let header_line = full
+    for row in std::iter::once(&EnergyRow::default()).chain(rows) {
+        full.serialize(row).map_err(io)?;
+    }
+    let bytes = full
         .into_inner()
         .map_err(|e| std::io::Error::other(e.to_string()))?;
-    let header = String::from_utf8(header_line).map_err(std::io::Error::other)?;
-    let names: Vec<&str> = header
-        .lines()
-        .next()
-        .unwrap_or_default()
-        .split(',')
-        .collect();
+    let mut reader = csv::Reader::from_reader(bytes.as_slice());
+    let names = reader.headers().map_err(io)?.clone();
     let picked = columns
         .iter()
         .map(|c| {
-            names.iter().position(|n| n == c).ok_or_else(|| {
+            names.iter().position(|n| n == *c).ok_or_else(|| {
                 std::io::Error::other(format!("`{c}` is not a column of the energy books"))
             })
         })
         .collect::<std::io::Result<Vec<usize>>>()?;
     let mut writer = csv::Writer::from_writer(Vec::new());
-    writer
-        .write_record(columns)
-        .map_err(std::io::Error::other)?;
-    for row in rows {
-        let mut one = csv::Writer::from_writer(Vec::new());
-        one.serialize(row).map_err(std::io::Error::other)?;
-        let bytes = one
-            .into_inner()
-            .map_err(|e| std::io::Error::other(e.to_string()))?;
-        let mut reader = csv::Reader::from_reader(bytes.as_slice());
-        let record = reader
-            .records()
-            .next()
-            .transpose()
-            .map_err(std::io::Error::other)?
-            .unwrap_or_default();
+    writer.write_record(columns).map_err(io)?;
+    for record in reader.records().skip(1) {
+        let record = record.map_err(io)?;
         writer
             .write_record(picked.iter().map(|&k| record.get(k).unwrap_or("")))
-            .map_err(std::io::Error::other)?;
+            .map_err(io)?;
     }
     let bytes = writer
         .into_inner()

@@ -162,29 +162,11 @@ impl Sim<'_> {
         plot::write_energy_plot(&svg, &format!("{name}: energy books"), &self.energy)
             .map_err(output(&svg))?;
         files.push(svg);
-        let names = self.tracker.series_names();
-        if !names.is_empty() && !self.samples.is_empty() {
-            let series: Vec<(&str, Vec<(f64, f64)>)> = names
-                .iter()
-                .enumerate()
-                .map(|(i, n)| {
-                    (
-                        *n,
-                        self.samples.iter().map(|s| (s.time, s.values[i])).collect(),
-                    )
-                })
-                .collect();
-            let path = out.join(format!("{name}_headline.svg"));
-            let report = self.tracker.report(self.scene, &self.samples);
-            plot::write_chart(
-                &path,
-                &format!("{name}: headline"),
-                "time (s)",
-                &plot::axis_label(names),
-                &series,
-                &crate::headline::reference_lines(&report, &self.samples),
-            )
-            .map_err(output(&path))?;
+        if let Some(path) = self
+            .tracker
+            .write_chart(self.scene, &self.samples, out)
+            .map_err(|(path, e)| output(&path)(e))?
+        {
             files.push(path);
         }
         Ok(())
