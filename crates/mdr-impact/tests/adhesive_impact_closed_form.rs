@@ -7,7 +7,7 @@
 
 use mdr_contact::normal::MdrElastoPlastic;
 use mdr_contact::{ContactPair, Material};
-use mdr_impact::{Impact, NormalSpec, Sweep, DEFAULT_STEPS_PER_CONTACT};
+use mdr_impact::{Impact, Method, NormalSpec, Sweep, DEFAULT_SPRINGS, DEFAULT_STEPS_PER_CONTACT};
 use std::f64::consts::PI;
 
 /// One elastic sphere on an elastic half-space of the same material, with a work of adhesion.
@@ -168,6 +168,11 @@ const E2_TOLERANCE: f64 = 5e-4;
 const FINE_STEPS: usize = 8000;
 const E2_TOLERANCE_FINE: f64 = 1e-4;
 
+/// Tolerance in `e_n²` for the spring bed at the default springs and steps: about three times the
+/// largest difference measured over [`SPEED_RATIOS`] (1.7e-4, at `1.3 v_s`; the time step's
+/// error dominates, as for the closed-form law).
+const SPRING_BED_TOLERANCE: f64 = 5e-4;
+
 /// The largest difference in `e_n²` between the validator and `closed` over [`SPEED_RATIOS`].
 fn largest_difference(case: &Case, closed: &Case, steps: usize) -> f64 {
     let speeds: Vec<f64> = SPEED_RATIOS
@@ -309,3 +314,38 @@ fn sticking_speed_is_thornton_and_nings_times_the_analytic_ratio() {
     }
 }
 
+/// The spring bed (`impact curve --method springs`, the discrete MDR bed with Heß's rule that
+/// ref. [12] integrates) with plasticity out of reach (`q_c = 10¹⁵ N/m`) against the closed form
+/// (A17): `e_n²` within [`SPRING_BED_TOLERANCE`] at [`DEFAULT_SPRINGS`] springs from `1.01 v_s`
+/// to `40 v_s`, and stuck at `0.99 v_s`.
+#[test]
+fn spring_bed_follows_the_closed_form() {
+    let case = GLASS;
+    let bed = |speed: f64| {
+        Impact::new(
+            case.pair(),
+            NormalSpec::Mdr(MdrElastoPlastic::new(1e15, 0.37).unwrap()),
+            speed,
+        )
+        .work_of_adhesion(case.gamma)
+        .method(Method::Springs {
+            springs: DEFAULT_SPRINGS,
+        })
+    };
+    let speeds: Vec<f64> = SPEED_RATIOS
+        .iter()
+        .map(|r| r * case.sticking_speed())
+        .collect();
+    let outcomes = Sweep::new(speeds.iter().map(|&v| bed(v)).collect())
+        .run()
+        .unwrap();
+    let mut worst: f64 = 0.0;
+    for (o, &v) in outcomes.iter().zip(&speeds) {
+        assert!(!o.stuck, "{v}");
+        let d = (o.normal_restitution.powi(2) - case.restitution_squared(v)).abs();
+        worst = worst.max(d);
+    }
+    eprintln!("spring bed: largest |Δe_n²| = {worst:.2e}");
+    assert!(worst < SPRING_BED_TOLERANCE, "{worst}");
+    assert!(bed(0.99 * case.sticking_speed()).run().unwrap().stuck);
+}
