@@ -3,7 +3,8 @@
 //! in units of `F_c δ₀`, hence `e_n(v₀)`, the sticking speed of Heß's rule and Thornton & Ning's
 //! (1998). Everything here is written out from E, ν, ρ, R and Δγ; the validator is run the way
 //! `mdr-dem impact curve --elastic --work-of-adhesion W` runs it (a [`Sweep`] of closed-form
-//! impacts integrated in time, the default steps per contact).
+//! impacts integrated in time, at the default and at 8,000 steps per contact), and the spring
+//! bed the way `--method springs` runs it.
 
 use mdr_contact::normal::MdrElastoPlastic;
 use mdr_contact::{ContactPair, Material};
