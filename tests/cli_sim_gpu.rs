@@ -176,7 +176,16 @@ fn sim_run_on_the_gpu_prints_the_cpu_runs_headline_and_refuses_what_it_lacks() {
     )
     .unwrap();
     let run = mdr_dem(
-        &["sim", "run", "ckpt.toml", "--quiet", "--out", "ckpt", "--device", "gpu"],
+        &[
+            "sim",
+            "run",
+            "ckpt.toml",
+            "--quiet",
+            "--out",
+            "ckpt",
+            "--device",
+            "gpu",
+        ],
         path,
     );
     assert!(run.status.success(), "{}", text(&run.stderr));

@@ -26,11 +26,11 @@ use crate::device::{GpuContext, GpuError};
 use crate::scene::{gpu_scene_support, GpuScene};
 use crate::system::{GpuOptions, GpuState};
 use indicatif::{ProgressBar, ProgressStyle};
+use mdr_sim::checkpoint::{self, CheckpointError};
 use mdr_sim::headline::{HeadlineReport, HeadlineSample, ParticleView, Tracker};
 use mdr_sim::output::energy::{self, EnergyRow};
 use mdr_sim::output::plot;
 use mdr_sim::output::vtk::{self, CollectionEntry, ParticleFrame};
-use mdr_sim::checkpoint::{self, CheckpointError};
 use mdr_sim::run::{Books, CheckpointData, NeighbourListRun, CROSSING_OVERLAP};
 use mdr_sim::Scene;
 use nalgebra::Vector3;
@@ -113,8 +113,11 @@ impl GpuEnergyRow {
         }
     }
 
-    /// The row in the CPU run's type (for its CSV writer: only [`GPU_ENERGY_COLUMNS`] are
-    /// written).
+    /// The row in the CPU run's type (for its CSV writer, which writes only
+    /// [`GPU_ENERGY_COLUMNS`], and for a checkpoint): the works the device does not keep, and
+    /// so the balance, are NaN (not a number: a CPU run continued from the checkpoint writes
+    /// them so, and its energy guard starts from its own first row); the wall work and the
+    /// removed spheres' energy are zero (the GPU has fixed walls and no sinks).
     fn as_energy_row(&self) -> EnergyRow {
         EnergyRow {
             time_s: self.time_s,
@@ -125,6 +128,13 @@ impl GpuEnergyRow {
             elastic_tangential_j: self.elastic_tangential_j,
             elastic_rolling_j: self.elastic_rolling_j,
             contacts: self.contacts,
+            plastic_j: f64::NAN,
+            friction_j: f64::NAN,
+            damping_j: f64::NAN,
+            rolling_j: f64::NAN,
+            stiffness_tangential_j: f64::NAN,
+            stiffness_rolling_j: f64::NAN,
+            balance_j: f64::NAN,
             ..EnergyRow::default()
         }
     }
@@ -310,7 +320,11 @@ impl GpuRun<'_> {
         self.tracker = data.tracker;
         self.collection = data.collection;
         self.samples = data.samples;
-        self.energy = data.energy.iter().map(GpuEnergyRow::of_energy_row).collect();
+        self.energy = data
+            .energy
+            .iter()
+            .map(GpuEnergyRow::of_energy_row)
+            .collect();
         let frames = self.collection.iter().filter(|e| e.part == 0).count();
         let contact_frames = self.collection.iter().filter(|e| e.part == 1).count();
         mdr_sim::output::run_dir::remove_stale(
@@ -329,9 +343,13 @@ impl GpuRun<'_> {
     /// force pass of `step`), keeping the last three.
     fn write_checkpoint(&mut self) -> Result<(), GpuRunError> {
         let scene = self.scene;
-        let path = self.out.join("checkpoints").join(
-            mdr_sim::output::run_dir::checkpoint_name(&scene.name, self.step),
-        );
+        let path = self
+            .out
+            .join("checkpoints")
+            .join(mdr_sim::output::run_dir::checkpoint_name(
+                &scene.name,
+                self.step,
+            ));
         let state = self.device(|gpu| gpu.state())?;
         // The device keeps no work books: the totals are zero, with one plastic work per
         // particle as the CPU run's checkpoint has.
@@ -348,7 +366,11 @@ impl GpuRun<'_> {
             books,
             tracker: self.tracker.clone(),
             collection: self.collection.clone(),
-            energy: self.energy.iter().map(GpuEnergyRow::as_energy_row).collect(),
+            energy: self
+                .energy
+                .iter()
+                .map(GpuEnergyRow::as_energy_row)
+                .collect(),
             samples: self.samples.clone(),
         };
         let data = CheckpointData::of_neighbour_list_run(scene, run, &path)?;

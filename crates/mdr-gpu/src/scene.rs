@@ -15,10 +15,10 @@ use crate::law::{
 };
 use crate::system::{GpuOptions, GpuState, Plane, System, SystemSpec};
 use mdr_contact::model::{ContactLaw, ContactModel};
-use mdr_contact::tangential::MindlinLaw;
 use mdr_contact::normal::{AdhesiveMdr, Hertz, MdrElastoPlastic, NormalLaw, Thornton};
 use mdr_contact::params::Declared;
 use mdr_contact::rolling::{NoRolling, RollingLaw};
+use mdr_contact::tangential::MindlinLaw;
 use mdr_rapier::convert::to_glam;
 use mdr_rapier::neighbour_list::particles::Species;
 use mdr_rapier::neighbour_list::{Boundary, NeighbourListStepper};
@@ -519,7 +519,9 @@ impl GpuScene {
         };
         let (species, _) = scene_species(scene);
         let species_count = laws.species_table.len();
-        let box_len = scene.periodic.map_or([0.0; 2], |[x, y]| [x.1 - x.0, y.1 - y.0]);
+        let box_len = scene
+            .periodic
+            .map_or([0.0; 2], |[x, y]| [x.1 - x.0, y.1 - y.0]);
         let mass = species
             .iter()
             .map(|&s| laws.species_table[s as usize].mass)
@@ -588,8 +590,7 @@ impl GpuScene {
             if let Some(h) = DeviceHistory::of_wall(state, slot) {
                 let (i, k) = (slot / walls, slot % walls);
                 let plane = &self.planes[k];
-                let overlap =
-                    self.radius[i] - plane.normal.dot(&(state.position[i] - plane.point));
+                let overlap = self.radius[i] - plane.normal.dot(&(state.position[i] - plane.point));
                 let law = self.species[i] as usize * walls + k;
                 add((self.wall_energies[law])(&h, overlap));
             }
@@ -605,7 +606,10 @@ impl GpuScene {
             let d = state.position[i] - (state.position[j] + shift);
             let overlap = self.radius[i] + self.radius[j] - d.norm();
             let law = self.species[i] as usize * self.species_count + self.species[j] as usize;
-            add((self.sphere_energies[law])(&DeviceHistory::of_pair(pair), overlap));
+            add((self.sphere_energies[law])(
+                &DeviceHistory::of_pair(pair),
+                overlap,
+            ));
         }
         total
     }

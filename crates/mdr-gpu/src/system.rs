@@ -675,7 +675,10 @@ impl System {
                 "__WALL_HI__",
                 &wgsl_vectors(spec.walls.iter().map(|w| w.hi)),
             )
-            .replace("__CROSSING__", &format!("{:?}", mdr_sim::run::CROSSING_OVERLAP))
+            .replace(
+                "__CROSSING__",
+                &format!("{:?}", mdr_sim::run::CROSSING_OVERLAP),
+            )
             .replace("__MAXN__", &options.max_neighbours.to_string())
             .replace("__CELLCAP__", &options.cell_capacity.to_string());
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -1075,15 +1078,7 @@ impl System {
             .collect();
         let floor_normal_state = floor_flat
             .chunks_exact(fw)
-            .map(|h| {
-                [2, 3].map(|w| {
-                    if h[0] != 0.0 && w <= nw {
-                        h[w]
-                    } else {
-                        0.0
-                    }
-                })
-            })
+            .map(|h| [2, 3].map(|w| if h[0] != 0.0 && w <= nw { h[w] } else { 0.0 }))
             .collect();
         let floor_rolling_stiffness = floor_flat
             .chunks_exact(fw)
@@ -1217,7 +1212,8 @@ impl System {
                 h[t + 7] = state.floor_rolling_stiffness[slot];
             }
         }
-        let flat = |v: &[Vector3<f64>]| -> Vec<f64> { v.iter().flat_map(|p| [p.x, p.y, p.z]).collect() };
+        let flat =
+            |v: &[Vector3<f64>]| -> Vec<f64> { v.iter().flat_map(|p| [p.x, p.y, p.z]).collect() };
         let rotation: Vec<f64> = state.rotation.iter().flatten().copied().collect();
         let mut status = [0u32; STATUS_WORDS];
         status[0] = u32::from(state.rebuild_due);

@@ -24,8 +24,8 @@ mod records;
 mod steps;
 mod sweep;
 
-pub use mdr_rapier::neighbour_list::StepTimings;
 pub use books::Books;
+pub use mdr_rapier::neighbour_list::StepTimings;
 pub use records::{
     BodyRecord, CheckpointData, ContactRecord, NeighbourListRecord, NeighbourListRun, RngRecord,
 };
