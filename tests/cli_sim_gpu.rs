@@ -164,9 +164,11 @@ fn sim_run_on_the_gpu_prints_the_cpu_runs_headline_and_refuses_what_it_lacks() {
     );
     let (stdout, stderr) = (text(&resumed.stdout), text(&resumed.stderr));
     assert!(resumed.status.success(), "{stderr}");
-    assert!(stdout.contains("(from step 250 to 375)"), "{stdout}");
+    // From the CPU run's end checkpoint (step 251 of 251) to the longer scene's end.
+    assert!(stdout.contains("(from step 251 to 375)"), "{stdout}");
 
-    // The checkpoints a scene asks for, on the GPU; none with --no-checkpoints.
+    // The checkpoints a scene asks for, on the GPU (every 125 steps, and at the end of the
+    // scene's 251 steps); none with --no-checkpoints.
     std::fs::write(
         path.join("ckpt.toml"),
         DROP.replace(
@@ -197,7 +199,8 @@ fn sim_run_on_the_gpu_prints_the_cpu_runs_headline_and_refuses_what_it_lacks() {
         written,
         [
             "checkpoints/drop_step000000000125.mdrck",
-            "checkpoints/drop_step000000000250.mdrck"
+            "checkpoints/drop_step000000000250.mdrck",
+            "checkpoints/drop_step000000000251.mdrck"
         ],
     );
     let run = mdr_dem(

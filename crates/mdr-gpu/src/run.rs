@@ -353,8 +353,7 @@ impl GpuRun<'_> {
         let state = self.device(|gpu| gpu.state())?;
         // The device keeps no work books: the totals are zero, with one plastic work per
         // particle as the CPU run's checkpoint has.
-        let mut books = Books::default();
-        books.particle_plastic = vec![0.0; state.position.len()];
+        let books = Books::new(state.position.len());
         let run = NeighbourListRun {
             step: self.step,
             particles: particle_records(&state),

@@ -1181,9 +1181,7 @@ impl System {
                 keys[k] = key | ACTIVE;
                 let h = &mut h_state[sw * k..sw * (k + 1)];
                 h[0] = pair.max_overlap;
-                for w in 1..nw {
-                    h[w] = pair.normal_state[w - 1];
-                }
+                h[1..nw].copy_from_slice(&pair.normal_state[..nw - 1]);
                 if sw > nw {
                     h[nw..nw + 3].copy_from_slice(pair.rolling_torque.as_slice());
                     h[nw + 3] = pair.rolling_stiffness;
@@ -1201,9 +1199,7 @@ impl System {
             let h = &mut walls[fw * slot..fw * (slot + 1)];
             h[0] = 1.0;
             h[1] = *max_overlap;
-            for w in 1..nw {
-                h[1 + w] = state.floor_normal_state[slot][w - 1];
-            }
+            h[2..1 + nw].copy_from_slice(&state.floor_normal_state[slot][..nw - 1]);
             let t = 1 + nw;
             h[t..t + 3].copy_from_slice(xi.as_slice());
             h[t + 3] = *radius;

@@ -92,7 +92,8 @@ pub struct PairBooks {
 }
 
 impl Books {
-    pub(crate) fn new(particles: usize) -> Self {
+    /// Empty books of a run of `particles` spheres.
+    pub fn new(particles: usize) -> Self {
         Self {
             particle_plastic: vec![0.0; particles],
             ..Self::default()
