@@ -309,7 +309,7 @@ impl GpuRun<'_> {
         let data = CheckpointData::read(path)?;
         data.check_scene(scene, path)?;
         let state = state_of_checkpoint(
-            &scene.contact.normal.law,
+            scene.contact.normal.law,
             &data,
             scene.particles.len(),
             self.gpu.planes().len(),
@@ -358,7 +358,7 @@ impl GpuRun<'_> {
             step: self.step,
             particles: particle_records(&state),
             lists: lists_record(
-                &scene.contact.normal.law,
+                scene.contact.normal.law,
                 &state,
                 mdr_sim::run::build::skin(scene),
             ),
