@@ -1,9 +1,9 @@
 //! `mdr-dem sim run --device gpu` from the command line: a sphere dropped onto a plane run on
-//! both devices prints the same headline and writes the same files but the checkpoints; a CPU
-//! checkpoint given to `--resume` with `--device gpu` is refused by the flag's name (exit 2),
-//! as are a scene asking for checkpoints (unless `--no-checkpoints`), a wall the GPU lacks and
-//! `--no-checkpoints` on the CPU. Needs a Vulkan device with 64-bit floats (lavapipe on a
-//! machine without a GPU, docs/gpu.md).
+//! both devices prints the same headline and writes the same files, checkpoints included; a
+//! CPU checkpoint continues on the GPU with `--resume` (the scene made longer) and a GPU run
+//! writes the checkpoints `checkpoint_interval_s` asks for, none with `--no-checkpoints`; a wall
+//! the GPU lacks and `--no-checkpoints` on the CPU are refused by name (exit 2). Needs a Vulkan
+//! device with 64-bit floats (lavapipe on a machine without a GPU, docs/gpu.md).
 
 use std::path::Path;
 use std::process::{Command, Output};
@@ -129,23 +129,30 @@ fn sim_run_on_the_gpu_prints_the_cpu_runs_headline_and_refuses_what_it_lacks() {
     };
     assert!(!done(&stdout).is_empty(), "{stdout}");
     assert_eq!(done(&stdout), done(&text(&cpu.stdout)));
-    // The same files but the checkpoints.
-    let cpu_files: Vec<_> = files(&path.join("cpu"))
-        .into_iter()
-        .filter(|f| !f.starts_with("checkpoints/"))
-        .collect();
+    // The same files, the end checkpoint included.
+    let cpu_files = files(&path.join("cpu"));
+    assert!(
+        cpu_files.iter().any(|f| f.starts_with("checkpoints/")),
+        "{cpu_files:?}"
+    );
     assert_eq!(files(&path.join("gpu")), cpu_files);
 
-    // A CPU checkpoint does not resume on the GPU: refused by the flag's name.
-    let checkpoint = files(&path.join("cpu"))
-        .into_iter()
+    // The CPU run's end checkpoint continues on the GPU, the scene made longer.
+    std::fs::write(
+        path.join("longer.toml"),
+        DROP.replace("duration_s = 2.0e-4", "duration_s = 3.0e-4"),
+    )
+    .unwrap();
+    let checkpoint = cpu_files
+        .iter()
         .find(|f| f.starts_with("checkpoints/"))
         .unwrap();
     let resumed = mdr_dem(
         &[
             "sim",
             "run",
-            "drop.toml",
+            "longer.toml",
+            "--quiet",
             "--out",
             "cpu",
             "--device",
@@ -155,12 +162,13 @@ fn sim_run_on_the_gpu_prints_the_cpu_runs_headline_and_refuses_what_it_lacks() {
         ],
         path,
     );
-    let stderr = text(&resumed.stderr);
-    assert_eq!(resumed.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("--resume"), "{stderr}");
-    assert!(stderr.contains("reads no checkpoint"), "{stderr}");
+    let (stdout, stderr) = (text(&resumed.stdout), text(&resumed.stderr));
+    assert!(resumed.status.success(), "{stderr}");
+    // From the CPU run's end checkpoint (step 251 of 251) to the longer scene's end.
+    assert!(stdout.contains("(from step 251 to 375)"), "{stdout}");
 
-    // Checkpoints asked for: refused, unless --no-checkpoints.
+    // The checkpoints a scene asks for, on the GPU (every 125 steps, and at the end of the
+    // scene's 251 steps); none with --no-checkpoints.
     std::fs::write(
         path.join("ckpt.toml"),
         DROP.replace(
@@ -169,26 +177,48 @@ fn sim_run_on_the_gpu_prints_the_cpu_runs_headline_and_refuses_what_it_lacks() {
         ),
     )
     .unwrap();
-    let refused = mdr_dem(
-        &["sim", "run", "ckpt.toml", "--device", "gpu", "--check"],
-        path,
-    );
-    let stderr = text(&refused.stderr);
-    assert_eq!(refused.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("checkpoint_interval_s"), "{stderr}");
-    let accepted = mdr_dem(
+    let run = mdr_dem(
         &[
             "sim",
             "run",
             "ckpt.toml",
+            "--quiet",
+            "--out",
+            "ckpt",
             "--device",
             "gpu",
-            "--check",
+        ],
+        path,
+    );
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let written: Vec<_> = files(&path.join("ckpt"))
+        .into_iter()
+        .filter(|f| f.starts_with("checkpoints/"))
+        .collect();
+    assert_eq!(
+        written,
+        [
+            "checkpoints/drop_step000000000125.mdrck",
+            "checkpoints/drop_step000000000250.mdrck",
+            "checkpoints/drop_step000000000251.mdrck"
+        ],
+    );
+    let run = mdr_dem(
+        &[
+            "sim",
+            "run",
+            "ckpt.toml",
+            "--quiet",
+            "--out",
+            "none",
+            "--device",
+            "gpu",
             "--no-checkpoints",
         ],
         path,
     );
-    assert!(accepted.status.success(), "{}", text(&accepted.stderr));
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    assert!(!path.join("none/checkpoints").exists());
     let cpu_flag = mdr_dem(
         &["sim", "run", "drop.toml", "--check", "--no-checkpoints"],
         path,

@@ -42,11 +42,11 @@ pub struct RunArgs {
     pub overwrite: bool,
     /// Where the steps run (`gpu`: force-mode scenes whose walls are planes and boxes, on a
     /// device with 64-bit floats; it writes the frames, the kinetic and gravitational energy
-    /// books and the headline, and no checkpoints: docs/gpu.md).
+    /// books, the headline and checkpoints that either device resumes: docs/gpu.md).
     #[arg(long, value_enum, default_value_t = DeviceArg::Cpu)]
     pub device: DeviceArg,
-    /// With `--device gpu`: run a scene that asks for checkpoints (`checkpoint_interval_s`)
-    /// without them (the GPU run writes none).
+    /// With `--device gpu`: write no checkpoints (not even at the end or at an interrupt),
+    /// whatever the scene's `checkpoint_interval_s`.
     #[arg(long)]
     pub no_checkpoints: bool,
     /// With `--device gpu`: neighbour slots per particle (1 to 64).
@@ -61,8 +61,7 @@ pub struct RunArgs {
 pub fn run(args: &RunArgs) -> anyhow::Result<()> {
     if args.device == DeviceArg::Cpu && args.no_checkpoints {
         return Err(Refused(
-            "--no-checkpoints is for --device gpu (which writes no checkpoints); the CPU run \
-             always writes them"
+            "--no-checkpoints is for --device gpu; the CPU run always writes its checkpoints"
                 .to_owned(),
         )
         .into());

@@ -1,7 +1,8 @@
 //! `mdr-dem sim run SCENE.toml --device gpu`: the scene on the GPU path
 //! ([`mdr_gpu::run_gpu_scene`]) with the CPU run's output folder, frames, headline and progress;
-//! the energy books the device keeps; no checkpoints. What the GPU path lacks is refused by name
-//! before anything is written.
+//! the energy books the device keeps; checkpoints in the CPU run's format, and `--resume` from a
+//! checkpoint of either device. What the GPU path lacks is refused by name before anything is
+//! written.
 
 use super::sim_run::{prepare_output_folder, shell_word, RunArgs};
 use super::{Exit, Refused, EXIT_INTERRUPTED};
@@ -12,24 +13,21 @@ use std::sync::Arc;
 
 /// Run a checked scene on the GPU (`--check`: only say whether it would run).
 pub fn run(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Result<()> {
-    if let Some(checkpoint) = &args.resume {
-        return Err(Refused(format!(
-            "--resume {}: the GPU run starts from the scene's set-up only (it reads no \
-             checkpoint); continue the run on the CPU path (leave out --device gpu)",
-            checkpoint.display()
-        ))
-        .into());
-    }
-    mdr_gpu::gpu_run_support(scene, args.no_checkpoints)?;
+    mdr_gpu::gpu_run_support(scene)?;
     if scene.source.run.max_energy_drift.is_none() {
         eprintln!(
             "--device gpu: the energy guard (max_energy_drift) is not applied: the GPU keeps no \
-             dissipated works; the wall guard is checked at every sample"
+             dissipated works; the wall guard is checked at every step"
         );
     }
     if args.check {
         eprintln!("--device gpu: the GPU path runs this scene");
         return Ok(());
+    }
+    if let Some(checkpoint) = &args.resume {
+        if let Err(e) = std::fs::metadata(checkpoint) {
+            return Err(Refused(format!("checkpoint {}: {e}", checkpoint.display())).into());
+        }
     }
     let ctx = mdr_gpu::GpuContext::new()?;
     prepare_output_folder(args, scene, out)?;
@@ -44,6 +42,7 @@ pub fn run(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Result
         quiet: args.quiet,
         interrupt: Some(interrupt),
         without_checkpoints: args.no_checkpoints,
+        resume: args.resume.clone(),
         device: mdr_gpu::GpuOptions {
             max_neighbours: args.max_neighbours,
             cell_capacity: args.cell_capacity,
@@ -62,26 +61,44 @@ pub fn run(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Result
         }
     );
     if summary.stopped_early {
+        let program = shell_word(
+            &std::env::args()
+                .next()
+                .unwrap_or_else(|| "mdr-dem".to_owned()),
+        );
+        let scene_file = shell_word(&args.scene.display().to_string());
+        let next = match &summary.checkpoint {
+            Some(checkpoint) => format!(
+                "continue with (on either device):\n  {program} sim run {scene_file} --out {} \
+                 --resume {} --device gpu",
+                shell_word(&out.display().to_string()),
+                shell_word(&checkpoint.display().to_string())
+            ),
+            None => format!(
+                "no checkpoint was written (--no-checkpoints): rerun with\n  {program} sim run \
+                 {scene_file} --out <folder>\nto start again"
+            ),
+        };
         eprintln!(
             "interrupted at t = {:.6e} s (step {}) after {:.1} s {adapter}; the frames and series \
-             up to there are in {} (the GPU run writes no checkpoint: rerun with\n  {} sim run {} \
-             --out <folder>\nto start again)",
+             up to there are in {}; {next}",
             summary.time,
             summary.step,
             summary.wall_seconds,
             out.display(),
-            shell_word(
-                &std::env::args()
-                    .next()
-                    .unwrap_or_else(|| "mdr-dem".to_owned())
-            ),
-            shell_word(&args.scene.display().to_string())
         );
         return Err(Exit(EXIT_INTERRUPTED).into());
     }
     println!(
-        "done: t = {:.6e} s, {} steps in {:.1} s {adapter}",
-        summary.time, summary.step, summary.wall_seconds
+        "done: t = {:.6e} s, {} steps in {:.1} s {adapter}{}",
+        summary.time,
+        summary.step - summary.start_step,
+        summary.wall_seconds,
+        if summary.start_step > 0 {
+            format!(" (from step {} to {})", summary.start_step, summary.step)
+        } else {
+            String::new()
+        }
     );
     if !summary.headline.text.is_empty() {
         println!("{}", summary.headline.text);

@@ -37,13 +37,21 @@ const ACTIVE: u32 = 0x80000000u;
 
 // Status words (atomics): rebuild requested, rebuilds done, neighbour overflow (1 + particle),
 // cell overflow (1 + cell), a wall touched outside the face it stands for (1 + particle, then
-// 1 + wall).
+// 1 + wall), force passes begun (the step, modulo 2³²), the wall guard: the first step at which
+// a sphere sank deeper than `CROSSING` of its radius into a wall (all ones: none), and the
+// largest such wall slot of that step (1 + particle · walls + wall).
 const S_REBUILD: u32 = 0u;
 const S_REBUILDS: u32 = 1u;
 const S_NEIGHBOUR_OVERFLOW: u32 = 2u;
 const S_CELL_OVERFLOW: u32 = 3u;
 const S_OFF_FACE: u32 = 4u;
 const S_OFF_FACE_WALL: u32 = 5u;
+const S_PASSES: u32 = 6u;
+const S_CROSSING_STEP: u32 = 7u;
+const S_CROSSING_SLOT: u32 = 8u;
+// The wall guard's depth, a fraction of the radius (`mdr_sim::run::CROSSING_OVERLAP`), written
+// in by the host.
+const CROSSING: f64 = __CROSSING__lf;
 // f64 words per species in `tables` (radius, mass, 1/mass, 1/inertia).
 const SPECIES_WORDS: u32 = 4u;
 // The walls, written in by the host (constants, so that the compiler folds a floor's normal
@@ -202,6 +210,7 @@ fn cross3(a: vec3<f64>, b: vec3<f64>) -> vec3<f64> {
 // One workgroup per 64 particles; the decision of the CPU stepper's step 1.
 @compute @workgroup_size(1)
 fn decide() {
+    atomicAdd(&status[S_PASSES], 1u);
     let due = atomicExchange(&status[S_REBUILD], 0u);
     if due != 0u {
         atomicAdd(&status[S_REBUILDS], 1u);
@@ -1011,6 +1020,15 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
             if any(xi < WALL_LO[k]) || any(xi > WALL_HI[k]) {
                 atomicMax(&status[S_OFF_FACE], i + 1u);
                 atomicMax(&status[S_OFF_FACE_WALL], k + 1u);
+            }
+            // The wall guard, at every step: the first step with a crossing and, of that step,
+            // the largest slot (atomics over one pass give the same words in any order).
+            if overlap > CROSSING * ri {
+                let step = atomicLoad(&status[S_PASSES]) - 1u;
+                atomicMin(&status[S_CROSSING_STEP], step);
+                if atomicLoad(&status[S_CROSSING_STEP]) == step {
+                    atomicMax(&status[S_CROSSING_SLOT], slot + 1u);
+                }
             }
             let point = xi - n * (signed + 0.5lf * overlap);
             let arm1 = point - xi;

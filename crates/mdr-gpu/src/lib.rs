@@ -24,6 +24,7 @@
 mod accessors;
 mod bed;
 mod bench;
+mod checkpoint;
 mod device;
 mod law;
 mod run;

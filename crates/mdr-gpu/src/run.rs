@@ -8,22 +8,30 @@
 //! the forces at `x_k` (the pass that sets each contact's state) and not yet integrated, so
 //! positions, velocities and contacts all describe `x_k` ([`GpuScene::step_and_evaluate`]).
 //!
-//! What the device does not keep is never written as a number: the dissipated works (plastic,
-//! friction, damping, rolling, adhesive), the elastic energies stored in the contacts, the
-//! wall work and so the balance, and the per-particle plastic work. The run writes no
-//! checkpoint and reads none; a scene that asks for checkpoints (`checkpoint_interval_s`), a
+//! The elastic energies stored in the contacts are evaluated from the histories read back at
+//! each energy sample, by the law crate ([`GpuScene`]'s bound laws). What the device does not
+//! keep is never written as a number: the dissipated works (plastic, friction, damping,
+//! rolling, adhesive), summed along each contact's path, the wall work and so the balance, and
+//! the per-particle plastic work. A scene that asks for a
 //! contact network or an explicit energy guard (`max_energy_drift`) is refused with the key
-//! named ([`gpu_run_support`]) unless the caller accepts a run without checkpoints.
+//! named ([`gpu_run_support`]).
+//!
+//! Checkpoints are the CPU run's ([`mdr_sim::run::CheckpointData`], written where the CPU run
+//! writes them: every `checkpoint_interval_s`, at an interrupt and at the end), taken before
+//! the force pass of their step as the CPU run takes them; a run resumes from a checkpoint of
+//! either device (`crate::checkpoint` maps the state).
 
+use crate::checkpoint::{lists_record, particle_records, state_of_checkpoint};
 use crate::device::{GpuContext, GpuError};
 use crate::scene::{gpu_scene_support, GpuScene};
 use crate::system::{GpuOptions, GpuState};
 use indicatif::{ProgressBar, ProgressStyle};
+use mdr_sim::checkpoint::{self, CheckpointError};
 use mdr_sim::headline::{HeadlineReport, HeadlineSample, ParticleView, Tracker};
 use mdr_sim::output::energy::{self, EnergyRow};
 use mdr_sim::output::plot;
 use mdr_sim::output::vtk::{self, CollectionEntry, ParticleFrame};
-use mdr_sim::run::CROSSING_OVERLAP;
+use mdr_sim::run::{Books, CheckpointData, NeighbourListRun, CROSSING_OVERLAP};
 use mdr_sim::Scene;
 use nalgebra::Vector3;
 use std::path::{Path, PathBuf};
@@ -32,13 +40,17 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// The energy-book columns a GPU run writes (`<name>_energy.csv`), in the CPU run's order:
-/// the kinetic and gravitational energies from the state read back, and the contacts alive.
-pub const GPU_ENERGY_COLUMNS: [&str; 5] = [
+/// the kinetic and gravitational energies from the state read back, the elastic energies the
+/// contacts' histories store, and the contacts alive.
+pub const GPU_ENERGY_COLUMNS: [&str; 8] = [
     "time_s",
     "kinetic_translational_j",
     "kinetic_rotational_j",
     "gravitational_j",
+    "elastic_normal_j",
+    "elastic_tangential_j",
     "contacts",
+    "elastic_rolling_j",
 ];
 
 /// Steps between two looks at the interrupt flag and the progress bar.
@@ -57,8 +69,10 @@ pub struct GpuRunOptions {
     pub interrupt: Option<Arc<AtomicBool>>,
     /// Skip the VTK frames.
     pub no_frames: bool,
-    /// Run a scene that asks for checkpoints (`checkpoint_interval_s`) without them.
+    /// Write no checkpoints, whatever the scene's `checkpoint_interval_s`.
     pub without_checkpoints: bool,
+    /// Continue from this checkpoint (written by a GPU or a CPU run of the same scene).
+    pub resume: Option<PathBuf>,
     /// The device's list and grid sizes.
     pub device: GpuOptions,
 }
@@ -74,20 +88,53 @@ pub struct GpuEnergyRow {
     pub kinetic_rotational_j: f64,
     /// `−Σ m g·x` (J).
     pub gravitational_j: f64,
+    /// Elastic energy stored in the normal direction of the touching contacts (J).
+    pub elastic_normal_j: f64,
+    /// Elastic energy stored in the tangential springs of the touching contacts (J).
+    pub elastic_tangential_j: f64,
+    /// Elastic energy stored in the rolling-resistance springs of the touching contacts (J).
+    pub elastic_rolling_j: f64,
     /// Contacts alive (touching, or held by an adhesive neck): sphere pairs and wall contacts.
     pub contacts: u64,
 }
 
 impl GpuEnergyRow {
-    /// The row in the CPU run's type (for its CSV writer: only [`GPU_ENERGY_COLUMNS`] are
-    /// written).
+    /// The columns of a CPU run's row that a GPU run keeps (a checkpoint's rows).
+    fn of_energy_row(row: &EnergyRow) -> Self {
+        Self {
+            time_s: row.time_s,
+            kinetic_translational_j: row.kinetic_translational_j,
+            kinetic_rotational_j: row.kinetic_rotational_j,
+            gravitational_j: row.gravitational_j,
+            elastic_normal_j: row.elastic_normal_j,
+            elastic_tangential_j: row.elastic_tangential_j,
+            elastic_rolling_j: row.elastic_rolling_j,
+            contacts: row.contacts,
+        }
+    }
+
+    /// The row in the CPU run's type (for its CSV writer, which writes only
+    /// [`GPU_ENERGY_COLUMNS`], and for a checkpoint): the works the device does not keep, and
+    /// so the balance, are NaN (not a number: a CPU run continued from the checkpoint writes
+    /// them so, and its energy guard starts from its own first row); the wall work and the
+    /// removed spheres' energy are zero (the GPU has fixed walls and no sinks).
     fn as_energy_row(&self) -> EnergyRow {
         EnergyRow {
             time_s: self.time_s,
             kinetic_translational_j: self.kinetic_translational_j,
             kinetic_rotational_j: self.kinetic_rotational_j,
             gravitational_j: self.gravitational_j,
+            elastic_normal_j: self.elastic_normal_j,
+            elastic_tangential_j: self.elastic_tangential_j,
+            elastic_rolling_j: self.elastic_rolling_j,
             contacts: self.contacts,
+            plastic_j: f64::NAN,
+            friction_j: f64::NAN,
+            damping_j: f64::NAN,
+            rolling_j: f64::NAN,
+            stiffness_tangential_j: f64::NAN,
+            stiffness_rolling_j: f64::NAN,
+            balance_j: f64::NAN,
             ..EnergyRow::default()
         }
     }
@@ -100,8 +147,12 @@ pub struct GpuRunSummary {
     pub step: u64,
     /// Simulated time reached (s).
     pub time: f64,
+    /// Step the run started from (0, or the checkpoint's step of a resumed run).
+    pub start_step: u64,
     /// Whether the run stopped early (interrupt or `stop_at_step`).
     pub stopped_early: bool,
+    /// The last checkpoint written, if any.
+    pub checkpoint: Option<PathBuf>,
     /// The energy books the GPU run keeps.
     pub energy: Vec<GpuEnergyRow>,
     /// The headline result.
@@ -136,6 +187,12 @@ pub enum GpuRunError {
         /// The output folder.
         out: PathBuf,
     },
+    /// A checkpoint could not be read, does not belong to the scene, or could not be written.
+    #[error(transparent)]
+    Checkpoint(#[from] CheckpointError),
+    /// The scene's CPU set-up, which a checkpoint takes its walls from, failed.
+    #[error(transparent)]
+    Scene(#[from] mdr_sim::SimError),
     /// An output file could not be written.
     #[error("writing {}: {source}", path.display())]
     Output {
@@ -147,10 +204,9 @@ pub enum GpuRunError {
 }
 
 /// Whether `sim run --device gpu` runs `scene`: [`gpu_scene_support`], and the outputs the
-/// GPU run cannot write refused by their key: `checkpoint_interval_s` (unless
-/// `without_checkpoints`), `contact_network`, an explicit `max_energy_drift`, `orifice_sweep_m`.
-/// Needs no device.
-pub fn gpu_run_support(scene: &Scene, without_checkpoints: bool) -> Result<(), GpuError> {
+/// GPU run cannot write refused by their key: `contact_network`, an explicit
+/// `max_energy_drift`, `orifice_sweep_m`. Needs no device.
+pub fn gpu_run_support(scene: &Scene) -> Result<(), GpuError> {
     gpu_scene_support(scene)?;
     let refuse = |what: &str| {
         Err(GpuError::Unsupported(format!(
@@ -159,12 +215,6 @@ pub fn gpu_run_support(scene: &Scene, without_checkpoints: bool) -> Result<(), G
         )))
     };
     let run = &scene.source.run;
-    if run.checkpoint_interval_s.is_some() && !without_checkpoints {
-        return refuse(
-            "`[run] checkpoint_interval_s`: the GPU run writes no checkpoints (run on the CPU \
-             path for checkpoints, or pass --no-checkpoints to run without them)",
-        );
-    }
     if scene.contact_network {
         return refuse(
             "`contact_network = true`: the GPU keeps no per-pair forces for the contact-network \
@@ -192,13 +242,13 @@ fn next_multiple(k: u64, every: u64) -> u64 {
     (k / every + 1) * every
 }
 
-/// Run `scene` on `ctx`'s device from its set-up.
+/// Run `scene` on `ctx`'s device from its set-up, or from `options.resume`.
 pub fn run_gpu_scene(
     ctx: &GpuContext,
     scene: &Scene,
     options: &GpuRunOptions,
 ) -> Result<GpuRunSummary, GpuRunError> {
-    gpu_run_support(scene, options.without_checkpoints)?;
+    gpu_run_support(scene)?;
     let gpu = GpuScene::new(ctx, scene, &options.device)?;
     let out = options.out_dir.clone();
     std::fs::create_dir_all(&out).map_err(|source| GpuRunError::Output {
@@ -213,8 +263,12 @@ pub fn run_gpu_scene(
         collection: Vec::new(),
         energy: Vec::new(),
         samples: Vec::new(),
+        checkpoints: Vec::new(),
         step: 0,
     };
+    if let Some(path) = &options.resume {
+        run.resume(path)?;
+    }
     let mut summary = run.run(options)?;
     summary.adapter = ctx.adapter_name();
     Ok(summary)
@@ -229,7 +283,10 @@ struct GpuRun<'a> {
     collection: Vec<CollectionEntry>,
     energy: Vec<GpuEnergyRow>,
     samples: Vec<HeadlineSample>,
-    /// The device holds `x_step` with the forces at `x_step` evaluated.
+    /// The checkpoints written, oldest first (the last three are kept).
+    checkpoints: Vec<PathBuf>,
+    /// The device holds `x_step`, `v_step` and the histories up to `x_{step−1}` at the top of
+    /// the loop; the forces at `x_step` are evaluated before the samples.
     step: u64,
 }
 
@@ -244,28 +301,123 @@ impl GpuRun<'_> {
         self.step as f64 * self.scene.dt
     }
 
+    /// Continue from the checkpoint at `path` (of either device): the device state, the step,
+    /// the headline tracker, the frames' collection, the energy rows and the headline samples;
+    /// frames and checkpoints past it are removed, as the CPU run removes them.
+    fn resume(&mut self, path: &Path) -> Result<(), GpuRunError> {
+        let scene = self.scene;
+        let data = CheckpointData::read(path)?;
+        data.check_scene(scene, path)?;
+        let state = state_of_checkpoint(
+            scene.contact.normal.law,
+            &data,
+            scene.particles.len(),
+            self.gpu.planes().len(),
+            mdr_sim::run::build::skin(scene),
+        )?;
+        self.gpu.load(&state, data.step)?;
+        self.step = data.step;
+        self.tracker = data.tracker;
+        self.collection = data.collection;
+        self.samples = data.samples;
+        self.energy = data
+            .energy
+            .iter()
+            .map(GpuEnergyRow::of_energy_row)
+            .collect();
+        let frames = self.collection.iter().filter(|e| e.part == 0).count();
+        let contact_frames = self.collection.iter().filter(|e| e.part == 1).count();
+        mdr_sim::output::run_dir::remove_stale(
+            &self.out,
+            &scene.name,
+            frames,
+            contact_frames,
+            self.step,
+        )
+        .map_err(output(&self.out))?;
+        let pvd = self.out.join(format!("{}.pvd", scene.name));
+        vtk::write_collection(&pvd, &self.collection).map_err(output(&pvd))
+    }
+
+    /// Write the checkpoint of the current step (the device between two steps: before the
+    /// force pass of `step`), keeping the last three.
+    fn write_checkpoint(&mut self) -> Result<(), GpuRunError> {
+        let scene = self.scene;
+        let path = self
+            .out
+            .join("checkpoints")
+            .join(mdr_sim::output::run_dir::checkpoint_name(
+                &scene.name,
+                self.step,
+            ));
+        let state = self.device(|gpu| gpu.state())?;
+        // The device keeps no work books: the totals are zero, with one plastic work per
+        // particle as the CPU run's checkpoint has.
+        let books = Books::new(state.position.len());
+        let run = NeighbourListRun {
+            step: self.step,
+            particles: particle_records(&state),
+            lists: lists_record(
+                scene.contact.normal.law,
+                &state,
+                mdr_sim::run::build::skin(scene),
+            ),
+            books,
+            tracker: self.tracker.clone(),
+            collection: self.collection.clone(),
+            energy: self
+                .energy
+                .iter()
+                .map(GpuEnergyRow::as_energy_row)
+                .collect(),
+            samples: self.samples.clone(),
+        };
+        let data = CheckpointData::of_neighbour_list_run(scene, run, &path)?;
+        checkpoint::write(&path, &data)?;
+        self.checkpoints.push(path);
+        while self.checkpoints.len() > 3 {
+            let old = self.checkpoints.remove(0);
+            let _ = std::fs::remove_file(old);
+        }
+        Ok(())
+    }
+
     fn run(&mut self, options: &GpuRunOptions) -> Result<GpuRunSummary, GpuRunError> {
         let scene = self.scene;
         let total = scene.total_steps();
         let frame_every = every(scene.output_interval, scene.dt);
         let energy_every = every(scene.energy_interval, scene.dt);
+        let checkpoint_every = scene
+            .checkpoint_interval
+            .filter(|_| !options.without_checkpoints)
+            .map(|c| every(c, scene.dt));
+        let start_step = self.step;
         let progress = progress_bar(options.quiet, total);
+        progress.set_position(start_step);
         let started = Instant::now();
         let mut last_tick = Instant::now();
         let mut files = Vec::new();
         let mut stopped_early = false;
         let n = scene.particles.len() as f64;
-        self.device(|gpu| gpu.step_and_evaluate(0))?;
         loop {
             let k = self.step;
             let interrupted = options
                 .interrupt
                 .as_ref()
                 .is_some_and(|f| f.load(Ordering::SeqCst));
-            if interrupted || (options.stop_at_step == Some(k) && k < total) {
+            let stop_here = interrupted || (options.stop_at_step == Some(k) && k < total);
+            // Where the CPU run writes its checkpoints: when due, at an interrupt, and at the
+            // end (here before the last step's force pass, the state every checkpoint holds).
+            let due = (checkpoint_every.is_some_and(|c| k.is_multiple_of(c)) || k >= total)
+                && k != start_step;
+            if !options.without_checkpoints && (due || stop_here) {
+                self.write_checkpoint()?;
+            }
+            if stop_here {
                 stopped_early = true;
                 break;
             }
+            self.device(|gpu| gpu.step_and_evaluate(0))?;
             let last = k >= total;
             let frame_due = k.is_multiple_of(frame_every) || last;
             let energy_due = k.is_multiple_of(energy_every) || last;
@@ -286,11 +438,12 @@ impl GpuRun<'_> {
             if let Some(stop) = options.stop_at_step.filter(|&s| s > k) {
                 next = next.min(stop);
             }
-            self.device(|gpu| gpu.step_and_evaluate((next - k) as usize))?;
+            self.device(|gpu| gpu.step((next - k) as usize))?;
             self.step = next;
             if last_tick.elapsed() > Duration::from_millis(250) {
                 last_tick = Instant::now();
-                let rate = self.step as f64 * n / started.elapsed().as_secs_f64().max(1e-9);
+                let done = (self.step - start_step) as f64;
+                let rate = done * n / started.elapsed().as_secs_f64().max(1e-9);
                 progress.set_position(self.step);
                 progress.set_message(format!(
                     "t = {:.4e} s of {:.4e} s, {:.3e} particle-steps/s",
@@ -312,8 +465,10 @@ impl GpuRun<'_> {
         files.push(self.out.join(format!("{}.pvd", scene.name)));
         Ok(GpuRunSummary {
             step: self.step,
+            start_step,
             time: self.time(),
             stopped_early,
+            checkpoint: self.checkpoints.last().cloned(),
             energy: self.energy.clone(),
             headline,
             wall_seconds: started.elapsed().as_secs_f64(),
@@ -329,6 +484,27 @@ impl GpuRun<'_> {
     ) -> Result<T, GpuRunError> {
         match call(&mut self.gpu) {
             Ok(value) => Ok(value),
+            Err(GpuError::WallCrossing {
+                particle,
+                wall,
+                step,
+            }) => {
+                let i = particle as usize;
+                let radius = self.gpu.radii().get(i).copied().unwrap_or(f64::NAN);
+                let wall = self
+                    .gpu
+                    .wall_of_plane()
+                    .get(wall as usize)
+                    .copied()
+                    .unwrap_or(wall as usize);
+                Err(self.stop(format!(
+                    "the wall guard: sphere {i} (radius {radius:.3e} m) sank more than \
+                     {CROSSING_OVERLAP} of its radius into wall {wall} (`walls[{wall}]`) at \
+                     step {step} (t = {:.6e} s): it is going through the wall. Lower dt_s or \
+                     declare a larger max_speed_m_per_s if it is that fast",
+                    step as f64 * self.scene.dt
+                )))
+            }
             Err(e) => Err(self.stop(e.to_string())),
         }
     }
@@ -349,7 +525,8 @@ impl GpuRun<'_> {
 
     /// The samples of the current step (`frame_due`, `energy_due`: also at the run's last
     /// step): the state read back, the headline tracker's step, the energy
-    /// row, the frame; the wall guard and the finite-state check.
+    /// row, the frame; the finite-state check. (The wall guard is the device's, at every
+    /// step: [`GpuError::WallCrossing`].)
     fn take_samples(
         &mut self,
         frame_due: bool,
@@ -362,9 +539,6 @@ impl GpuRun<'_> {
             contacts: contacts_per_particle(&state),
             state,
         };
-        if let Some(reason) = self.wall_guard(&sample.state) {
-            return Err(self.stop(reason));
-        }
         if frame_due {
             if let Some(reason) = non_finite(&sample.state) {
                 return Err(self.stop(reason));
@@ -393,8 +567,8 @@ impl GpuRun<'_> {
         Ok(())
     }
 
-    /// The kinetic and gravitational energies and the contacts, summed in particle order as
-    /// the CPU run sums them.
+    /// The kinetic and gravitational energies, summed in particle order as the CPU run sums
+    /// them, the contacts' elastic energies ([`GpuScene::elastic_energies`]) and the contacts.
     fn energy_row(&self, sample: &Sample) -> GpuEnergyRow {
         let g = self.scene.gravity;
         let s = &sample.state;
@@ -415,32 +589,14 @@ impl GpuRun<'_> {
             row.kinetic_rotational_j += 0.5 * 0.4 * m * r * r * w.norm_squared();
             row.gravitational_j -= m * g.dot(x);
         }
+        [
+            row.elastic_normal_j,
+            row.elastic_tangential_j,
+            row.elastic_rolling_j,
+        ] = self.gpu.elastic_energies(s);
         row.contacts = (s.pairs.iter().filter(|p| p.active).count()
             + s.floor.iter().filter(|w| w.is_some()).count()) as u64;
         row
-    }
-
-    /// The wall guard of the CPU run, at each sample: a sphere sinking into a wall plane by
-    /// more than [`CROSSING_OVERLAP`] of its radius is going through it.
-    fn wall_guard(&self, state: &GpuState) -> Option<String> {
-        let radius = self.gpu.radii();
-        let planes = self.gpu.planes();
-        for (i, x) in state.position.iter().enumerate() {
-            for (k, plane) in planes.iter().enumerate() {
-                let over_face = (0..3).all(|a| x[a] >= plane.lo[a] && x[a] <= plane.hi[a]);
-                let overlap = radius[i] - plane.normal.dot(&(x - plane.point));
-                if over_face && overlap > CROSSING_OVERLAP * radius[i] {
-                    let wall = self.gpu.wall_of_plane()[k];
-                    return Some(format!(
-                        "sphere {i} (radius {:.3e} m) sinks {overlap:.3e} m into wall {wall} \
-                         (`walls[{wall}]`): it is going through the wall. Lower dt_s or declare \
-                         a larger max_speed_m_per_s if it is that fast",
-                        radius[i]
-                    ));
-                }
-            }
-        }
-        None
     }
 
     fn write_frame(&mut self, sample: &Sample) -> Result<(), GpuRunError> {

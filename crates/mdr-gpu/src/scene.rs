@@ -7,28 +7,37 @@
 //! damping law, Thornton's LIGGGHTS unloading branch or a normal law without a device kernel.
 
 use crate::accessors::system_accessors;
+use crate::checkpoint::DeviceHistory;
 use crate::device::{GpuContext, GpuError};
 use crate::law::{
     adhesive_constants, bound_constants, hertz_constants, mdr_law_constants, thornton_constants,
     LawConstants,
 };
 use crate::system::{GpuOptions, GpuState, Plane, System, SystemSpec};
-use mdr_contact::model::ContactModel;
-use mdr_contact::normal::{AdhesiveMdr, Hertz, MdrElastoPlastic, NormalModel, Thornton};
+use mdr_contact::model::{ContactLaw, ContactModel};
+use mdr_contact::normal::{AdhesiveMdr, Hertz, MdrElastoPlastic, NormalLaw, Thornton};
 use mdr_contact::params::Declared;
-use mdr_contact::rolling::{NoRolling, RollingModel};
+use mdr_contact::rolling::{NoRolling, RollingLaw};
+use mdr_contact::tangential::MindlinLaw;
 use mdr_rapier::convert::to_glam;
 use mdr_rapier::neighbour_list::particles::Species;
 use mdr_rapier::neighbour_list::{Boundary, NeighbourListStepper};
 use mdr_rapier::particles::SphereBuilder;
 use mdr_sim::laws::registry::SceneParts;
-use mdr_sim::laws::AnyDamping;
+use mdr_sim::laws::{AnyDamping, AnyDampingLaw, SceneNormal, SceneRolling};
 use mdr_sim::scene::schema::WallKind;
 use mdr_sim::scene::{CouplingMode, DampingSpec, ForcePath};
 use mdr_sim::walls::WallPiece;
 use mdr_sim::Scene;
 use nalgebra::Vector3;
 use rapier3d_f64::prelude::{ColliderBuilder, PhysicsWorld, SharedShape};
+use std::sync::Arc;
+
+/// The elastic energies a contact's history stores at an overlap, `[normal, tangential,
+/// rolling]` (J), by the law crate's laws bound for its pair as the CPU run's energy books take
+/// them: `NormalLaw::elastic_energy`, `½ k_t |ξ|²` with Mindlin's `k_t = 2 G* a`,
+/// `RollingLaw::elastic_energy`.
+type ElasticEnergies = Arc<dyn Fn(&DeviceHistory, f64) -> [f64; 3] + Send + Sync>;
 
 /// The normal laws with a device kernel: scene name, `Params::law` code of `bed.wgsl`, f64
 /// words of per-contact state.
@@ -225,6 +234,8 @@ struct SceneLaws {
     species_table: Vec<Species>,
     sphere: Vec<LawConstants>,
     walls: Vec<LawConstants>,
+    sphere_energies: Vec<ElasticEnergies>,
+    wall_energies: Vec<ElasticEnergies>,
     neck_reach: f64,
 }
 
@@ -245,8 +256,8 @@ fn bind_scene<N, F>(
     constants: F,
 ) -> Result<SceneLaws, GpuError>
 where
-    N: NormalModel + Declared,
-    N::Law: Clone,
+    N: SceneNormal,
+    N::Law: Send + Sync,
     F: Fn(&N::Law, f64, f64) -> Result<LawConstants, GpuError>,
 {
     let parts = SceneParts::of(&scene.contact).map_err(mdr_rapier::error::CouplingError::from)?;
@@ -284,12 +295,26 @@ fn bind_with<N, R, F>(
     constants: F,
 ) -> Result<SceneLaws, GpuError>
 where
-    N: NormalModel + Declared,
-    N::Law: Clone,
-    R: RollingModel,
-    R::Law: Clone,
+    N: SceneNormal,
+    N::Law: Send + Sync,
+    R: SceneRolling,
+    R::Law: Send + Sync,
     F: Fn(&N::Law, f64, f64) -> Result<LawConstants, GpuError>,
 {
+    let energies = |bound: &(ContactLaw<N::Law, MindlinLaw, AnyDampingLaw>, R::Law)| {
+        let (law, rolling) = bound.clone();
+        let energies: ElasticEnergies = Arc::new(move |h: &DeviceHistory, overlap: f64| {
+            let r = h.record(N::DECLARATION.name, 0);
+            let t = &r.contact.tangential;
+            [
+                law.normal
+                    .elastic_energy(&N::restore(&r.contact.normal), overlap),
+                0.5 * law.tangential.stiffness(t.contact_radius) * t.displacement.norm_squared(),
+                rolling.elastic_energy(&R::restore(&r.rolling)),
+            ]
+        });
+        energies
+    };
     let mut world = PhysicsWorld::default();
     let materials: Vec<_> = scene
         .materials
@@ -334,9 +359,12 @@ where
     let nw = planes.len();
     let mut sphere = Vec::with_capacity(ns * ns);
     let mut walls = Vec::with_capacity(ns * nw);
+    let mut sphere_energies = Vec::with_capacity(ns * ns);
+    let mut wall_energies = Vec::with_capacity(ns * nw);
     for a in 0..ns {
         for b in 0..ns {
             let bound = stepper.sphere_pair_laws(a, b);
+            sphere_energies.push(energies(bound));
             let m = match moduli {
                 Some(m) => m.0[a * ns + b],
                 None => (0.0, 0.0),
@@ -353,6 +381,7 @@ where
     for a in 0..ns {
         for s in 0..nw {
             let bound = stepper.surface_pair_laws(a, s);
+            wall_energies.push(energies(bound));
             let m = match moduli {
                 Some(m) => m.1[a * nw + s],
                 None => (0.0, 0.0),
@@ -370,6 +399,8 @@ where
         species_table: stepper.particles().species_table.clone(),
         sphere,
         walls,
+        sphere_energies,
+        wall_energies,
         neck_reach: stepper.neck_reach(),
     })
 }
@@ -437,7 +468,6 @@ fn scene_laws(scene: &Scene, planes: &[(usize, Plane)]) -> Result<SceneLaws, Gpu
 /// A force-mode scene stepped on the device: the steps of the CPU neighbour-list path
 /// (`mdr_sim::run::SceneSteps`) for a scene whose walls are planes and boxes, without the
 /// energy books and the headline tracker.
-#[derive(Debug)]
 pub struct GpuScene {
     system: System,
     wall_of_plane: Vec<usize>,
@@ -445,6 +475,24 @@ pub struct GpuScene {
     /// Each particle's mass and radius (its species').
     mass: Vec<f64>,
     radius: Vec<f64>,
+    /// Each particle's species, and the species.
+    species: Vec<u32>,
+    species_count: usize,
+    /// The x/y periodic box's side lengths (zero in open space).
+    box_len: [f64; 2],
+    /// The elastic energies by species pair `a · species + b`, and by `species · planes +
+    /// plane`.
+    sphere_energies: Vec<ElasticEnergies>,
+    wall_energies: Vec<ElasticEnergies>,
+}
+
+impl std::fmt::Debug for GpuScene {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("GpuScene")
+            .field("system", &self.system)
+            .field("planes", &self.planes)
+            .finish()
+    }
 }
 
 impl GpuScene {
@@ -470,6 +518,10 @@ impl GpuScene {
             None => None,
         };
         let (species, _) = scene_species(scene);
+        let species_count = laws.species_table.len();
+        let box_len = scene
+            .periodic
+            .map_or([0.0; 2], |[x, y]| [x.1 - x.0, y.1 - y.0]);
         let mass = species
             .iter()
             .map(|&s| laws.species_table[s as usize].mass)
@@ -487,7 +539,7 @@ impl GpuScene {
                 position: &position,
                 linvel: &linvel,
                 angvel: &angvel,
-                species,
+                species: species.clone(),
                 species_table: laws.species_table,
                 sphere_laws: laws.sphere,
                 wall_laws: laws.walls,
@@ -514,7 +566,52 @@ impl GpuScene {
             planes: planes.iter().map(|p| p.1).collect(),
             mass,
             radius,
+            species,
+            species_count,
+            box_len,
+            sphere_energies: laws.sphere_energies,
+            wall_energies: laws.wall_energies,
         })
+    }
+
+    /// The elastic energies stored in the contacts of `state` (read back at a sample, where
+    /// the force pass set each contact's state), `[normal, tangential, rolling]` (J): each
+    /// touching contact's history at its overlap now, by its pair's laws, the wall contacts
+    /// first, as the CPU run's energy books sum them.
+    pub(crate) fn elastic_energies(&self, state: &GpuState) -> [f64; 3] {
+        let mut total = [0.0; 3];
+        let mut add = |e: [f64; 3]| {
+            for (t, e) in total.iter_mut().zip(e) {
+                *t += e;
+            }
+        };
+        let walls = self.planes.len();
+        for slot in 0..state.floor.len() {
+            if let Some(h) = DeviceHistory::of_wall(state, slot) {
+                let (i, k) = (slot / walls, slot % walls);
+                let plane = &self.planes[k];
+                let overlap = self.radius[i] - plane.normal.dot(&(state.position[i] - plane.point));
+                let law = self.species[i] as usize * walls + k;
+                add((self.wall_energies[law])(&h, overlap));
+            }
+        }
+        for pair in state.pairs.iter().filter(|p| p.active) {
+            let (i, j) = (pair.i as usize, pair.j as usize);
+            // Body 2's image as body 1 sees it.
+            let shift = Vector3::new(
+                f64::from(i32::from(pair.image / 3) - 1) * self.box_len[0],
+                f64::from(i32::from(pair.image % 3) - 1) * self.box_len[1],
+                0.0,
+            );
+            let d = state.position[i] - (state.position[j] + shift);
+            let overlap = self.radius[i] + self.radius[j] - d.norm();
+            let law = self.species[i] as usize * self.species_count + self.species[j] as usize;
+            add((self.sphere_energies[law])(
+                &DeviceHistory::of_pair(pair),
+                overlap,
+            ));
+        }
+        total
     }
 
     system_accessors!();
@@ -550,5 +647,12 @@ impl GpuScene {
     /// The whole state, read back (wall slot `particle · planes + plane`).
     pub fn state(&self) -> Result<GpuState, GpuError> {
         self.system.state()
+    }
+
+    /// Put `state` on the device as the state after `steps` steps, before the force pass of
+    /// the next one (a checkpoint's: [`GpuScene::state`] read there gives it back). A particle
+    /// with more listed neighbours than the slots is refused ([`GpuError::NeighbourOverflow`]).
+    pub fn load(&mut self, state: &GpuState, steps: u64) -> Result<(), GpuError> {
+        self.system.load(state, steps)
     }
 }

@@ -20,7 +20,9 @@ const ACTIVE: u32 = 0x8000_0000;
 /// f64 words of a bound law (`Law` of `bed.wgsl`).
 const LAW_WORDS: u64 = (std::mem::size_of::<LawConstants>() / 8) as u64;
 /// Status words (`S_*` of `bed.wgsl`).
-const STATUS_WORDS: usize = 8;
+const STATUS_WORDS: usize = 9;
+/// `S_CROSSING_STEP` of `bed.wgsl` while no sphere crossed a wall.
+const NO_CROSSING: u32 = u32::MAX;
 
 /// Settings of a GPU system's lists and grid.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -168,6 +170,9 @@ pub struct GpuPair {
     pub contact_radius: f64,
     /// The rolling resistance spring's torque (zero without rolling resistance).
     pub rolling_torque: Vector3<f64>,
+    /// The rolling resistance spring's stiffness of the last step (zero without rolling
+    /// resistance).
+    pub rolling_stiffness: f64,
 }
 
 /// The device state read back: particles, the touching pairs' histories, the wall contacts.
@@ -192,6 +197,15 @@ pub struct GpuState {
     /// Per wall slot: the contact's rolling torque (zero when apart or without rolling
     /// resistance).
     pub floor_rolling_torque: Vec<Vector3<f64>>,
+    /// Per wall slot: the rest of the normal law's state (as [`GpuPair::normal_state`]).
+    pub floor_normal_state: Vec<[f64; 2]>,
+    /// Per wall slot: the rolling spring's stiffness (as [`GpuPair::rolling_stiffness`]).
+    pub floor_rolling_stiffness: Vec<f64>,
+    /// Positions at the last list build (zero before the first).
+    pub built: Vec<Vector3<f64>>,
+    /// Whether the next force pass builds the lists (a particle moved more than half the skin
+    /// since the last build, or none was made yet).
+    pub rebuild_due: bool,
     /// Walls (wall slots per particle).
     pub walls: usize,
     /// Neighbour-list builds so far.
@@ -569,6 +583,7 @@ impl System {
         let identity: Vec<f64> = (0..n).flat_map(|_| [0.0, 0.0, 0.0, 1.0]).collect();
         let mut status = [0u32; STATUS_WORDS];
         status[0] = 1; // the first step builds the lists
+        status[7] = NO_CROSSING;
         let buffers = Buffers {
             params: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("params"),
@@ -659,6 +674,10 @@ impl System {
             .replace(
                 "__WALL_HI__",
                 &wgsl_vectors(spec.walls.iter().map(|w| w.hi)),
+            )
+            .replace(
+                "__CROSSING__",
+                &format!("{:?}", mdr_sim::run::CROSSING_OVERLAP),
             )
             .replace("__MAXN__", &options.max_neighbours.to_string())
             .replace("__CELLCAP__", &options.cell_capacity.to_string());
@@ -862,6 +881,16 @@ impl System {
                 wall: status[5] - 1,
             });
         }
+        if status[7] != NO_CROSSING && self.walls > 0 {
+            let slot = (status[8] - 1) as usize;
+            // The step from its low 32 bits: at most one batch ago.
+            let back = (self.steps as u32).wrapping_sub(status[7]);
+            return Err(GpuError::WallCrossing {
+                particle: (slot / self.walls) as u32,
+                wall: (slot % self.walls) as u32,
+                step: self.steps.saturating_sub(u64::from(back)),
+            });
+        }
         let mut words = [0u32; STATUS_WORDS];
         words.copy_from_slice(&status[..STATUS_WORDS]);
         Ok(words)
@@ -930,8 +959,9 @@ impl System {
     pub fn state(&self) -> Result<GpuState, GpuError> {
         let n = self.n;
         let slots = self.max_neighbours as usize;
-        let rebuilds = self.rebuilds()?;
+        let status = self.check_status()?;
         let position = self.read_vectors(&self.buffers.pos)?;
+        let built = self.read_vectors(&self.buffers.built)?;
         let linvel = self.read_vectors(&self.buffers.vel)?;
         let angvel = self.read_vectors(&self.buffers.angvel)?;
         let rotation: Vec<f64> = self.read(&self.buffers.rotation, n as u64 * 32)?;
@@ -983,6 +1013,11 @@ impl System {
                 } else {
                     Vector3::zeros()
                 },
+                rolling_stiffness: if active && sw > nw {
+                    h_state[sw * k + nw + 3]
+                } else {
+                    0.0
+                },
             }
         };
         let mut pairs = Vec::new();
@@ -1010,6 +1045,7 @@ impl System {
                 e.displacement.map(f64::to_bits),
                 e.contact_radius.to_bits(),
                 e.rolling_torque.map(f64::to_bits),
+                e.rolling_stiffness.to_bits(),
             )
         };
         let asymmetric_pairs = if pairs.len() == mirrored.len() {
@@ -1040,6 +1076,21 @@ impl System {
                 }
             })
             .collect();
+        let floor_normal_state = floor_flat
+            .chunks_exact(fw)
+            .map(|h| [2, 3].map(|w| if h[0] != 0.0 && w <= nw { h[w] } else { 0.0 }))
+            .collect();
+        let floor_rolling_stiffness = floor_flat
+            .chunks_exact(fw)
+            .map(|h| {
+                let t = 1 + nw + 4 + 3;
+                if h[0] != 0.0 && fw > t {
+                    h[t]
+                } else {
+                    0.0
+                }
+            })
+            .collect();
         Ok(GpuState {
             position,
             linvel,
@@ -1052,8 +1103,144 @@ impl System {
             asymmetric_pairs,
             floor,
             floor_rolling_torque,
+            floor_normal_state,
+            floor_rolling_stiffness,
+            built,
+            rebuild_due: status[0] != 0,
             walls: self.walls,
-            rebuilds,
+            rebuilds: u64::from(status[1]),
         })
+    }
+
+    /// Put `state` on the device as the state after `steps` steps, before the force pass of
+    /// the next one (the inverse of [`System::state`] read there): particles, positions at the
+    /// build, the lists with the touching pairs' histories (`state.pairs` is the half list;
+    /// each pair goes into the slots of both its particles, sorted by key as a build sorts
+    /// them), the wall contacts, the rebuild decision and count. A particle with more listed
+    /// neighbours than the slots is refused ([`GpuError::NeighbourOverflow`]).
+    pub fn load(&mut self, state: &GpuState, steps: u64) -> Result<(), GpuError> {
+        let n = self.n;
+        let slots = self.max_neighbours as usize;
+        let (nw, sw, fw) = (
+            self.normal_words as usize,
+            self.state_words as usize,
+            self.wall_words as usize,
+        );
+        let sized = state.position.len() == n
+            && state.linvel.len() == n
+            && state.angvel.len() == n
+            && state.rotation.len() == n
+            && state.built.len() == n
+            && state.walls == self.walls
+            && [
+                state.floor.len(),
+                state.floor_rolling_torque.len(),
+                state.floor_normal_state.len(),
+                state.floor_rolling_stiffness.len(),
+            ]
+            .iter()
+            .all(|&len| len == n * self.walls)
+            && state
+                .pairs
+                .iter()
+                .all(|p| p.i < p.j && (p.j as usize) < n && p.image < 9);
+        if !sized {
+            return Err(GpuError::Unsupported(format!(
+                "the state to load does not fit the system of {n} particles and {} wall planes",
+                self.walls
+            )));
+        }
+        // Each particle's slots: (key, pair).
+        let mut entries: Vec<Vec<(u32, usize)>> = vec![Vec::new(); n];
+        for (q, pair) in state.pairs.iter().enumerate() {
+            entries[pair.i as usize].push((pair.j * 9 + u32::from(pair.image), q));
+            entries[pair.j as usize].push((pair.i * 9 + 8 - u32::from(pair.image), q));
+        }
+        let total = n * slots;
+        let mut counts = vec![0u32; n];
+        let mut keys = vec![0u32; total];
+        let mut h_state = vec![0.0f64; total * sw];
+        let mut h_xi = vec![0.0f64; total * 3];
+        let mut h_radius = vec![0.0f64; total];
+        for (i, list) in entries.iter_mut().enumerate() {
+            if list.len() > slots {
+                return Err(GpuError::NeighbourOverflow {
+                    particle: i as u32,
+                    max_neighbours: self.max_neighbours,
+                });
+            }
+            list.sort_unstable();
+            counts[i] = list.len() as u32;
+            for (s, &(key, q)) in list.iter().enumerate() {
+                let pair = &state.pairs[q];
+                let k = i * slots + s;
+                if !pair.active {
+                    keys[k] = key;
+                    continue;
+                }
+                keys[k] = key | ACTIVE;
+                let h = &mut h_state[sw * k..sw * (k + 1)];
+                h[0] = pair.max_overlap;
+                h[1..nw].copy_from_slice(&pair.normal_state[..nw - 1]);
+                if sw > nw {
+                    h[nw..nw + 3].copy_from_slice(pair.rolling_torque.as_slice());
+                    h[nw + 3] = pair.rolling_stiffness;
+                }
+                h_xi[3 * k..3 * k + 3].copy_from_slice(pair.displacement.as_slice());
+                h_radius[k] = pair.contact_radius;
+            }
+        }
+        // Per wall slot: active, the normal state (nw), ξ (3), a, the rolling state.
+        let mut walls = vec![0.0f64; n * self.walls * fw];
+        for (slot, contact) in state.floor.iter().enumerate() {
+            let Some((max_overlap, xi, radius)) = contact else {
+                continue;
+            };
+            let h = &mut walls[fw * slot..fw * (slot + 1)];
+            h[0] = 1.0;
+            h[1] = *max_overlap;
+            h[2..1 + nw].copy_from_slice(&state.floor_normal_state[slot][..nw - 1]);
+            let t = 1 + nw;
+            h[t..t + 3].copy_from_slice(xi.as_slice());
+            h[t + 3] = *radius;
+            if fw > t + 4 {
+                h[t + 4..t + 7].copy_from_slice(state.floor_rolling_torque[slot].as_slice());
+                h[t + 7] = state.floor_rolling_stiffness[slot];
+            }
+        }
+        let flat =
+            |v: &[Vector3<f64>]| -> Vec<f64> { v.iter().flat_map(|p| [p.x, p.y, p.z]).collect() };
+        let rotation: Vec<f64> = state.rotation.iter().flatten().copied().collect();
+        let mut status = [0u32; STATUS_WORDS];
+        status[0] = u32::from(state.rebuild_due);
+        status[1] = u32::try_from(state.rebuilds).unwrap_or(u32::MAX);
+        // The force passes' count modulo 2³², as the shader keeps it.
+        status[6] = steps as u32;
+        status[7] = NO_CROSSING;
+        let scopes = ErrorScopes::push(&self.device);
+        let b = &self.buffers;
+        let write = |buffer: &wgpu::Buffer, bytes: &[u8]| {
+            if !bytes.is_empty() {
+                self.queue.write_buffer(buffer, 0, bytes);
+            }
+        };
+        write(&b.pos, bytemuck::cast_slice(&flat(&state.position)));
+        write(&b.vel, bytemuck::cast_slice(&flat(&state.linvel)));
+        write(&b.angvel, bytemuck::cast_slice(&flat(&state.angvel)));
+        write(&b.built, bytemuck::cast_slice(&flat(&state.built)));
+        write(&b.rotation, bytemuck::cast_slice(&rotation));
+        write(&b.walls, bytemuck::cast_slice(&walls));
+        write(&b.counts, bytemuck::cast_slice(&counts));
+        write(&b.keys, bytemuck::cast_slice(&keys));
+        write(&b.h_state, bytemuck::cast_slice(&h_state));
+        write(&b.h_xi, bytemuck::cast_slice(&h_xi));
+        write(&b.h_radius, bytemuck::cast_slice(&h_radius));
+        write(&b.status, bytemuck::cast_slice(&status));
+        self.queue.submit([]);
+        scopes.pop()?;
+        self.steps = steps;
+        self.pending_integration = false;
+        self.check_status()?;
+        Ok(())
     }
 }

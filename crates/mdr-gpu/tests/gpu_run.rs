@@ -7,7 +7,9 @@
 //! Vulkan (or Metal/DX12) device with 64-bit floats (on Linux without a GPU, Mesa's lavapipe).
 
 use mdr_gpu::{gpu_run_support, run_gpu_scene, GpuContext, GpuRunOptions, GPU_ENERGY_COLUMNS};
+use mdr_sim::output::run_dir::checkpoint_name;
 use mdr_sim::output::vtk::{read_particles, ParticleFrame};
+use mdr_sim::run::CheckpointData;
 use mdr_sim::scene::load_scene;
 use mdr_sim::{run_scene, RunOptions, Scene};
 use std::path::{Path, PathBuf};
@@ -347,8 +349,11 @@ fn a_box_run_on_the_gpu_writes_the_cpu_runs_frames_and_energies() {
     assert_eq!(pvd.matches("<DataSet").count(), 4, "{pvd}");
     assert!(gpu_out.join("box_energy.svg").exists());
     assert!(
-        !gpu_out.join("checkpoints").exists(),
-        "the GPU run writes no checkpoints"
+        gpu_out
+            .join("checkpoints")
+            .join(checkpoint_name("box", 300))
+            .exists(),
+        "the GPU run writes its end checkpoint"
     );
 
     // Negative control: friction 0.5 → 0.51 on the GPU alone moves the spheres beyond the
@@ -364,39 +369,353 @@ fn a_box_run_on_the_gpu_writes_the_cpu_runs_frames_and_energies() {
         moved / diameter
     );
     assert!(moved / diameter > 1e-9, "{moved:.3e} m");
+    // ... and its tangential springs' elastic energy beyond the energy columns' tolerance.
+    let (control_header, control_rows) = energy_csv(&control_dir.join("out"), "box");
+    let col = |header: &[String], name: &str| header.iter().position(|h| h == name).unwrap();
+    let (c_cpu, c_control) = (
+        col(&cpu_header, "elastic_tangential_j"),
+        col(&control_header, "elastic_tangential_j"),
+    );
+    let scale = cpu_rows.iter().map(|r| r[c_cpu].abs()).fold(0.0, f64::max);
+    let moved = cpu_rows
+        .iter()
+        .zip(&control_rows)
+        .map(|(c, g)| (c[c_cpu] - g[c_control]).abs() / scale)
+        .fold(0.0, f64::max);
+    println!("box: friction + 2 % moves elastic_tangential_j by {moved:.3e} of its largest");
+    assert!(scale > 0.0 && moved > 1e-9, "{moved:.3e}");
 }
 
 #[test]
 fn what_the_gpu_run_cannot_write_is_refused_by_its_key() {
     let dir = scratch("refusals");
     let base = box_scene(&dir, 0.5);
-    gpu_run_support(&base, false).unwrap();
+    gpu_run_support(&base).unwrap();
+    // Checkpoints are written on the GPU too.
     let mut checkpoints = base.clone();
     checkpoints.source.run.checkpoint_interval_s = Some(0.001);
-    let err = gpu_run_support(&checkpoints, false)
-        .unwrap_err()
-        .to_string();
-    assert!(
-        err.contains("checkpoint_interval_s") && err.contains("--no-checkpoints"),
-        "{err}"
-    );
-    gpu_run_support(&checkpoints, true).unwrap();
+    gpu_run_support(&checkpoints).unwrap();
     let mut network = base.clone();
     network.contact_network = true;
-    let err = gpu_run_support(&network, true).unwrap_err().to_string();
+    let err = gpu_run_support(&network).unwrap_err().to_string();
     assert!(err.contains("contact_network"), "{err}");
     let mut guard = base.clone();
     guard.source.run.max_energy_drift = Some(0.05);
-    let err = gpu_run_support(&guard, true).unwrap_err().to_string();
+    let err = gpu_run_support(&guard).unwrap_err().to_string();
     assert!(err.contains("max_energy_drift"), "{err}");
     // The scene refusals of `bench scene --device gpu`, by name.
     let hopper =
         load_scene(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/hopper.toml"))
             .unwrap_or_else(|p| panic!("{p}"));
-    let err = gpu_run_support(&hopper, true).unwrap_err().to_string();
+    let err = gpu_run_support(&hopper).unwrap_err().to_string();
     assert!(err.contains("`kind = \"cylinder\"`"), "{err}");
     let mut sink = base.clone();
     sink.source.run.delete_below_m = Some(-0.1);
-    let err = gpu_run_support(&sink, true).unwrap_err().to_string();
+    let err = gpu_run_support(&sink).unwrap_err().to_string();
     assert!(err.contains("delete_below_m"), "{err}");
+}
+
+/// The end state of a run from its end checkpoint: the particles and the checkpoint.
+fn end_checkpoint(out: &Path, step: u64) -> CheckpointData {
+    let path = out.join("checkpoints").join(checkpoint_name("box", step));
+    CheckpointData::read(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// A GPU run of the box stopped at `stop` (its checkpoint written there), or resumed from
+/// `resume`, into `out`.
+fn gpu_run_with(
+    ctx: &GpuContext,
+    scene: &Scene,
+    out: &Path,
+    stop: Option<u64>,
+    resume: Option<PathBuf>,
+) -> mdr_gpu::GpuRunSummary {
+    let options = GpuRunOptions {
+        out_dir: out.to_path_buf(),
+        quiet: true,
+        stop_at_step: stop,
+        resume,
+        no_frames: true,
+        ..GpuRunOptions::default()
+    };
+    run_gpu_scene(ctx, scene, &options).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The largest difference of the particles' positions, velocities and angular velocities
+/// between two checkpoints' bodies.
+fn body_differences(a: &CheckpointData, b: &CheckpointData, n: usize) -> [f64; 3] {
+    let mut worst = [0.0f64; 3];
+    for (x, y) in a.bodies[..n].iter().zip(&b.bodies[..n]) {
+        for (k, (u, v)) in [
+            (x.translation, y.translation),
+            (x.linvel, y.linvel),
+            (x.angvel, y.angvel),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let d = (0..3).map(|c| (u[c] - v[c]).powi(2)).sum::<f64>().sqrt();
+            worst[k] = worst[k].max(d);
+        }
+    }
+    worst
+}
+
+/// Whether two checkpoints' particles agree in every bit.
+fn same_bits(a: &CheckpointData, b: &CheckpointData, n: usize) -> bool {
+    let bits = |v: [f64; 3]| v.map(f64::to_bits);
+    a.bodies[..n].iter().zip(&b.bodies[..n]).all(|(x, y)| {
+        bits(x.translation) == bits(y.translation)
+            && bits(x.linvel) == bits(y.linvel)
+            && bits(x.angvel) == bits(y.angvel)
+    })
+}
+
+#[test]
+fn a_gpu_run_resumed_from_its_checkpoint_continues_bit_identically() {
+    let ctx = context();
+    let dir = scratch("resume_gpu");
+    let scene = box_scene(&dir, 0.5);
+    let n = scene.particles.len();
+    // 300 steps straight, and 150 + checkpoint + 150 resumed from it.
+    let straight = dir.join("straight");
+    gpu_run_with(&ctx, &scene, &straight, None, None);
+    let split = dir.join("split");
+    let first = gpu_run_with(&ctx, &scene, &split, Some(150), None);
+    assert!(first.stopped_early);
+    let checkpoint = first.checkpoint.expect("a checkpoint at the stop");
+    let data = CheckpointData::read(&checkpoint).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(data.step, 150);
+    let lists = data.neighbour_list.as_ref().unwrap();
+    // The checkpoint carries live histories, and the second half rebuilds.
+    println!(
+        "checkpoint at step 150: {} sphere and {} wall contacts",
+        lists.pair_histories.len(),
+        lists.surface_histories.len()
+    );
+    assert!(
+        !lists.pair_histories.is_empty(),
+        "sphere contacts at step 150"
+    );
+    let second = gpu_run_with(&ctx, &scene, &split, None, Some(checkpoint.clone()));
+    assert_eq!((second.start_step, second.step), (150, 300));
+    let (a, b) = (end_checkpoint(&straight, 300), end_checkpoint(&split, 300));
+    assert!(
+        same_bits(&a, &b, n),
+        "resumed run differs: {:?}",
+        body_differences(&a, &b, n)
+    );
+    assert!(a.neighbour_list.as_ref().unwrap().rebuilds > lists.rebuilds);
+    // The histories at the end too, bit for bit.
+    assert_eq!(a.neighbour_list, b.neighbour_list);
+
+    // Negative control: the same checkpoint without its contacts' histories does not continue
+    // the run.
+    let mut amnesic = data.clone();
+    let lists = amnesic.neighbour_list.as_mut().unwrap();
+    lists.pair_histories.clear();
+    lists.surface_histories.clear();
+    let control = dir.join("control");
+    let control_checkpoint = control
+        .join("checkpoints")
+        .join(checkpoint_name("box", 150));
+    mdr_sim::checkpoint::write(&control_checkpoint, &amnesic).unwrap();
+    gpu_run_with(&ctx, &scene, &control, None, Some(control_checkpoint));
+    let c = end_checkpoint(&control, 300);
+    let [pos, vel, _] = body_differences(&a, &c, n);
+    println!(
+        "resume without histories: positions move by {pos:.3e} m, velocities by {vel:.3e} m/s"
+    );
+    assert!(!same_bits(&a, &c, n));
+    assert!(pos > 1e-9, "{pos:.3e} m");
+}
+
+#[test]
+fn checkpoints_resume_across_devices() {
+    let ctx = context();
+    let dir = scratch("resume_across");
+    let scene = box_scene(&dir, 0.5);
+    let n = scene.particles.len();
+    let diameter = 0.004;
+    let cpu_straight = dir.join("cpu_straight");
+    run_scene(
+        &scene,
+        &RunOptions::new(&cpu_straight).quiet(true).no_frames(true),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let gpu_straight = dir.join("gpu_straight");
+    gpu_run_with(&ctx, &scene, &gpu_straight, None, None);
+    let cpu_end = end_checkpoint(&cpu_straight, 300);
+    let gpu_end = end_checkpoint(&gpu_straight, 300);
+    let speeds = |d: &CheckpointData| {
+        d.bodies[..n].iter().fold([0.0f64; 2], |m, b| {
+            let norm = |v: [f64; 3]| v.iter().map(|c| c * c).sum::<f64>().sqrt();
+            [m[0].max(norm(b.linvel)), m[1].max(norm(b.angvel))]
+        })
+    };
+    let [v_scale, w_scale] = speeds(&cpu_end);
+    let relative = |d: [f64; 3]| [d[0] / diameter, d[1] / v_scale, d[2] / w_scale];
+    let straight = relative(body_differences(&cpu_end, &gpu_end, n));
+    println!(
+        "straight runs, GPU vs CPU (diameters, of the largest speeds): {}",
+        e3(straight)
+    );
+
+    // A GPU checkpoint at step 150 continued on the CPU.
+    let gpu_half = dir.join("gpu_half");
+    let stopped = gpu_run_with(&ctx, &scene, &gpu_half, Some(150), None);
+    let gpu_checkpoint = stopped.checkpoint.unwrap();
+    let on_cpu = dir.join("on_cpu");
+    let summary = run_scene(
+        &scene,
+        &RunOptions::new(&on_cpu)
+            .quiet(true)
+            .no_frames(true)
+            .resume(Some(gpu_checkpoint)),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!((summary.start_step, summary.step), (150, 300));
+    let gpu_then_cpu = relative(body_differences(&cpu_end, &end_checkpoint(&on_cpu, 300), n));
+    println!(
+        "GPU to step 150, then the CPU, vs the CPU: {}",
+        e3(gpu_then_cpu)
+    );
+
+    // A CPU checkpoint at step 150 continued on the GPU.
+    let cpu_half = dir.join("cpu_half");
+    let stopped = run_scene(
+        &scene,
+        &RunOptions::new(&cpu_half)
+            .quiet(true)
+            .no_frames(true)
+            .stop_at_step(Some(150)),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let cpu_checkpoint = stopped.checkpoint.unwrap();
+    let on_gpu = dir.join("on_gpu");
+    let resumed = gpu_run_with(&ctx, &scene, &on_gpu, None, Some(cpu_checkpoint));
+    assert_eq!((resumed.start_step, resumed.step), (150, 300));
+    let cpu_then_gpu = relative(body_differences(&cpu_end, &end_checkpoint(&on_gpu, 300), n));
+    println!(
+        "CPU to step 150, then the GPU, vs the CPU: {}",
+        e3(cpu_then_gpu)
+    );
+    // The bounds of the GPU-vs-CPU comparison of the box's frames (1e-16 diameters, 1e-15 of
+    // the largest speeds): a resume on the other device adds nothing beyond them.
+    for d in [straight, gpu_then_cpu, cpu_then_gpu] {
+        assert!(d[0] < 1e-16 && d[1] < 1e-15 && d[2] < 1e-15, "{}", e3(d));
+    }
+
+    // Negative control: the GPU checkpoint without its histories, continued on the CPU, is
+    // far outside those bounds.
+    let mut amnesic = CheckpointData::read(&end_checkpoint_path(&gpu_half, 150)).unwrap();
+    let lists = amnesic.neighbour_list.as_mut().unwrap();
+    lists.pair_histories.clear();
+    lists.surface_histories.clear();
+    let control = dir.join("control");
+    let path = control
+        .join("checkpoints")
+        .join(checkpoint_name("box", 150));
+    mdr_sim::checkpoint::write(&path, &amnesic).unwrap();
+    run_scene(
+        &scene,
+        &RunOptions::new(&control)
+            .quiet(true)
+            .no_frames(true)
+            .resume(Some(path)),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let control = relative(body_differences(
+        &cpu_end,
+        &end_checkpoint(&control, 300),
+        n,
+    ));
+    println!("without the histories: {}", e3(control));
+    assert!(control[0] > 1e-9, "{}", e3(control));
+}
+
+/// Three differences in scientific notation.
+fn e3(d: [f64; 3]) -> String {
+    format!("{:.3e}, {:.3e}, {:.3e}", d[0], d[1], d[2])
+}
+
+fn end_checkpoint_path(out: &Path, step: u64) -> PathBuf {
+    out.join("checkpoints").join(checkpoint_name("box", step))
+}
+
+/// A sphere thrown at the floor at 100 m/s sinks deeper than the contact can hold (the CPU
+/// run's wall-guard scene): the device's guard, checked at every step, stops the run naming
+/// the sphere, the wall and the first step it sank too deep at, the step the CPU run stops at;
+/// the guard at the samples alone (every 125 steps) would name step 125.
+#[test]
+fn the_wall_guard_names_the_first_step_a_sphere_goes_through_a_wall() {
+    let ctx = context();
+    let dir = scratch("crossing");
+    std::fs::write(
+        dir.join("shot.csv"),
+        "x_m,y_m,z_m,radius_m\n0,0,0.0025,0.002\n",
+    )
+    .unwrap();
+    let path = dir.join("shot.toml");
+    std::fs::write(
+        &path,
+        r#"
+[run]
+name = "shot"
+duration_s = 0.001
+dt_s = 4.0e-6
+max_speed_m_per_s = 100.0
+output_interval_s = 0.0005
+
+[[material]]
+name = "grain"
+youngs_pa = 5.0e7
+poisson_ratio = 0.25
+density_kg_per_m3 = 2500.0
+
+[contact]
+normal = "mdr"
+critical_line_load_n_per_m = 100.0
+hardening_ratio = 0.37
+
+[[particles]]
+material = "grain"
+placement = "csv"
+file = "shot.csv"
+velocity_m_per_s = [0.0, 0.0, -100.0]
+
+[[walls]]
+kind = "plane"
+material = "grain"
+point_m = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+"#,
+    )
+    .unwrap();
+    let scene = load_scene(&path).unwrap_or_else(|p| panic!("{p}"));
+    let cpu = run_scene(&scene, &RunOptions::new(dir.join("cpu")).quiet(true)).unwrap_err();
+    let mdr_sim::SimError::Stopped { step: cpu_step, .. } = cpu else {
+        panic!("{cpu}");
+    };
+    let options = GpuRunOptions {
+        out_dir: dir.join("gpu"),
+        quiet: true,
+        ..GpuRunOptions::default()
+    };
+    let e = run_gpu_scene(&ctx, &scene, &options).unwrap_err();
+    let mdr_gpu::GpuRunError::Stopped { reason, .. } = &e else {
+        panic!("{e}");
+    };
+    println!("CPU stops at step {cpu_step}; GPU: {reason}");
+    assert!(
+        reason.contains("sphere 0 ") && reason.contains("wall 0 "),
+        "{reason}"
+    );
+    assert!(cpu_step > 0 && cpu_step < 125, "{cpu_step}");
+    assert!(
+        reason.contains(&format!("at step {cpu_step} ")),
+        "CPU step {cpu_step}: {reason}"
+    );
+    // The series up to the stop are written.
+    assert!(dir.join("gpu/shot_energy.csv").exists());
 }

@@ -112,6 +112,28 @@ pub struct ThorntonState {
     residual_overlap: f64,
 }
 
+impl ThorntonState {
+    /// The history of its parts: the largest overlap `δ*` (m), the unloading coefficient
+    /// `(4/3) E* √R_p` (0 while elastic) and the residual overlap `δ_p` (m), as
+    /// [`ThorntonState::parts`] gives them (a history kept outside this crate: a GPU's buffers).
+    pub fn from_parts(max_overlap: f64, unloading_coefficient: f64, residual_overlap: f64) -> Self {
+        Self {
+            max_overlap,
+            unloading_coefficient,
+            residual_overlap,
+        }
+    }
+
+    /// `[δ*, (4/3) E* √R_p, δ_p]`.
+    pub fn parts(&self) -> [f64; 3] {
+        [
+            self.max_overlap,
+            self.unloading_coefficient,
+            self.residual_overlap,
+        ]
+    }
+}
+
 /// Thornton's law bound to one pair.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ThorntonLaw {

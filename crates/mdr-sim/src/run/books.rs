@@ -22,7 +22,7 @@ use serde::{Deserialize, Serialize};
 /// springs' stiffness energy in its work books; plastic and rolling work in the laws' states),
 /// and the stepper hands over each contact whose history ends with what it booked
 /// ([`mdr_rapier::neighbour_list::EndedContact`]): the totals here then hold the contacts that ended, and
-/// the live contacts' books are added when the books are read ([`Books::live_neighbour_list`]), so a step
+/// the live contacts' books are added when the books are read (`Books::live_neighbour_list`), so a step
 /// costs nothing per contact.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Books {
@@ -92,7 +92,8 @@ pub struct PairBooks {
 }
 
 impl Books {
-    pub(crate) fn new(particles: usize) -> Self {
+    /// Empty books of a run of `particles` spheres.
+    pub fn new(particles: usize) -> Self {
         Self {
             particle_plastic: vec![0.0; particles],
             ..Self::default()

@@ -24,8 +24,11 @@ mod records;
 mod steps;
 mod sweep;
 
+pub use books::Books;
 pub use mdr_rapier::neighbour_list::StepTimings;
-pub use records::{BodyRecord, CheckpointData};
+pub use records::{
+    BodyRecord, CheckpointData, ContactRecord, NeighbourListRecord, NeighbourListRun, RngRecord,
+};
 pub use steps::{ContactCounts, SceneSteps};
 pub use sweep::{run_orifice_sweep, SweepSummary};
 
@@ -36,7 +39,6 @@ use crate::output::energy::{self, BalanceDrift, EnergyRow};
 use crate::output::plot;
 use crate::output::vtk::{self, CollectionEntry, ContactFrame, ParticleFrame};
 use crate::scene::Scene;
-use books::Books;
 use build::{build, Built, Coupling};
 use indicatif::{ProgressBar, ProgressStyle};
 use mdr_contact::normal::NormalLaw;
@@ -45,7 +47,6 @@ use mdr_rapier::convert::to_na;
 use mdr_rapier::geometry::sphere_sphere;
 use mdr_rapier::kernel::ContactWorks;
 use nalgebra::Vector3;
-use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -301,7 +302,7 @@ impl<'a> Sim<'a> {
         }
         // The placement used its own generator; the run's generator continues the seed's
         // stream after it (kept in the checkpoint for any later random input).
-        let rng = ChaCha8Rng::seed_from_u64(scene.seed.wrapping_add(1));
+        let rng = records::RngRecord::at_start(scene).restore();
         Ok(Self {
             scene,
             books: Books::new(scene.particles.len()),
@@ -321,34 +322,11 @@ impl<'a> Sim<'a> {
 
     fn resume(scene: &'a Scene, path: &Path) -> Result<Self, SimError> {
         let data = CheckpointData::read(path)?;
+        data.check_scene(scene, path)?;
         let incompatible = |reason: String| CheckpointError::Incompatible {
             path: path.to_path_buf(),
             reason,
         };
-        let fingerprint = records::fingerprint(scene);
-        if data.fingerprint != fingerprint {
-            let changes = records::changed_keys(&data.scene_keys, &records::fixed_keys(scene));
-            let what = if changes.is_empty() {
-                "the placed particles differ (a placement file changed?)".to_owned()
-            } else {
-                format!("changed: {}", changes.join(", "))
-            };
-            return Err(incompatible(format!(
-                "it was written for scene `{}` with fingerprint {:08x}; this scene (`{}`) has {:08x}: \
-                 {what} (only duration_s, the output/checkpoint/energy intervals and \
-                 max_energy_drift may change on a restart)",
-                data.scene_name, data.fingerprint, scene.name, fingerprint
-            ))
-            .into());
-        }
-        if data.dt_bits != scene.dt.to_bits() {
-            return Err(incompatible(format!(
-                "time step {} s differs from the scene's {} s",
-                f64::from_bits(data.dt_bits),
-                scene.dt
-            ))
-            .into());
-        }
         let mut sim = Self::new(scene)?;
         let n_particles = match &sim.built.coupling {
             Coupling::NeighbourList(stepper) => stepper.particles().len(),

@@ -254,6 +254,13 @@ pub struct RngRecord {
 }
 
 impl RngRecord {
+    /// The run's generator at the start of `scene`: the placement used its own generator, and
+    /// the run's continues the seed's stream after it.
+    pub fn at_start(scene: &Scene) -> Self {
+        use rand::SeedableRng;
+        Self::of(&ChaCha8Rng::seed_from_u64(scene.seed.wrapping_add(1)))
+    }
+
     fn of(rng: &ChaCha8Rng) -> Self {
         Self {
             seed: rng.get_seed(),
@@ -269,6 +276,29 @@ impl RngRecord {
         rng.set_word_pos(self.word_pos);
         rng
     }
+}
+
+/// A neighbour-list run stepped outside this crate (the GPU path), at a step where a checkpoint
+/// is due: what its checkpoint holds besides what the scene itself gives (rapier's world of
+/// walls, the wall bodies, the surfaces' poses, the random generator, the scene's keys).
+#[derive(Debug, Clone)]
+pub struct NeighbourListRun {
+    /// Step counter.
+    pub step: u64,
+    /// The particles, in the scene's order.
+    pub particles: Vec<BodyRecord>,
+    /// The lists and the touching pairs' histories (`surface_poses` is taken from the scene).
+    pub lists: NeighbourListRecord,
+    /// Energy books.
+    pub books: Books,
+    /// Headline tracker.
+    pub tracker: Tracker,
+    /// Frames written so far.
+    pub collection: Vec<CollectionEntry>,
+    /// Energy rows so far.
+    pub energy: Vec<EnergyRow>,
+    /// Headline samples so far.
+    pub samples: Vec<HeadlineSample>,
 }
 
 /// Everything a checkpoint holds.
@@ -331,6 +361,89 @@ impl CheckpointData {
             }
             (_, body) => checkpoint::decode_payload(path, body),
         }
+    }
+
+    /// The checkpoint of a neighbour-list run of `scene` stepped outside this crate's stepper,
+    /// in the format the CPU run writes and reads: the walls (fixed, as the runs that use this
+    /// have them) are the scene's at its set-up. `path` names the file in errors.
+    pub fn of_neighbour_list_run(
+        scene: &Scene,
+        run: NeighbourListRun,
+        path: &Path,
+    ) -> Result<Self, crate::SimError> {
+        let encode = |reason: String| CheckpointError::Encode {
+            path: path.to_path_buf(),
+            reason,
+        };
+        let built = super::build::build(scene)?;
+        let Coupling::NeighbourList(stepper) = &built.coupling else {
+            return Err(encode(format!(
+                "scene `{}` does not run on the neighbour-list path",
+                scene.name
+            ))
+            .into());
+        };
+        let mut lists = run.lists;
+        lists.surface_poses = stepper.record().surface_poses;
+        let mut bodies = run.particles;
+        bodies.extend(
+            built
+                .wall_bodies
+                .iter()
+                .map(|h| BodyRecord::of(&built.world.bodies[*h])),
+        );
+        let world = postcard::to_stdvec(&built.world)
+            .map_err(|e| encode(format!("rapier's world does not encode: {e}")))?;
+        Ok(Self {
+            scene_name: scene.name.clone(),
+            fingerprint: fingerprint(scene),
+            dt_bits: scene.dt.to_bits(),
+            step: run.step,
+            bodies,
+            contacts: Vec::new(),
+            neighbour_list: Some(lists),
+            impacts: Vec::new(),
+            world,
+            books: run.books,
+            rng: RngRecord::at_start(scene),
+            tracker: run.tracker,
+            collection: run.collection,
+            energy: run.energy,
+            samples: run.samples,
+            scene_keys: fixed_keys(scene),
+        })
+    }
+
+    /// Whether this checkpoint (read from `path`) belongs to `scene`: the same fingerprint
+    /// (else the keys that changed are named) and time step.
+    pub fn check_scene(&self, scene: &Scene, path: &Path) -> Result<(), CheckpointError> {
+        let incompatible = |reason: String| CheckpointError::Incompatible {
+            path: path.to_path_buf(),
+            reason,
+        };
+        let fingerprint = fingerprint(scene);
+        if self.fingerprint != fingerprint {
+            let changes = changed_keys(&self.scene_keys, &fixed_keys(scene));
+            let what = if changes.is_empty() {
+                "the placed particles differ (a placement file changed?)".to_owned()
+            } else {
+                format!("changed: {}", changes.join(", "))
+            };
+            return Err(incompatible(format!(
+                "it was written for scene `{}` with fingerprint {:08x}; this scene (`{}`) has {:08x}: \
+                 {what} (only duration_s, the output/checkpoint/energy intervals and \
+                 max_energy_drift may change on a restart)",
+                self.scene_name, self.fingerprint, scene.name, fingerprint
+            )));
+        }
+        if self.dt_bits != scene.dt.to_bits() {
+            return Err(incompatible(format!(
+                "time step {} s differs from the scene's {} s",
+                f64::from_bits(self.dt_bits),
+                scene.dt
+            )));
+        }
+        Ok(())
     }
 
     /// Everything of `sim`; fails only if rapier's world does not encode (then nothing is
