@@ -106,6 +106,80 @@ fn sim_run_runs_the_demo_law() {
     assert!(!text.contains("energy route"), "{text}");
 }
 
+/// The demo spring scene with the demo damping law `c` (N·s/m), without gravity: the 5 mm
+/// sphere is thrown at 0.1 m/s onto the plane 0.1 mm away.
+fn dashpot_throw(dir: &Path, coefficient: f64) -> std::path::PathBuf {
+    let spring = spring_drop(dir, "1.0e4");
+    let text = std::fs::read_to_string(&spring).unwrap();
+    let text = text
+        .replace("duration_s = 0.03", "duration_s = 0.004")
+        .replace("[0.0, 0.0, -9.81]", "[0.0, 0.0, 0.0]")
+        .replace(
+            "normal_stiffness_n_per_m = 1.0e4",
+            &format!(
+                "normal_stiffness_n_per_m = 1.0e4\ndamping = \"linear_dashpot\"\ndamping_coefficient_n_s_per_m = {coefficient}"
+            ),
+        )
+        .replace("-0.005, 0.001]", "-0.005, 0.0001]")
+        .replace(
+            "0.00501, 0.01101]",
+            "0.00501, 0.01011]\nvelocity_m_per_s = [0.0, 0.0, -0.1]",
+        );
+    assert!(text.contains("linear_dashpot") && text.contains("-0.1]"));
+    let path = dir.join("dashpot.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// `mdr-dem sim run` runs the demo damping law (its file and one registry line): the rebound is
+/// the linear spring–dashpot's whose contact only pushes, `e_n = exp(−β t_e)` with
+/// `ω_d t_e = π − 2 arctan(β/ω_d)` (`β = c/(2m)`, `ω_d = √(k/m − β²)`; Schwager & Pöschel,
+/// Granular Matter 9 (2007) 465), at damping ratio 0.2; a coefficient 5 % larger is told
+/// apart.
+#[test]
+fn sim_run_runs_the_demo_damping_law_as_its_analytic_restitution() {
+    let m = 4.0 / 3.0 * std::f64::consts::PI * 0.005_f64.powi(3) * 2500.0;
+    let k = 1.0e4;
+    let restitution = |c: f64| {
+        let beta = c / (2.0 * m);
+        let omega_d = (k / m - beta * beta).sqrt();
+        let t_e = (std::f64::consts::PI - 2.0 * (beta / omega_d).atan()) / omega_d;
+        (-beta * t_e).exp()
+    };
+    let c = 2.0 * 0.2 * (m * k).sqrt();
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dashpot_throw(dir.path(), c);
+    let out = dir.path().join("out");
+    let text = stdout(&mdr_dem(&[
+        "sim",
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]));
+    let e_n: f64 = text
+        .split("e_n = ")
+        .nth(1)
+        .and_then(|s| s.split_whitespace().next())
+        .unwrap_or_else(|| panic!("no e_n in {text}"))
+        .trim_end_matches(',')
+        .parse()
+        .unwrap();
+    // Symplectic Euler at ω₀ dt = 2.8e-3: e_n − e = −4e-4.
+    assert!((e_n - restitution(c)).abs() < 1.2e-3, "{text}");
+    assert!((e_n - restitution(1.05 * c)).abs() > 5e-3, "{text}");
+    // Its range error is its declaration's.
+    let scene = dashpot_throw(dir.path(), -1.0);
+    let output = mdr_dem(&["sim", "run", scene.to_str().unwrap(), "--quiet"]);
+    assert_eq!(output.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        err.contains("damping_coefficient_n_s_per_m") && err.contains("[0, inf)"),
+        "{err}"
+    );
+}
+
 #[test]
 fn sim_run_refuses_a_demo_law_value_outside_its_declared_range() {
     let dir = tempfile::tempdir().unwrap();

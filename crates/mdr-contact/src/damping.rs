@@ -3,6 +3,11 @@
 //! separate from the normal and tangential laws so that plastic, frictional and viscous
 //! dissipation are booked separately.
 
+#[cfg(feature = "demo-laws")]
+mod linear_dashpot;
+#[cfg(feature = "demo-laws")]
+pub use linear_dashpot::LinearDashpot;
+
 use crate::error::{non_negative, Result};
 use crate::material::ContactPair;
 use crate::normal::NormalResponse;

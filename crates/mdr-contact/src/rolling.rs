@@ -69,6 +69,13 @@ pub trait RollingModel: Clone + Send + Sync {
     type Law: RollingLaw;
     /// Bind to a pair.
     fn bind(&self, pair: &ContactPair) -> Result<Self::Law>;
+
+    /// Whether the model can ever give a torque. One that cannot (no rolling resistance, or a
+    /// coefficient of 0) lets a coupling run the contact without rolling history or rolling
+    /// branch, as [`NoRolling`].
+    fn resists(&self) -> bool {
+        true
+    }
 }
 
 /// No rolling resistance (the default).
@@ -79,6 +86,9 @@ impl RollingModel for NoRolling {
     type Law = NoRolling;
     fn bind(&self, _pair: &ContactPair) -> Result<NoRolling> {
         Ok(NoRolling)
+    }
+    fn resists(&self) -> bool {
+        false
     }
 }
 
@@ -137,6 +147,10 @@ impl RollingModel for EpsdRolling {
             arm,
             stiffness_ratio: 2.25 * arm * arm,
         })
+    }
+    /// Off at `μ_r = 0`: its limiting torque `μ_r R F_N` is then 0.
+    fn resists(&self) -> bool {
+        self.coefficient > 0.0
     }
 }
 

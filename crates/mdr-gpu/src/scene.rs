@@ -111,12 +111,14 @@ pub fn gpu_scene_support(scene: &Scene) -> Result<(), GpuError> {
             );
         }
     }
-    if let DampingSpec::StiffnessViscous(_) = scene.contact.damping {
-        return refuse(
-            "`damping = \"stiffness_viscous\"` has no GPU kernel (the GPU has `none` and \
-             `hertzian_viscous`)"
-                .into(),
-        );
+    if !matches!(
+        scene.contact.damping,
+        DampingSpec::None | DampingSpec::HertzianViscous(_)
+    ) {
+        return refuse(format!(
+            "`damping = \"{}\"` has no GPU kernel (the GPU has `none` and `hertzian_viscous`)",
+            scene.contact.sub_models.damping.declaration.name
+        ));
     }
     if scene.source.run.delete_below_m.is_some() {
         return refuse("the sink `[run] delete_below_m` runs on the CPU only".into());
@@ -261,11 +263,14 @@ where
     F: Fn(&N::Law, f64, f64) -> Result<LawConstants, GpuError>,
 {
     let parts = SceneParts::of(&scene.contact).map_err(mdr_rapier::error::CouplingError::from)?;
+    // The device kernel's tangential law is Mindlin's (μ = 0: frictionless).
+    let mindlin = mdr_contact::tangential::Mindlin::new(scene.contact.friction)
+        .map_err(mdr_rapier::error::CouplingError::from)?;
     let model = ContactModel::new(normal)
-        .with_tangential(parts.tangential)
+        .with_tangential(mindlin)
         .with_damping(parts.damping);
     let mu_r = scene.contact.rolling_friction;
-    match parts.rolling.0 {
+    match parts.rolling {
         Some(rolling) => bind_with(
             NeighbourListStepper::<N, _, AnyDamping>::new(model, Boundary::Open)
                 .with_rolling(rolling),

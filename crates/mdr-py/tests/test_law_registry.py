@@ -32,7 +32,8 @@ def test_scene_laws_list_the_sub_models_with_their_published_names():
     assert kinds == sorted(kinds, key=["normal", "tangential", "damping", "rolling"].index)
     by_kind = {k: {law["name"]: law for law in mdr_dem.scene_laws(kind=k)} for k in set(kinds)}
     assert list(by_kind["tangential"]) == ["none", "mindlin"]
-    assert list(by_kind["damping"]) == ["none", "hertzian_viscous", "stiffness_viscous"]
+    # The demo damping law last (the wheel is built with the demo-laws feature).
+    assert list(by_kind["damping"]) == ["none", "hertzian_viscous", "stiffness_viscous", "linear_dashpot"]
     assert list(by_kind["rolling"]) == ["none", "epsd"]
     (mu,) = by_kind["tangential"]["mindlin"]["parameters"]
     assert (mu["key"], mu["flag"], mu["python"], mu["lammps"]) == ("friction", "--mu", "mu", "friction")
@@ -112,3 +113,60 @@ def test_demo_law_keywords_are_checked_as_declared():
         mdr_dem.curve([1.0], law="linear_spring", normal_stiffness_n_per_m=-1.0)
     with pytest.raises(ValueError, match="not a parameter of law=\"mdr\""):
         mdr_dem.curve([1.0], normal_stiffness_n_per_m=1.0e4)
+
+
+def pushing_restitution(m, k, c):
+    """The linear spring–dashpot's restitution when its contact only pushes: it lets go when
+    k δ + c dδ/dt reaches 0, at ω_d t_e = π − 2 arctan(β/ω_d), with e_n = exp(−β t_e)
+    (β = c/(2m), ω_d = √(k/m − β²); Schwager & Pöschel, Granular Matter 9 (2007) 465)."""
+    beta = c / (2.0 * m)
+    omega_d = math.sqrt(k / m - beta * beta)
+    t_e = (math.pi - 2.0 * math.atan(beta / omega_d)) / omega_d
+    return math.exp(-beta * t_e)
+
+
+def test_demo_damping_law_runs_in_a_scene_as_its_analytic_restitution(tmp_path):
+    # The demo damping law (its file in mdr-contact and one registry line) with the demo spring:
+    # a 5 mm sphere thrown at 0.1 m/s onto a plane without gravity, damping ratio 0.2.
+    laws = {law["name"]: law for law in mdr_dem.scene_laws(kind="damping")}
+    (c_param,) = laws["linear_dashpot"]["parameters"]
+    assert (c_param["key"], c_param["unit"], c_param["range"]) == ("damping_coefficient_n_s_per_m", "N·s/m", "[0, inf)")
+    k, r, rho = 1.0e4, 0.005, 2500.0
+    m = 4.0 / 3.0 * math.pi * r**3 * rho
+    c = 2.0 * 0.2 * math.sqrt(m * k)
+    text = (REPO / "scenes" / "drop.toml").read_text()
+    text = (
+        text.replace("duration_s = 0.2", "duration_s = 0.004")
+        .replace('dt_s = "auto"', "dt_s = 1.0e-6")
+        .replace("max_speed_m_per_s = 1.0", "max_speed_m_per_s = 0.5")
+        .replace("checkpoint_interval_s = 0.1", "")
+        .replace("[0.0, 0.0, -9.81]", "[0.0, 0.0, 0.0]")
+        .replace(
+            'normal = "mdr"\ncritical_line_load_n_per_m = 3.8e5   # q_c, eq. (7)\n'
+            "hardening_ratio = 0.37               # Θ/E*, eq. (12)",
+            f'normal = "linear_spring"\nnormal_stiffness_n_per_m = {k}\n'
+            f'damping = "linear_dashpot"\ndamping_coefficient_n_s_per_m = {c}',
+        )
+        .replace("youngs_pa = 2.0e11", "youngs_pa = 1.0e9")
+        .replace("density_kg_per_m3 = 7800.0", f"density_kg_per_m3 = {rho}")
+        .replace("radius_m = 0.00635", f"radius_m = {r}")
+        .replace("region_min_m = [-0.00635, -0.00635, 0.05]", f"region_min_m = [-{r}, -{r}, 0.0001]")
+        .replace(
+            "region_max_m = [0.00636, 0.00636, 0.0628]",
+            "region_max_m = [0.00501, 0.00501, 0.01011]\nvelocity_m_per_s = [0.0, 0.0, -0.1]",
+        )
+    )
+    assert "linear_dashpot" in text and "-0.1]" in text
+    scene = tmp_path / "dashpot.toml"
+    scene.write_text(text)
+    headline = mdr_dem.run_scene(scene, tmp_path / "out", no_frames=True)
+    assert headline["impact_speed_m_per_s"] == pytest.approx(0.1, abs=1e-12)
+    e_n = headline["restitution"]
+    # Symplectic Euler at ω₀ dt = 2.8e-3: e_n − e = −4e-4.
+    assert e_n == pytest.approx(pushing_restitution(m, k, c), abs=1.2e-3)
+    # Negative control: a dashpot 5 % stronger is told apart.
+    assert abs(e_n - pushing_restitution(m, k, 1.05 * c)) > 5e-3
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text.replace(f"damping_coefficient_n_s_per_m = {c}", "damping_coefficient_n_s_per_m = -1.0"))
+    with pytest.raises(ValueError, match=r"damping_coefficient_n_s_per_m.*\[0, inf\)"):
+        mdr_dem.run_scene(bad, tmp_path / "out-bad")

@@ -247,3 +247,132 @@ fn registry_declarations_reproduce_the_scene_keys() {
     assert_eq!(Thornton::DECLARATION.name, "thornton");
     assert_eq!(LinearSpring::DECLARATION.name, "linear_spring");
 }
+
+/// A sphere thrown at `speed_m_per_s` onto a plane 0.1 mm away, without gravity, with the demo
+/// spring and `damping`; energy rows every 10 µs.
+fn throw(damping: &str, force_path: &str, speed_m_per_s: f64) -> String {
+    format!(
+        r#"
+[run]
+name = "dashpot"
+seed = 1
+duration_s = 0.004
+dt_s = {DT}
+max_speed_m_per_s = 0.5
+output_interval_s = 0.001
+energy_interval_s = 1.0e-5
+headline = "drop"
+force_path = "{force_path}"
+
+[gravity]
+acceleration_m_per_s2 = [0.0, 0.0, 0.0]
+
+[[material]]
+name = "glass"
+youngs_pa = 1.0e9
+poisson_ratio = 0.25
+density_kg_per_m3 = {DENSITY}
+
+[contact]
+{spring}
+{damping}
+
+[[particles]]
+material = "glass"
+count = 1
+radius_m = {RADIUS}
+placement = "lattice"
+region_min_m = [-{RADIUS}, -{RADIUS}, 0.0001]
+region_max_m = [0.00501, 0.00501, 0.01011]
+velocity_m_per_s = [0.0, 0.0, -{speed_m_per_s}]
+
+[[walls]]
+kind = "plane"
+material = "glass"
+point_m = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+"#,
+        spring = spring()
+    )
+}
+
+/// The restitution of the linear spring–dashpot (mass `m`, stiffness `k`, dashpot `c`) whose
+/// contact only pushes: it lets go when `k δ + c dδ/dt` reaches 0, at
+/// `ω_d t_e = π − 2 arctan(β/ω_d)`, with `e_n = exp(−β t_e)` (`β = c/(2m)`,
+/// `ω_d = √(k/m − β²)`; the derivation is in `mdr_contact::damping::LinearDashpot`'s file;
+/// Schwager & Pöschel, Granular Matter 9 (2007) 465).
+fn pushing_restitution(m: f64, k: f64, c: f64) -> f64 {
+    let beta = c / (2.0 * m);
+    let omega_d = (k / m - beta * beta).sqrt();
+    let t_e = (PI - 2.0 * (beta / omega_d).atan()) / omega_d;
+    (-beta * t_e).exp()
+}
+
+/// The demo damping law, added as its file in `mdr-contact` and one line in the registry's
+/// damping list, runs in scenes on both force paths: with the demo spring, the rebound of a
+/// thrown sphere is the linear spring–dashpot's analytic one. Damping ratio `ζ = 0.2`
+/// (`c = 2 ζ √(m k)`), 1140 steps per contact.
+#[test]
+fn demo_damping_law_runs_in_scenes_on_both_force_paths_as_its_analytic_restitution() {
+    let m = 4.0 / 3.0 * PI * RADIUS.powi(3) * DENSITY;
+    let zeta = 0.2;
+    let c = 2.0 * zeta * (m * STIFFNESS).sqrt();
+    let expected = pushing_restitution(m, STIFFNESS, c);
+    let damping = format!("damping = \"linear_dashpot\"\ndamping_coefficient_n_s_per_m = {c}");
+    for path in ["neighbour_list", "rapier"] {
+        let summary = run(
+            &format!("dashpot-{path}"),
+            &throw(&damping, path, 0.1),
+            |o| o,
+        );
+        let e_n = summary.headline.get("restitution").unwrap();
+        let v = summary.headline.get("impact_speed_m_per_s").unwrap();
+        assert_eq!(v, 0.1, "{path}: no gravity, the sphere keeps its speed");
+        // Symplectic Euler at ω₀ dt = 2.8e-3: e_n − e = −4e-4 on both paths.
+        assert!(
+            (e_n - expected).abs() < 1.2e-3,
+            "{path}: e_n = {e_n}, analytic {expected}"
+        );
+        // Negative controls: a dashpot 5 % stronger, and a contact that also pulls (the
+        // textbook exp(−πζ/√(1−ζ²)), 0.527), are told apart.
+        let stronger = pushing_restitution(m, STIFFNESS, 1.05 * c);
+        assert!((e_n - stronger).abs() > 5e-3, "{path}: {e_n} vs {stronger}");
+        let pulling = (-PI * zeta / (1.0 - zeta * zeta).sqrt()).exp();
+        assert!((e_n - pulling).abs() > 2e-2, "{path}: {e_n} vs {pulling}");
+    }
+    // The scene's damping decides: the same throw undamped bounces back whole.
+    let undamped = run("dashpot-none", &throw("", "neighbour_list", 0.1), |o| o);
+    let e_n = undamped.headline.get("restitution").unwrap();
+    assert!((e_n - 1.0).abs() < 1e-3, "undamped e_n = {e_n}");
+}
+
+/// The demo damping law's scene key, help line and range error come from its declaration.
+#[test]
+fn demo_damping_law_scene_key_and_errors_come_from_its_declaration() {
+    let dir = common::temp_dir("dashpot-errors");
+    let check = |damping: &str| {
+        let text = throw(damping, "neighbour_list", 0.1);
+        let path = common::write(&dir, "scene.toml", &text);
+        parse_scene(&path, &text)
+            .map(|_| ())
+            .unwrap_err()
+            .to_string()
+    };
+    let out_of_range = check("damping = \"linear_dashpot\"\ndamping_coefficient_n_s_per_m = -1.0");
+    assert!(
+        out_of_range.contains("damping_coefficient_n_s_per_m")
+            && out_of_range.contains("[0, inf)")
+            && out_of_range.contains("c (N·s/m"),
+        "{out_of_range}"
+    );
+    let missing = check("damping = \"linear_dashpot\"");
+    assert!(
+        missing.contains("damping_coefficient_n_s_per_m"),
+        "{missing}"
+    );
+    let unknown = check("damping = \"linear_dashpt\"");
+    assert!(
+        unknown.contains("did you mean `linear_dashpot`"),
+        "{unknown}"
+    );
+}

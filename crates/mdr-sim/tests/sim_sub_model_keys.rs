@@ -185,14 +185,18 @@ fn the_contact_table_is_written_in_its_fixed_order() {
     );
 }
 
-/// A damping law registered without a place in the steppers' types is refused by name, and the
-/// registered ones are placed (docs/architecture.md, "Tangential, damping and rolling laws").
+/// Each registered sub-model is built by its name from its validated values (the variant of
+/// its kind's enum the steppers run), the coefficients the GPU path reads are taken from them by
+/// their declared keys, a rolling law that cannot act is compiled out, and a name no entry
+/// registers is refused by name.
 #[test]
-fn a_sub_model_without_a_place_in_the_steppers_is_refused_by_name() {
+fn sub_models_are_built_by_their_registered_names() {
+    use mdr_contact::damping::NoDamping;
     use mdr_contact::params::{LawDeclaration, LawKind, Param, Range};
     use mdr_contact::rolling::EpsdRolling;
     use mdr_contact::tangential::Frictionless;
-    use mdr_sim::laws::registry::contact_spec;
+    use mdr_sim::laws::registry::{contact_spec, SceneParts};
+    use mdr_sim::laws::{AnyDamping, AnyRolling, AnyTangential};
     use mdr_sim::scene::SubModelSpec;
     static PARAMS: &[Param] = &[Param::new(
         "damping_c_n_s_per_m",
@@ -201,7 +205,7 @@ fn a_sub_model_without_a_place_in_the_steppers_is_refused_by_name() {
         Range::NON_NEGATIVE,
         "F_d = c dδ/dt",
     )];
-    let constant = SubModelSpec {
+    let unregistered = SubModelSpec {
         declaration: LawDeclaration {
             name: "constant_viscous",
             kind: LawKind::Damping,
@@ -215,16 +219,47 @@ fn a_sub_model_without_a_place_in_the_steppers_is_refused_by_name() {
         values,
     };
     let normal = scene_with("").expect("valid").contact.normal;
-    let tangential = spec(Frictionless::DECLARATION, vec![]);
+    let frictionless = spec(Frictionless::DECLARATION, vec![]);
     let rolling = spec(EpsdRolling::DECLARATION, vec![0.2]);
-    let e = contact_spec(normal.clone(), &tangential, &constant, &rolling).unwrap_err();
-    assert_eq!((e.kind, e.law), (LawKind::Damping, "constant_viscous"));
-    assert!(e.to_string().contains("no place for it"), "{e}");
     let viscous = spec(StiffnessViscous::DECLARATION, vec![0.3, 0.5]);
-    let c = contact_spec(normal, &tangential, &viscous, &rolling).unwrap();
+    let c = contact_spec(
+        normal.clone(),
+        frictionless.clone(),
+        viscous,
+        rolling.clone(),
+    );
     assert_eq!(c.damping, DampingSpec::StiffnessViscous(0.3));
     assert_eq!(
         (c.friction, c.tangential_damping_ratio, c.rolling_friction),
         (0.0, 0.5, 0.2)
+    );
+    let parts = SceneParts::of(&c).unwrap();
+    assert_eq!(parts.tangential, AnyTangential::Frictionless(Frictionless));
+    let eta = StiffnessViscous::new(0.3).unwrap();
+    assert_eq!(
+        parts.damping,
+        AnyDamping::StiffnessViscous(eta.with_tangential_ratio(0.5).unwrap())
+    );
+    assert_eq!(
+        parts.rolling,
+        Some(AnyRolling::EpsdRolling(EpsdRolling::new(0.2).unwrap()))
+    );
+    let friction = spec(Mindlin::DECLARATION, vec![0.4]);
+    let none = spec(NoDamping::DECLARATION, vec![]);
+    let off = spec(EpsdRolling::DECLARATION, vec![0.0]);
+    let c = contact_spec(normal.clone(), friction, none, off);
+    assert_eq!(c.friction, 0.4);
+    let parts = SceneParts::of(&c).unwrap();
+    assert_eq!(
+        parts.tangential,
+        AnyTangential::Mindlin(Mindlin::new(0.4).unwrap())
+    );
+    assert_eq!(parts.rolling, None);
+    let c = contact_spec(normal, frictionless, unregistered, rolling);
+    assert_eq!(c.damping, DampingSpec::Other("constant_viscous"));
+    let e = SceneParts::of(&c).unwrap_err().to_string();
+    assert!(
+        e.contains("no registered damping law is named `constant_viscous`"),
+        "{e}"
     );
 }

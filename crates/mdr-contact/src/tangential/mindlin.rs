@@ -263,6 +263,11 @@ impl TangentialLaw for MindlinLaw {
         response.elastic_energy = 0.5 * k * stored2;
         response
     }
+
+    /// `½ k_t(a) |ξ|²` at the stored contact radius.
+    fn elastic_energy(&self, state: &MindlinState) -> f64 {
+        0.5 * self.stiffness(state.contact_radius) * state.displacement.norm_squared()
+    }
 }
 
 /// `μ`, required: a frictional contact states its friction.

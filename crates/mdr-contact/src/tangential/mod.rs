@@ -49,6 +49,9 @@ pub trait TangentialLaw: Send + Sync {
     type State: Clone + Default + std::fmt::Debug + Send + Sync;
     /// Advance the history by one step and return the tangential force.
     fn update(&self, state: &mut Self::State, input: &TangentialInput) -> TangentialResponse;
+    /// Elastic energy stored in the tangential springs of `state` (J): what
+    /// [`TangentialResponse::elastic_energy`] reported at the update that left `state`.
+    fn elastic_energy(&self, state: &Self::State) -> f64;
 }
 
 /// Material-level parameters of a tangential law.
@@ -78,6 +81,9 @@ impl TangentialLaw for Frictionless {
             sliding: true,
             ..TangentialResponse::default()
         }
+    }
+    fn elastic_energy(&self, _state: &()) -> f64 {
+        0.0
     }
 }
 

@@ -1,22 +1,21 @@
-//! The sub-models of a scene: the normal law, picked by name from the registry ([`registry`])
-//! and compiled into the steppers ([`SceneNormal`]); the damping law as an enum forwarding to
-//! the law crate's models; rolling resistance off or on ([`SceneRolling`]). No physics here:
-//! each calls the law crate's own implementation.
+//! The sub-models of a scene, each picked by name from the registry ([`registry`]): the normal
+//! law, compiled into the steppers ([`SceneNormal`]); the tangential, damping and rolling laws,
+//! each kind an enum generated from its registry list ([`AnyTangential`], [`AnyDamping`],
+//! [`AnyRolling`]) and dispatched per contact by a `match`; rolling resistance that cannot act
+//! compiled out ([`SceneRolling`]). No physics here: each calls the law crate's own
+//! implementation.
 
 pub mod registry;
+mod sub_models;
 
-use mdr_contact::damping::{
-    DampingLaw, DampingModel, HertzianViscous, NoDamping, StiffnessViscous,
+pub use registry::{
+    AnyDamping, AnyDampingLaw, AnyRolling, AnyRollingLaw, AnyTangential, AnyTangentialLaw,
 };
-use mdr_contact::normal::{
-    AdhesiveMdrState, MdrState, NormalLaw, NormalModel, NormalResponse, ThorntonState,
-};
+pub use sub_models::HistoryIn;
+
+use mdr_contact::normal::{AdhesiveMdrState, MdrState, NormalLaw, NormalModel, ThorntonState};
 use mdr_contact::params::Declared;
-use mdr_contact::rolling::{
-    EpsdRolling, EpsdRollingState, NoRolling, RollingInput, RollingLaw, RollingModel,
-    RollingResponse,
-};
-use mdr_contact::{ContactPair, Result};
+use mdr_contact::rolling::{EpsdRollingState, NoRolling, RollingLaw, RollingModel};
 use serde::{Deserialize, Serialize};
 
 /// The per-contact normal history of a checkpoint: one field per kind of history a registered
@@ -105,104 +104,6 @@ impl NormalHistoryRecord for ThorntonState {
     }
 }
 
-/// The damping model of a scene.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum AnyDamping {
-    /// None.
-    None(NoDamping),
-    /// `m γ_n (dδ/dt) √(R δ)`.
-    HertzianViscous(HertzianViscous),
-    /// `η √(m k_n) (dδ/dt)`.
-    StiffnessViscous(StiffnessViscous),
-}
-
-/// [`AnyDamping`] bound to a pair.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum AnyDampingLaw {
-    /// None.
-    None(NoDamping),
-    /// Hertzian viscous.
-    HertzianViscous(<HertzianViscous as DampingModel>::Law),
-    /// Stiffness viscous.
-    StiffnessViscous(<StiffnessViscous as DampingModel>::Law),
-}
-
-impl DampingModel for AnyDamping {
-    type Law = AnyDampingLaw;
-    fn bind(&self, pair: &ContactPair) -> Result<AnyDampingLaw> {
-        Ok(match self {
-            AnyDamping::None(d) => AnyDampingLaw::None(d.bind(pair)?),
-            AnyDamping::HertzianViscous(d) => AnyDampingLaw::HertzianViscous(d.bind(pair)?),
-            AnyDamping::StiffnessViscous(d) => AnyDampingLaw::StiffnessViscous(d.bind(pair)?),
-        })
-    }
-}
-
-impl DampingLaw for AnyDampingLaw {
-    #[inline]
-    fn normal_coefficient(&self, response: &NormalResponse, overlap: f64) -> f64 {
-        match self {
-            AnyDampingLaw::None(d) => d.normal_coefficient(response, overlap),
-            AnyDampingLaw::HertzianViscous(d) => d.normal_coefficient(response, overlap),
-            AnyDampingLaw::StiffnessViscous(d) => d.normal_coefficient(response, overlap),
-        }
-    }
-
-    #[inline]
-    fn tangential_ratio(&self) -> f64 {
-        match self {
-            AnyDampingLaw::None(d) => d.tangential_ratio(),
-            AnyDampingLaw::HertzianViscous(d) => d.tangential_ratio(),
-            AnyDampingLaw::StiffnessViscous(d) => d.tangential_ratio(),
-        }
-    }
-}
-
-/// The rolling-resistance model of a scene: off, or the elastic–plastic spring model.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct AnyRolling(pub Option<EpsdRolling>);
-
-/// [`AnyRolling`] bound to a pair.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct AnyRollingLaw(Option<<EpsdRolling as RollingModel>::Law>);
-
-impl RollingModel for AnyRolling {
-    type Law = AnyRollingLaw;
-    fn bind(&self, pair: &ContactPair) -> Result<AnyRollingLaw> {
-        Ok(AnyRollingLaw(match &self.0 {
-            Some(r) => Some(r.bind(pair)?),
-            None => None,
-        }))
-    }
-}
-
-impl RollingLaw for AnyRollingLaw {
-    type State = EpsdRollingState;
-    // Always inlined: called out of line, the law must compute every field of its response,
-    // the energies the pair loop does not read among them.
-    #[inline(always)]
-    fn update(&self, state: &mut EpsdRollingState, input: &RollingInput) -> RollingResponse {
-        match &self.0 {
-            Some(l) => l.update(state, input),
-            None => RollingResponse::default(),
-        }
-    }
-    #[inline]
-    fn elastic_energy(&self, state: &EpsdRollingState) -> f64 {
-        match &self.0 {
-            Some(l) => l.elastic_energy(state),
-            None => 0.0,
-        }
-    }
-    #[inline]
-    fn dissipated_work(&self, state: &EpsdRollingState) -> f64 {
-        match &self.0 {
-            Some(l) => l.dissipated_work(state),
-            None => 0.0,
-        }
-    }
-}
-
 /// A normal model a scene's steppers can run with: both force paths are compiled for each
 /// normal law, so that a contact carries only its own law's history (8 bytes for MDR and Hertz)
 /// and the pair loop takes no branch on the law (docs/performance.md). Every normal model whose
@@ -237,10 +138,10 @@ where
 
 /// A rolling model a scene's neighbour-list stepper can run with, and how its per-contact
 /// history is written to and read from a checkpoint (as the elastic–plastic spring's state, the
-/// default one when the scene has no rolling resistance). A scene without rolling resistance
-/// runs with [`NoRolling`], whose history is empty and whose update is nothing, rather than with
-/// [`AnyRolling`] switched off: every contact then carries no rolling state and takes no rolling
-/// branch (docs/performance.md).
+/// default one when the scene has no rolling resistance). A scene whose rolling law cannot give
+/// a torque ([`AnyRolling::resists`]) runs with [`NoRolling`], whose history is empty and whose
+/// update is nothing, rather than with [`AnyRolling`]: every contact then carries no rolling
+/// state and takes no rolling branch (docs/performance.md).
 pub trait SceneRolling: RollingModel<Law: Clone> + 'static {
     /// The history to write for a contact.
     fn record(state: &<Self::Law as RollingLaw>::State) -> EpsdRollingState;
@@ -255,7 +156,7 @@ impl SceneRolling for NoRolling {
     fn restore(_: &EpsdRollingState) {}
 }
 
-impl SceneRolling for EpsdRolling {
+impl SceneRolling for AnyRolling {
     fn record(state: &EpsdRollingState) -> EpsdRollingState {
         *state
     }

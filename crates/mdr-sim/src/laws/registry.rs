@@ -15,25 +15,41 @@
 //! [`super::NormalHistoryRecord`]) and add `NormalEntry::of::<TheLaw>()` below
 //! (docs/architecture.md, "Adding a law").
 //!
-//! The tangential, damping and rolling laws are registered alike, one line each
-//! ([`TANGENTIAL_LAWS`], [`DAMPING_LAWS`], [`ROLLING_LAWS`]); [`SUB_MODEL_KINDS`] says which
-//! `[contact]` key names each kind's law. The scenes' steppers take them in fixed concrete
-//! types ([`SceneParts`], [`contact_spec`]), so a new one also needs its place there
-//! (docs/architecture.md, "Tangential, damping and rolling laws").
+//! The tangential, damping and rolling laws are registered alike, one line each, in the
+//! invocations of `tangential_laws!`, `damping_laws!` and `rolling_laws!` below: each
+//! line (`Variant: TheModel,`) adds the law's entry to [`TANGENTIAL_LAWS`], [`DAMPING_LAWS`] or
+//! [`ROLLING_LAWS`] and its variant to the enums the steppers run ([`AnyTangential`],
+//! [`AnyDamping`], [`AnyRolling`] and their laws bound to a pair), which dispatch per contact by
+//! a `match` and build the model from the scene's validated values with the law's
+//! [`Declared::from_values`]. [`SUB_MODEL_KINDS`] says which `[contact]` key names each kind's
+//! law. Adding one: its file in `mdr-contact` (a model of its kind, Copy and PartialEq, with
+//! a [`Declared`] declaration, and a per-contact history of its kind's history type or none)
+//! and its line here (docs/architecture.md, "Tangential, damping and rolling laws").
 
-use super::{AnyDamping, AnyRolling, SceneNormal};
+use super::sub_models::{damping_laws, rolling_laws, sub_model_enums, tangential_laws};
+use super::{HistoryIn, SceneNormal};
 use crate::error::SimError;
 use crate::run::coupling::{
     neighbour_list_stepper, rapier_pipeline_stepper, NeighbourListScene, RapierPipelineScene,
 };
-use crate::scene::{ContactSpec, DampingSpec, NormalSpec, SubModelSpec};
-use mdr_contact::damping::{HertzianViscous, NoDamping, StiffnessViscous};
+use crate::scene::{ContactSpec, DampingSpec, NormalSpec, SubModelSpec, SubModelSpecs};
+use mdr_contact::damping::{
+    DampingLaw, DampingModel, HertzianViscous, NoDamping, StiffnessViscous,
+};
 use mdr_contact::model::ContactModel;
-use mdr_contact::normal::{AdhesiveMdr, Hertz, MdrElastoPlastic, NormalModel, Thornton};
+use mdr_contact::normal::{
+    AdhesiveMdr, Hertz, MdrElastoPlastic, NormalModel, NormalResponse, Thornton,
+};
 use mdr_contact::params::{Declared, LawDeclaration, LawKind};
-use mdr_contact::rolling::{EpsdRolling, NoRolling};
-use mdr_contact::tangential::{Frictionless, Mindlin};
-use mdr_contact::Result;
+use mdr_contact::rolling::{
+    EpsdRolling, EpsdRollingState, NoRolling, RollingInput, RollingLaw, RollingModel,
+    RollingResponse,
+};
+use mdr_contact::tangential::{
+    Frictionless, Mindlin, MindlinState, TangentialInput, TangentialLaw, TangentialModel,
+    TangentialResponse,
+};
+use mdr_contact::{ContactError, ContactPair, Result};
 use mdr_impact::DeclaredLaw;
 use mdr_rapier::neighbour_list::Boundary;
 
@@ -47,25 +63,33 @@ pub static NORMAL_LAWS: &[NormalEntry] = &[
     NormalEntry::of::<mdr_contact::normal::LinearSpring>(),
 ];
 
-/// The tangential laws of scenes (`[contact] tangential = "…"`), by name.
-pub static TANGENTIAL_LAWS: &[SubModelEntry] = &[
-    SubModelEntry::of::<Frictionless>(),
-    SubModelEntry::of::<Mindlin>(),
-];
+tangential_laws! {
+    list: TANGENTIAL_LAWS, model: AnyTangential, law: AnyTangentialLaw, history: MindlinState,
+    laws: [
+        Frictionless: Frictionless,
+        Mindlin: Mindlin,
+    ]
+}
 
-/// The damping laws of scenes (`[contact] damping = "…"`), by name.
-pub static DAMPING_LAWS: &[SubModelEntry] = &[
-    SubModelEntry::of::<NoDamping>(),
-    SubModelEntry::of::<HertzianViscous>(),
-    SubModelEntry::of::<StiffnessViscous>(),
-];
+damping_laws! {
+    list: DAMPING_LAWS, model: AnyDamping, law: AnyDampingLaw,
+    laws: [
+        None: NoDamping,
+        HertzianViscous: HertzianViscous,
+        StiffnessViscous: StiffnessViscous,
+        #[cfg(feature = "demo-laws")]
+        LinearDashpot: mdr_contact::damping::LinearDashpot,
+    ]
+}
 
-/// The rolling-resistance laws of scenes (`[contact] rolling = "…"`, default `epsd`): the
-/// elastic–plastic spring, on when its `rolling_friction` is above 0.
-pub static ROLLING_LAWS: &[SubModelEntry] = &[
-    SubModelEntry::of::<NoRolling>(),
-    SubModelEntry::of::<EpsdRolling>(),
-];
+// The elastic–plastic spring is the default rolling law, off while its `rolling_friction` is 0.
+rolling_laws! {
+    list: ROLLING_LAWS, model: AnyRolling, law: AnyRollingLaw, history: EpsdRollingState,
+    laws: [
+        NoRolling: NoRolling,
+        EpsdRolling: EpsdRolling,
+    ]
+}
 
 /// The registered normal law named `name`.
 pub fn normal_law(name: &str) -> Option<&'static NormalEntry> {
@@ -183,9 +207,8 @@ pub fn is_sub_model_key(key: &str) -> bool {
 }
 
 /// A registered tangential, damping or rolling law: its declaration (name, parameters with
-/// units, ranges, defaults and equations) and its check. The scenes' steppers are compiled for
-/// the concrete combinations of these laws ([`SceneParts`]: Mindlin, the damping enum, rolling
-/// off or on), chosen once when a run is built (docs/architecture.md).
+/// units, ranges, defaults and equations) and its check. Each is a variant of its kind's enum
+/// ([`AnyTangential`], [`AnyDamping`], [`AnyRolling`]), which the scenes' steppers run.
 #[derive(Debug, Clone, Copy)]
 pub struct SubModelEntry {
     /// Name, kind, parameters.
@@ -210,102 +233,68 @@ impl SubModelEntry {
 }
 
 /// The contact model of a scene from its normal law and its tangential, damping and rolling
-/// laws as the validation read them from their declarations. The steppers take these laws in
-/// fixed concrete types ([`SceneParts`]); a registered law of a kind they have no place for is
-/// refused here, by name (docs/architecture.md, "Tangential, damping and rolling laws").
+/// laws as the validation read them from their declarations. The steppers take the sub-models
+/// by name ([`SceneParts::of`]); [`ContactSpec`]'s coefficients (`friction`, `damping`,
+/// `tangential_damping_ratio`, `rolling_friction`) are read from them by their declared keys,
+/// for the layers that take the built-in laws' coefficients (the GPU path).
 pub fn contact_spec(
     normal: NormalSpec,
-    tangential: &SubModelSpec,
-    damping: &SubModelSpec,
-    rolling: &SubModelSpec,
-) -> std::result::Result<ContactSpec, UnplacedSubModel> {
-    let unsupported = |law: &SubModelSpec| UnplacedSubModel {
-        kind: law.declaration.kind,
-        law: law.declaration.name,
-    };
-    let friction = match tangential.declaration.name {
-        n if n == Frictionless::DECLARATION.name => 0.0,
-        n if n == Mindlin::DECLARATION.name => tangential.values[0],
-        _ => return Err(unsupported(tangential)),
-    };
-    let damping_law = match damping.declaration.name {
-        n if n == NoDamping::DECLARATION.name => DampingSpec::None,
-        n if n == HertzianViscous::DECLARATION.name => {
-            DampingSpec::HertzianViscous(damping.values[0])
-        }
-        n if n == StiffnessViscous::DECLARATION.name => {
-            DampingSpec::StiffnessViscous(damping.values[0])
-        }
-        _ => return Err(unsupported(damping)),
-    };
-    let rolling_friction = match rolling.declaration.name {
-        n if n == NoRolling::DECLARATION.name => 0.0,
-        n if n == EpsdRolling::DECLARATION.name => rolling.values[0],
-        _ => return Err(unsupported(rolling)),
-    };
-    Ok(ContactSpec {
+    tangential: SubModelSpec,
+    damping: SubModelSpec,
+    rolling: SubModelSpec,
+) -> ContactSpec {
+    let key = |law: &LawDeclaration, i: usize| law.params[i].key;
+    let friction = tangential
+        .value(key(&Mindlin::DECLARATION, 0))
+        .unwrap_or(0.0);
+    let rolling_friction = rolling
+        .value(key(&EpsdRolling::DECLARATION, 0))
+        .unwrap_or(0.0);
+    // The tangential ratio both viscous laws declare.
+    let tangential_damping_ratio = damping
+        .value(key(&HertzianViscous::DECLARATION, 1))
+        .unwrap_or(0.0);
+    ContactSpec {
         normal,
         friction,
-        damping: damping_law,
-        // The tangential ratio both viscous laws declare.
-        tangential_damping_ratio: damping
-            .value(HertzianViscous::DECLARATION.params[1].key)
-            .unwrap_or(0.0),
+        damping: DampingSpec::of(&damping),
+        tangential_damping_ratio,
         rolling_friction,
         works_of_adhesion: Vec::new(),
-    })
-}
-
-/// A registered tangential, damping or rolling law that the scenes' steppers have no place for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
-#[error(
-    "`{law}` is registered, but the scenes' steppers have no place for it \
-     (docs/architecture.md, \"Tangential, damping and rolling laws\")"
-)]
-pub struct UnplacedSubModel {
-    /// Its kind.
-    pub kind: LawKind,
-    /// Its name.
-    pub law: &'static str,
+        sub_models: SubModelSpecs {
+            tangential,
+            damping,
+            rolling,
+        },
+    }
 }
 
 /// The sub-models of a scene other than the normal law, as its steppers take them.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SceneParts {
-    /// Mindlin with the scene's `μ` (0: frictionless).
-    pub tangential: Mindlin,
-    /// Damping.
+    /// The tangential law.
+    pub tangential: AnyTangential,
+    /// The damping law.
     pub damping: AnyDamping,
-    /// Rolling resistance, off or on.
-    pub rolling: AnyRolling,
+    /// The rolling-resistance law; `None` when the scene's cannot give a torque
+    /// ([`AnyRolling::resists`]): the steppers then run without rolling history.
+    pub rolling: Option<AnyRolling>,
 }
 
 impl SceneParts {
-    /// The parts of `spec`.
+    /// The parts of `spec`: each registered law by its name, from its validated values.
     pub fn of(spec: &ContactSpec) -> Result<Self> {
-        let damping = match spec.damping {
-            DampingSpec::None => AnyDamping::None(NoDamping),
-            DampingSpec::HertzianViscous(g) => AnyDamping::HertzianViscous(
-                HertzianViscous::new(g)?.with_tangential_ratio(spec.tangential_damping_ratio)?,
-            ),
-            DampingSpec::StiffnessViscous(e) => AnyDamping::StiffnessViscous(
-                StiffnessViscous::new(e)?.with_tangential_ratio(spec.tangential_damping_ratio)?,
-            ),
-        };
-        let rolling = if spec.rolling_friction > 0.0 {
-            AnyRolling(Some(EpsdRolling::new(spec.rolling_friction)?))
-        } else {
-            AnyRolling(None)
-        };
+        let laws = &spec.sub_models;
+        let rolling = AnyRolling::of(&laws.rolling)?;
         Ok(Self {
-            tangential: Mindlin::new(spec.friction)?,
-            damping,
-            rolling,
+            tangential: AnyTangential::of(&laws.tangential)?,
+            damping: AnyDamping::of(&laws.damping)?,
+            rolling: rolling.resists().then_some(rolling),
         })
     }
 
     /// The composed model with normal model `normal`.
-    fn model<N: NormalModel>(&self, normal: N) -> ContactModel<N, Mindlin, AnyDamping> {
+    fn model<N: NormalModel>(&self, normal: N) -> ContactModel<N, AnyTangential, AnyDamping> {
         ContactModel::new(normal)
             .with_tangential(self.tangential)
             .with_damping(self.damping)

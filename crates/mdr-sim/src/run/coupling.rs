@@ -2,20 +2,21 @@
 //! [`NeighbourListScene`] (the stepper with its own neighbour lists) and [`RapierPipelineScene`]
 //! (rapier's broad and narrow phase). Each is implemented once, generically, for the stepper
 //! compiled with the scene's normal law `N` (and, on the neighbour-list path, its rolling model
-//! `R`): the run calls a path through its interface once per step or per output, and the pair
+//! `R`: none, or the registered rolling laws' enum), the tangential and damping laws being the
+//! registered laws' enums ([`AnyTangential`], [`AnyDamping`]): the run calls a path through its interface once per step or per output, and the pair
 //! loop inside runs the monomorphised law, with no call through the interface per contact.
 //! The registry ([`crate::laws::registry`]) picks the compiled stepper by the law's name.
 
 use super::books::Books;
 use super::records::{ContactRecord, NeighbourListRecord};
 use crate::error::SimError;
-use crate::laws::{AnyDamping, AnyRolling, SceneNormal, SceneRolling};
+use crate::laws::{AnyDamping, AnyRolling, AnyTangential, SceneNormal, SceneRolling};
 use crate::output::energy::EnergyRow;
 use crate::output::vtk::ContactFrame;
 use crate::scene::Scene;
 use mdr_contact::model::ContactModel;
-use mdr_contact::rolling::{EpsdRolling, NoRolling, RollingLaw};
-use mdr_contact::tangential::Mindlin;
+use mdr_contact::rolling::{NoRolling, RollingLaw};
+use mdr_contact::tangential::TangentialLaw;
 use mdr_contact::Material;
 use mdr_rapier::geometry::{SurfaceContact, SurfaceOfRevolution};
 use mdr_rapier::kernel::{ContactWorks, PairWrench};
@@ -29,10 +30,10 @@ use rapier3d_f64::prelude::*;
 use std::path::Path;
 
 /// The neighbour-list stepper of a scene with normal model `N` and rolling model `R`.
-pub type NeighbourListSceneStepper<N, R> = NeighbourListStepper<N, Mindlin, AnyDamping, R>;
+pub type NeighbourListSceneStepper<N, R> = NeighbourListStepper<N, AnyTangential, AnyDamping, R>;
 
 /// The rapier pipeline stepper of a scene with normal model `N`.
-pub type RapierPipelineSceneStepper<N> = ForceModeStepper<N, Mindlin, AnyDamping, AnyRolling>;
+pub type RapierPipelineSceneStepper<N> = ForceModeStepper<N, AnyTangential, AnyDamping, AnyRolling>;
 
 /// A scene's neighbour-list stepper, whichever its laws: what the run does with it.
 pub trait NeighbourListScene: Send + Sync {
@@ -279,20 +280,20 @@ impl<N: SceneNormal, R: SceneRolling> NeighbourListScene for NeighbourListSceneS
 
 /// The neighbour-list stepper of a scene whose normal model is `model.normal` (type `N`), with
 /// the scene's rolling model: compiled for rolling resistance on or off, so that a scene
-/// without it runs with [`NoRolling`] (no rolling history, no rolling branch in the pair loop;
-/// docs/performance.md).
+/// without it (`None`) runs with [`NoRolling`] (no rolling history, no rolling branch in the
+/// pair loop; docs/performance.md).
 pub fn neighbour_list_stepper<N: SceneNormal>(
-    model: ContactModel<N, Mindlin, AnyDamping>,
-    rolling: AnyRolling,
+    model: ContactModel<N, AnyTangential, AnyDamping>,
+    rolling: Option<AnyRolling>,
     boundary: Boundary,
 ) -> Box<dyn NeighbourListScene> {
     let stepper = NeighbourListStepper::new(model, boundary);
     match rolling {
-        AnyRolling(Some(rolling)) => {
-            let s: NeighbourListSceneStepper<N, EpsdRolling> = stepper.with_rolling(rolling);
+        Some(rolling) => {
+            let s: NeighbourListSceneStepper<N, AnyRolling> = stepper.with_rolling(rolling);
             Box::new(s)
         }
-        AnyRolling(None) => {
+        None => {
             let s: NeighbourListSceneStepper<N, NoRolling> = stepper;
             Box::new(s)
         }
@@ -500,9 +501,10 @@ impl<N: SceneNormal> RapierPipelineScene for RapierPipelineSceneStepper<N> {
         for e in self.contacts().entries() {
             let report = e.law.report(&e.history.contact, e.contact.overlap);
             row.elastic_normal_j += report.normal_elastic_energy;
-            let t = &e.history.contact.tangential;
-            row.elastic_tangential_j +=
-                0.5 * e.law.tangential.stiffness(t.contact_radius) * t.displacement.norm_squared();
+            row.elastic_tangential_j += e
+                .law
+                .tangential
+                .elastic_energy(&e.history.contact.tangential);
             row.elastic_rolling_j += e.rolling.elastic_energy(&e.history.rolling);
         }
         row.contacts = self.contacts().len() as u64;
@@ -527,11 +529,14 @@ impl<N: SceneNormal> RapierPipelineScene for RapierPipelineSceneStepper<N> {
     }
 }
 
-/// The rapier pipeline stepper of a scene whose normal model is `model.normal` (type `N`).
+/// The rapier pipeline stepper of a scene whose normal model is `model.normal` (type `N`); a
+/// scene without rolling resistance (`None`) runs [`NoRolling`] in its place (every contact of
+/// this path carries the rolling history).
 pub fn rapier_pipeline_stepper<N: SceneNormal>(
-    model: ContactModel<N, Mindlin, AnyDamping>,
-    rolling: AnyRolling,
+    model: ContactModel<N, AnyTangential, AnyDamping>,
+    rolling: Option<AnyRolling>,
 ) -> Box<dyn RapierPipelineScene> {
+    let rolling = rolling.unwrap_or(AnyRolling::NoRolling(NoRolling));
     let stepper: RapierPipelineSceneStepper<N> = ForceModeStepper::new(model).with_rolling(rolling);
     Box::new(stepper)
 }

@@ -5,6 +5,7 @@ use super::coupling::NeighbourListSceneStepper;
 use super::records::{NeighbourListPairHistory, SceneLaw};
 use super::*;
 use crate::laws::{SceneNormal, SceneRolling};
+use mdr_contact::tangential::TangentialLaw;
 
 impl Sim<'_> {
     pub(super) fn energy_row(&self) -> EnergyRow {
@@ -204,9 +205,7 @@ pub(super) fn live_elastic_energies<N: SceneNormal, R: SceneRolling>(
                    h: &NeighbourListPairHistory<N, R>,
                    overlap: f64| {
         row.elastic_normal_j += law.normal.elastic_energy(&h.contact.normal, overlap);
-        let t = &h.contact.tangential;
-        row.elastic_tangential_j +=
-            0.5 * law.tangential.stiffness(t.contact_radius) * t.displacement.norm_squared();
+        row.elastic_tangential_j += law.tangential.elastic_energy(&h.contact.tangential);
         row.elastic_rolling_j += rolling.elastic_energy(&h.rolling);
         row.contacts += 1;
     };

@@ -11,7 +11,7 @@ use super::coupling::NeighbourListSceneStepper;
 use super::Sim;
 use crate::checkpoint::{self, CheckpointError};
 use crate::headline::{HeadlineSample, Tracker};
-use crate::laws::{AnyDamping, AnyNormalState, SceneNormal, SceneRolling};
+use crate::laws::{AnyDamping, AnyNormalState, AnyTangential, SceneNormal, SceneRolling};
 use crate::output::energy::EnergyRow;
 use crate::output::vtk::CollectionEntry;
 use crate::scene::Scene;
@@ -21,7 +21,7 @@ use mdr_contact::model::{ContactLaw, ContactState};
 use mdr_contact::normal::NormalLaw;
 use mdr_contact::normal::NormalModel;
 use mdr_contact::rolling::EpsdRollingState;
-use mdr_contact::tangential::{Mindlin, MindlinState, TangentialModel};
+use mdr_contact::tangential::{MindlinState, TangentialModel};
 use mdr_rapier::convert::{to_glam, to_na};
 use mdr_rapier::neighbour_list::particles::NeighbourListParticles;
 use mdr_rapier::neighbour_list::NeighbourListState;
@@ -34,7 +34,7 @@ use std::path::Path;
 /// The composed law of a scene's pairs, with normal model `N`.
 pub(crate) type SceneLaw<N> = ContactLaw<
     <N as NormalModel>::Law,
-    <Mindlin as TangentialModel>::Law,
+    <AnyTangential as TangentialModel>::Law,
     <AnyDamping as DampingModel>::Law,
 >;
 
@@ -163,7 +163,7 @@ pub struct NeighbourListRecord {
 /// The history of one pair on the neighbour-list path of a scene with normal model `N` and
 /// rolling model `R`.
 pub(crate) type NeighbourListPairHistory<N, R> =
-    mdr_rapier::neighbour_list::NeighbourListHistory<N, Mindlin, R>;
+    mdr_rapier::neighbour_list::NeighbourListHistory<N, AnyTangential, R>;
 
 impl NeighbourListRecord {
     pub(crate) fn of<N: SceneNormal, R: SceneRolling>(
@@ -594,8 +594,9 @@ pub fn fingerprint(scene: &Scene) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::NeighbourListPairHistory;
+    use crate::laws::AnyRolling;
     use mdr_contact::normal::{Hertz, MdrElastoPlastic, Thornton};
-    use mdr_contact::rolling::{EpsdRolling, NoRolling};
+    use mdr_contact::rolling::NoRolling;
     use std::mem::size_of;
 
     /// A contact on the neighbour-list path carries its own laws' history and nothing else: the
@@ -613,7 +614,7 @@ mod tests {
             88
         );
         assert_eq!(
-            size_of::<NeighbourListPairHistory<MdrElastoPlastic, EpsdRolling>>(),
+            size_of::<NeighbourListPairHistory<MdrElastoPlastic, AnyRolling>>(),
             112
         );
     }

@@ -54,7 +54,8 @@ impl SubModelSpec {
     }
 }
 
-/// The damping law of a scene.
+/// The damping law of a scene as the layers that know the built-in laws' coefficients read it
+/// (the GPU path); the scenes' steppers take [`SubModelSpecs::damping`] by name.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum DampingSpec {
     /// None.
@@ -63,6 +64,34 @@ pub enum DampingSpec {
     HertzianViscous(f64),
     /// `stiffness_viscous` with `η`.
     StiffnessViscous(f64),
+    /// Another registered damping law, by name (its values in [`SubModelSpecs::damping`]).
+    Other(&'static str),
+}
+
+impl DampingSpec {
+    /// The view of a validated damping law.
+    pub fn of(law: &SubModelSpec) -> Self {
+        use mdr_contact::damping::{HertzianViscous, NoDamping, StiffnessViscous};
+        use mdr_contact::params::Declared;
+        let first = law.values.first().copied().unwrap_or(0.0);
+        match law.declaration.name {
+            n if n == NoDamping::DECLARATION.name => DampingSpec::None,
+            n if n == HertzianViscous::DECLARATION.name => DampingSpec::HertzianViscous(first),
+            n if n == StiffnessViscous::DECLARATION.name => DampingSpec::StiffnessViscous(first),
+            n => DampingSpec::Other(n),
+        }
+    }
+}
+
+/// A scene's tangential, damping and rolling laws, each its registered name and its values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SubModelSpecs {
+    /// The tangential law (`[contact] tangential`).
+    pub tangential: SubModelSpec,
+    /// The damping law (`[contact] damping`).
+    pub damping: SubModelSpec,
+    /// The rolling-resistance law (`[contact] rolling`).
+    pub rolling: SubModelSpec,
 }
 
 /// The contact model of a scene.
@@ -70,14 +99,17 @@ pub enum DampingSpec {
 pub struct ContactSpec {
     /// Normal law.
     pub normal: NormalSpec,
-    /// Friction coefficient `μ` (0: frictionless).
+    /// Friction coefficient `μ` of the tangential law, where it declares one (0: frictionless).
     pub friction: f64,
-    /// Damping.
+    /// Damping, as the built-in laws' coefficients.
     pub damping: DampingSpec,
-    /// Tangential dashpot over normal dashpot (0: none).
+    /// Tangential dashpot over normal dashpot, where the damping law declares it (0: none).
     pub tangential_damping_ratio: f64,
-    /// Rolling-resistance coefficient `μ_r` (0: off).
+    /// Rolling-resistance coefficient `μ_r`, where the rolling law declares it (0: off).
     pub rolling_friction: f64,
+    /// The tangential, damping and rolling laws by name, as the scenes' steppers take them
+    /// ([`crate::laws::registry::SceneParts::of`]); the four fields above are read from them.
+    pub sub_models: SubModelSpecs,
     /// Each material's work of adhesion `Δγ_i` (J/m², in [`Scene::materials`] order) when the
     /// scene gives adhesion per material: the contacts of materials `i` and `j` then run
     /// [`ContactSpec::normal`]'s law with the pair's mixed `Δγ_ij = √(Δγ_i Δγ_j)`

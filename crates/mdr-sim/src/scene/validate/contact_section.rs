@@ -13,14 +13,12 @@ impl Checker<'_, '_> {
         let [tangential, damping, rolling] = SUB_MODEL_KINDS
             .each_ref()
             .map(|kind| self.sub_model(c, &table, kind));
-        match registry::contact_spec(normal?, &tangential?, &damping?, &rolling?) {
-            Ok(spec) => Some(spec),
-            Err(e) => {
-                let key = registry::sub_model_kind(e.kind).map_or("", |k| k.key);
-                self.error(&table.key(key), e.to_string());
-                None
-            }
-        }
+        Some(registry::contact_spec(
+            normal?,
+            tangential?,
+            damping?,
+            rolling?,
+        ))
     }
 
     /// The law of one sub-model kind (`tangential = "…"`, its default when absent) and its
