@@ -908,7 +908,10 @@ mod tests {
                     }
                 }
                 let root = 0.5 * (lo + hi);
-                assert!(root < b || kappa == 1.0 / r, "root beyond b on the flattened branch");
+                assert!(
+                    root < b || kappa == 1.0 / r,
+                    "root beyond b on the flattened branch"
+                );
                 let what = format!("κ = {kappa:e}, ε = {eps}");
                 let unload = |previous: f64| {
                     let mut state = AdhesiveMdrState {
@@ -920,7 +923,10 @@ mod tests {
                 };
                 let held = root * (1.0 - 1e-9);
                 let (response, state) = unload(held);
-                assert_eq!(state.contact_radius, held, "{what}: the edge inside its limit");
+                assert_eq!(
+                    state.contact_radius, held,
+                    "{what}: the edge inside its limit"
+                );
                 let integral = if held < b {
                     simpson(0.0, held)
                 } else {
