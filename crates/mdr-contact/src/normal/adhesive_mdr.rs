@@ -398,8 +398,9 @@ impl AdhesiveMdrLaw {
     }
 
     /// The retreating edge by Halley's method from the previous edge, for every case the series
-    /// of [`Self::series_retreat`] and [`Self::newton_retreat`] do not cover (no spring in compression, a root on the other
-    /// branch, a large perturbation); zero when the contact lets go.
+    /// of [`Self::series_retreat`] and [`Self::newton_retreat`] do not cover (no spring in
+    /// compression, a root on the other branch, a large perturbation); zero when the contact
+    /// lets go.
     fn retreat_by_halley(&self, crater: &Crater, previous: f64, d: f64, touching: f64) -> f64 {
         let c = self.detach_coefficient;
         // φ(t) = h(t²) − c t − d, t = √a, convex in t.
