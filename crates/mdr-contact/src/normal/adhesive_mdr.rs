@@ -602,7 +602,7 @@ impl NormalLaw for AdhesiveMdrLaw {
 
     /// With `Δγ = 0` this is [`MdrLaw::update`]. Otherwise `F = 2E* (a d − ∫₀^a h dx)` over the
     /// attached disc (eq. A3), negative when the attached springs are stretched.
-    #[inline]
+    #[inline(always)]
     fn update(&self, state: &mut AdhesiveMdrState, d: f64) -> NormalResponse {
         if self.work_of_adhesion == 0.0 {
             let mut inner = MdrState {
