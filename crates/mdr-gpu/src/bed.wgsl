@@ -701,30 +701,63 @@ fn adhesive_mdr_law(law: Law, state: ptr<function, vec3<f64>>, d: f64) -> Normal
         kappa = c.theta * c.inv_radius;
     }
     if a_t > 0.0lf {
-        // `AdhesiveMdrLaw::retreated_edge`: `ε = (c/κ) a_t^{−3/2}`, `a_t ε = (c/κ)/√a_t`.
-        let scale = law.detach_coefficient / kappa / sqrt(a_t);
-        let eps = scale / a_t;
-        if eps <= 0.5lf {
-            var retreat = scale * edge_series(eps);
-            if eps > 1.0lf / 16.0lf {
-                let y = eps * (edge_series(eps) + edge_series_tail(eps));
-                retreat = a_t * edge_newton_step(y, eps);
-            }
-            let root = a_t + retreat;
-            if !inner || root * root < law.effective_radius * s {
-                var a = previous;
-                if root < previous {
-                    a = root;
-                }
-                let annulus = a - a_t;
-                (*state).y = a;
+        // `AdhesiveMdrLaw::unload_on_branch`: `ε = (c/κ) a_t^{−3/2}`; `ε ≤ 1/16` where
+        // `a_t³ ≥ 256 (c/κ)²`, `ε ≤ 1/2` where `a_t³ ≥ 4 (c/κ)²` (`Branch::series_cube`,
+        // `Branch::newton_cube`).
+        let k = law.detach_coefficient / kappa;
+        let hold = k * k;
+        let plastic_radius_sq = law.effective_radius * s;
+        let cube = a_t * a_t * a_t;
+        var root = 0.0lf;
+        var placed = false;
+        if cube >= 256.0lf * hold {
+            // `series_retreat`: `a_t ε = (c/κ)/√a_t`.
+            let scale = k / sqrt(a_t);
+            root = a_t + scale * edge_series(scale / a_t);
+            placed = true;
+        } else {
+            // The edge on the touching radius's branch holds while
+            // `(a² − a_t²)² ≤ (c/κ)² a` (A5 squared).
+            let square_gap = (previous - a_t) * (previous + a_t);
+            if square_gap * square_gap <= hold * previous
+                && !(inner && previous * previous >= plastic_radius_sq) {
+                let annulus = previous - a_t;
                 out.force = touching.force
-                    - 2.0lf / 3.0lf * law.effective_modulus * kappa * annulus * annulus * (a + 2.0lf * a_t);
-                out.radius = a;
-                out.stiffness = two_modulus * a;
+                    - 2.0lf / 3.0lf * law.effective_modulus * kappa * annulus * annulus * (previous + 2.0lf * a_t);
+                out.radius = previous;
+                out.stiffness = two_modulus * previous;
                 return out;
             }
+            if cube >= 4.0lf * hold {
+                // `newton_retreat`.
+                let eps = k / (a_t * sqrt(a_t));
+                let y = eps * (edge_series(eps) + edge_series_tail(eps));
+                root = a_t + a_t * edge_newton_step(y, eps);
+                placed = true;
+            }
         }
+        if placed && !(inner && root * root >= plastic_radius_sq) {
+            var a = previous;
+            if root < previous {
+                a = root;
+            }
+            let annulus = a - a_t;
+            (*state).y = a;
+            out.force = touching.force
+                - 2.0lf / 3.0lf * law.effective_modulus * kappa * annulus * annulus * (a + 2.0lf * a_t);
+            out.radius = a;
+            out.stiffness = two_modulus * a;
+            return out;
+        }
+    }
+    // `AdhesiveMdrLaw::held_edge`: the edge holds while `(h(a) − d)² ≤ c² a` (A5 squared),
+    // with the force of (A3).
+    let elongation = crater_height(c, previous) - d;
+    if elongation * elongation <= law.detach_coefficient * law.detach_coefficient * previous {
+        out.force = two_modulus * (previous * d - crater_integral(c, previous));
+        out.radius = previous;
+        out.stiffness = two_modulus * previous;
+        return out;
     }
     let a = retreat_by_halley(law, c, previous, d, a_t);
     (*state).y = a;

@@ -107,14 +107,29 @@ pub struct AdhesiveMdrLaw {
 struct Branch {
     /// `√(2πΔγ/E*)/κ`: `ε = Δl_max(a_t)/(d − h₀) = this · a_t^{−3/2}`.
     eps_coefficient: f64,
+    /// `2πΔγ/(E*κ²)`, the square of `eps_coefficient`: the edge `a` on the branch holds while
+    /// `(a² − a_t²)² ≤ this · a` (A5 squared, divided by `κ²`).
+    hold_coefficient: f64,
+    /// `hold_coefficient / SERIES_EDGE_LIMIT²`: `ε ≤ SERIES_EDGE_LIMIT` where `a_t³` is at
+    /// least this (a product by a power of two: the shader's test has the same bits).
+    series_cube: f64,
+    /// `hold_coefficient / NEWTON_EDGE_LIMIT²`: `ε ≤ NEWTON_EDGE_LIMIT` where `a_t³` is at
+    /// least this.
+    newton_cube: f64,
     /// `2E*κ/3`: the annulus `a_t < x < a` pulls `(2E*κ/3)(a − a_t)²(a + 2a_t)` (A13).
     pull_coefficient: f64,
 }
 
 impl Branch {
     fn new(detach_coefficient: f64, effective_modulus: f64, kappa: f64) -> Self {
+        let eps_coefficient = detach_coefficient / kappa;
         Self {
-            eps_coefficient: detach_coefficient / kappa,
+            eps_coefficient,
+            hold_coefficient: eps_coefficient * eps_coefficient,
+            series_cube: eps_coefficient * eps_coefficient
+                / (SERIES_EDGE_LIMIT * SERIES_EDGE_LIMIT),
+            newton_cube: eps_coefficient * eps_coefficient
+                / (NEWTON_EDGE_LIMIT * NEWTON_EDGE_LIMIT),
             pull_coefficient: 2.0 / 3.0 * effective_modulus * kappa,
         }
     }
@@ -248,8 +263,9 @@ impl AdhesiveMdrLaw {
         let modulus = mdr.effective_modulus();
         let radius = mdr.effective_radius();
         let theta = mdr.hardening_ratio();
-        let detach_coefficient_sq = 2.0 * PI * work_of_adhesion / modulus;
-        let detach_coefficient = detach_coefficient_sq.sqrt();
+        let detach_coefficient = (2.0 * PI * work_of_adhesion / modulus).sqrt();
+        // The square of the rounded coefficient, as the shader forms it.
+        let detach_coefficient_sq = detach_coefficient * detach_coefficient;
         let inv_radius = 1.0 / radius;
         Self {
             mdr,
@@ -313,26 +329,41 @@ impl AdhesiveMdrLaw {
         }
     }
 
+    /// The retreat `a_r − a_t` of the edge by the `ε` band the law takes it in
+    /// ([`Self::series_retreat`], [`Self::newton_retreat`]; `None` past the series' reach,
+    /// `ε > 1/2`).
+    #[cfg(test)]
+    fn retreated_edge(&self, branch: &Branch, touching: f64) -> Option<f64> {
+        let cube = touching * touching * touching;
+        if cube >= branch.series_cube {
+            Some(Self::series_retreat(branch, touching))
+        } else if cube >= branch.newton_cube {
+            Some(Self::newton_retreat(branch, touching))
+        } else {
+            None
+        }
+    }
+
     /// The retreat `a_r − a_t` of the edge when the springs at the touching radius
     /// `a_t = touching` are in compression, with `a_r` the root of (A5) on the branch of the
-    /// touching radius (`None` past the series' reach, `ε > 1/2`, and where no spring touches).
+    /// touching radius, for `ε ≤ 1/16`: the series (A12) to `ε⁸`.
     /// On a branch `h = κ a² + h₀` (A5) in `t = √a` is the quartic `κ t⁴ − c t − (d − h₀) = 0`;
     /// with `t = √a_t u` and `κ a_t² = d − h₀` it reads `u⁴ − ε u − 1 = 0`,
     /// `ε = c √a_t/(d − h₀) = (c/κ) a_t^{−3/2}`, and `a_r − a_t = a_t (u² − 1) = a_t ε (y/ε)`
     /// (docs/theory.md, eq. A12) with `a_t ε = (c/κ)/√a_t`. Whether `a_r` stays on the branch
     /// is the caller's test.
     #[inline]
-    fn retreated_edge(&self, branch: &Branch, touching: f64) -> Option<f64> {
+    fn series_retreat(branch: &Branch, touching: f64) -> f64 {
         let scale = branch.eps_coefficient / touching.sqrt();
-        let eps = scale / touching;
-        if eps <= SERIES_EDGE_LIMIT {
-            Some(scale * edge_series(eps))
-        } else if eps <= NEWTON_EDGE_LIMIT {
-            let y = eps * (edge_series(eps) + edge_series_tail(eps));
-            Some(touching * edge_newton_step(y, eps))
-        } else {
-            None
-        }
+        scale * edge_series(scale / touching)
+    }
+
+    /// The retreat for `1/16 < ε ≤ 1/2`: the series to `ε¹²` and one Newton step.
+    #[inline]
+    fn newton_retreat(branch: &Branch, touching: f64) -> f64 {
+        let eps = branch.eps_coefficient / (touching * touching.sqrt());
+        let y = eps * (edge_series(eps) + edge_series_tail(eps));
+        touching * edge_newton_step(y, eps)
     }
 
     /// Unloading with stretched springs at the edge in every case [`Self::unload_on_branch`] and
@@ -367,8 +398,9 @@ impl AdhesiveMdrLaw {
     }
 
     /// The retreating edge by Halley's method from the previous edge, for every case the series
-    /// of [`Self::retreated_edge`] does not cover (no spring in compression, a root on the other
-    /// branch, a large perturbation); zero when the contact lets go.
+    /// of [`Self::series_retreat`] and [`Self::newton_retreat`] do not cover (no spring in
+    /// compression, a root on the other branch, a large perturbation); zero when the contact
+    /// lets go.
     fn retreat_by_halley(&self, crater: &Crater, previous: f64, d: f64, touching: f64) -> f64 {
         let c = self.detach_coefficient;
         // φ(t) = h(t²) − c t − d, t = √a, convex in t.
@@ -491,10 +523,17 @@ impl AdhesiveMdrLaw {
     }
 
     /// Unloading with springs touching out to `a_t = touching.contact_radius` (> 0) and
-    /// stretched springs beyond it: the edge holds while it lies inside the root of (A5) on the
-    /// touching radius's branch of the crater ([`Self::retreated_edge`]), and retreats to it
-    /// otherwise (δ is convex in √a and below d at the touching radius); `None` where the
-    /// series does not reach or the root lies on the other branch.
+    /// stretched springs beyond it, on the touching radius's branch `h = κa² + h₀` of the
+    /// crater. For `ε = (c/κ) a_t^{−3/2} ≤ 1/16` (tested as `a_t³ ≥ 256 (c/κ)²`, without a
+    /// root) the edge is the series root of (A5) on the branch (A12) where
+    /// that lies inside the previous edge, and holds otherwise: on unloading such an edge
+    /// mostly retreats. For larger `ε`, where edges mostly hold, the edge at `previous` on the
+    /// same branch is tested first: its spring's elongation is `h(a) − d = κ(a² − a_t²)` (as
+    /// `κa_t² = d − h₀`), so it holds while `κ²(a² − a_t²)² ≤ c²a` (A5 squared; both sides
+    /// positive), a test without a square root or a division; otherwise it retreats to the
+    /// root ([`Self::newton_retreat`]; δ is convex in √a and below d at the touching radius).
+    /// `None` where the root lies on the other branch, where the series does not reach, and
+    /// for an edge beyond the plastic radius that the flattened branch's root does not place.
     #[inline]
     fn unload_on_branch(
         &self,
@@ -506,25 +545,50 @@ impl AdhesiveMdrLaw {
         let a_t = touching.contact_radius;
         let previous = state.contact_radius;
         let (branch, inner) = self.branch(max_overlap, d);
-        let root = a_t + self.retreated_edge(branch, a_t)?;
-        // On the flattened branch the root must lie inside the plastic radius, b² = R s.
-        if inner
-            && root * root >= self.mdr.effective_radius() * (max_overlap - self.mdr.yield_overlap())
+        // On the flattened branch the edge must lie inside the plastic radius, b² = R s.
+        let beyond_plastic_radius = |a: f64| {
+            inner && a * a >= self.mdr.effective_radius() * (max_overlap - self.mdr.yield_overlap())
+        };
+        let cube = a_t * a_t * a_t;
+        let square_gap = (previous - a_t) * (previous + a_t);
+        let root = if cube >= branch.series_cube {
+            a_t + Self::series_retreat(branch, a_t)
+        } else if square_gap * square_gap <= branch.hold_coefficient * previous
+            && !beyond_plastic_radius(previous)
         {
+            return Some(self.stretched_response(branch, touching, previous));
+        } else if cube >= branch.newton_cube {
+            a_t + Self::newton_retreat(branch, a_t)
+        } else {
+            return None;
+        };
+        if beyond_plastic_radius(root) {
             return None;
         }
         let a = if root < previous { root } else { previous };
         state.adhesive_work += self.annulus_work(previous, a);
         state.contact_radius = a;
-        // The disc beyond the touching radius pulls
-        // `2E* ∫_{a_t}^{a} (h − d) dx = (2E*κ/3)(a − a_t)²(a + 2a_t)` (A13); the attached
-        // springs are elastic on unloading: 2 E* a.
+        Some(self.stretched_response(branch, touching, a))
+    }
+
+    /// The response with springs touching out to `a_t = touching.contact_radius` and the edge
+    /// at `a` on the same branch of the crater: the disc beyond the touching radius pulls
+    /// `2E* ∫_{a_t}^{a} (h − d) dx = (2E*κ/3)(a − a_t)²(a + 2a_t)` (A13); the attached springs
+    /// are elastic on unloading: 2 E* a.
+    #[inline]
+    fn stretched_response(
+        &self,
+        branch: &Branch,
+        touching: &NormalResponse,
+        a: f64,
+    ) -> NormalResponse {
+        let a_t = touching.contact_radius;
         let annulus = a - a_t;
-        Some(NormalResponse {
+        NormalResponse {
             force: touching.force - branch.pull_coefficient * annulus * annulus * (a + 2.0 * a_t),
             contact_radius: a,
             stiffness: 2.0 * self.mdr.effective_modulus() * a,
-        })
+        }
     }
 
     /// The elastic JKR pull-off force `(3/2) π Δγ R` (N).
@@ -538,7 +602,7 @@ impl NormalLaw for AdhesiveMdrLaw {
 
     /// With `Δγ = 0` this is [`MdrLaw::update`]. Otherwise `F = 2E* (a d − ∫₀^a h dx)` over the
     /// attached disc (eq. A3), negative when the attached springs are stretched.
-    #[inline]
+    #[inline(always)]
     fn update(&self, state: &mut AdhesiveMdrState, d: f64) -> NormalResponse {
         if self.work_of_adhesion == 0.0 {
             let mut inner = MdrState {
@@ -784,6 +848,114 @@ mod tests {
         let limit = law.critical_elongation(a);
         let gap = crater.height(a) - d - limit;
         assert!(gap.abs() <= 1e-12 * limit, "{gap:e}");
+    }
+
+    /// With springs touching out to `a_t > 0` and `ε > 1/16` (the held-edge test of
+    /// `unload_on_branch`, before any root), on the sphere's and on the flattened branch, in
+    /// the Newton band (`ε = 0.3`) and beyond the series (`ε = 0.8`): an edge just inside the
+    /// root of (A5), found here by bisection on the crater's profile, holds, with the force of
+    /// (A3) against Simpson's rule on that profile, `2E* a` and no adhesive work; an edge just
+    /// outside it retreats to the root and books the work `π Δγ (a_prev² − a²)`. Kills a hold
+    /// test that holds past the limit (`4c²a` for `c²a`) and a pull of the annulus with
+    /// `a + a_t` for `a + 2a_t`.
+    #[test]
+    fn edge_on_the_touching_branch_holds_to_its_limit() {
+        let pair = ContactPair::paper_fig2();
+        let params = MdrElastoPlastic::paper();
+        let (r, e) = (pair.effective_radius(), pair.effective_modulus());
+        let plain = params.bind(&pair).unwrap();
+        let max_overlap = 12.0 * plain.yield_overlap();
+        let s = max_overlap - plain.yield_overlap();
+        let theta = plain.hardening_ratio();
+        let depth = (1.0 - theta) * s;
+        let b = (r * s).sqrt();
+        let profile = |x: f64| {
+            if x < b {
+                theta * x * x / r + depth
+            } else {
+                x * x / r
+            }
+        };
+        let simpson = |lo: f64, hi: f64| {
+            let n = 64;
+            let step = (hi - lo) / n as f64;
+            let inner: f64 = (1..n)
+                .map(|k| profile(lo + k as f64 * step) * if k % 2 == 1 { 4.0 } else { 2.0 })
+                .sum();
+            (profile(lo) + profile(hi) + inner) * step / 3.0
+        };
+        let outer = 0.95 * max_overlap;
+        let inner = depth + 0.02 * (s - depth);
+        for (d, excess, kappa) in [(outer, outer, 1.0 / r), (inner, inner - depth, theta / r)] {
+            let touching = plain
+                .update(&mut MdrState { max_overlap }, d)
+                .contact_radius;
+            for eps in [0.3, 0.8] {
+                let c = eps * excess / touching.sqrt();
+                let gamma = c * c * e / (2.0 * PI);
+                let law = AdhesiveMdr::new(params, gamma)
+                    .unwrap()
+                    .bind(&pair)
+                    .unwrap();
+                // The root of h(a) − d = c√a beyond the touching radius, by bisection.
+                let c = law.critical_elongation(1.0);
+                let (mut lo, mut hi) = (touching, 4.0 * touching);
+                for _ in 0..200 {
+                    let mid = 0.5 * (lo + hi);
+                    if profile(mid) - d - c * mid.sqrt() > 0.0 {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+                let root = 0.5 * (lo + hi);
+                assert!(
+                    root < b || kappa == 1.0 / r,
+                    "root beyond b on the flattened branch"
+                );
+                let what = format!("κ = {kappa:e}, ε = {eps}");
+                let unload = |previous: f64| {
+                    let mut state = AdhesiveMdrState {
+                        max_overlap,
+                        contact_radius: previous,
+                        adhesive_work: 0.0,
+                    };
+                    (law.update(&mut state, d), state)
+                };
+                let held = root * (1.0 - 1e-9);
+                let (response, state) = unload(held);
+                assert_eq!(
+                    state.contact_radius, held,
+                    "{what}: the edge inside its limit"
+                );
+                let integral = if held < b {
+                    simpson(0.0, held)
+                } else {
+                    simpson(0.0, b) + simpson(b, held)
+                };
+                let expected = 2.0 * e * (held * d - integral);
+                assert!(
+                    (response.force - expected).abs() <= 1e-12 * 2.0 * e * held * profile(held),
+                    "{what}: {} vs {expected}",
+                    response.force
+                );
+                assert_eq!(response.stiffness, 2.0 * e * held);
+                assert_eq!(state.adhesive_work, 0.0);
+                let beyond = root * (1.0 + 1e-9);
+                let (_, state) = unload(beyond);
+                assert!(
+                    (state.contact_radius - root).abs() <= 1e-12 * root,
+                    "{what}: retreated to {} for the root {root}",
+                    state.contact_radius
+                );
+                let work = PI * gamma * (beyond * beyond - state.contact_radius.powi(2));
+                assert!(
+                    (state.adhesive_work - work).abs() <= 1e-6 * work,
+                    "{what}: work {} vs {work}",
+                    state.adhesive_work
+                );
+            }
+        }
     }
 
     /// A neck held by adhesion alone (no spring touching: the overlap below the crater's
