@@ -252,14 +252,14 @@ normal = [0.0, 0.0, 1.0]
 "#;
 
 /// The books of docs/theory.md §5.1's audit table that the energy CSV carries, in % of the
-/// start energy at the end of the run: `C_t` (`stiffness_tangential_j`), `C_r`
-/// (`stiffness_rolling_j`) and the `balance_j` drift, at the automatic time step and at half of
+/// start energy at the end of the run: `C_t` (`−stiffness_tangential_j`), `C_r`
+/// (`−stiffness_rolling_j`) and the `balance_j` drift, at the automatic time step and at half of
 /// it, with and without rolling resistance. Printed as the table's rows; held to what the table
 /// says of them: the drift without rolling resistance is a first-order time-step error (it
 /// halves with `dt`, ratio 2 ± 0.2), with rolling resistance the two gaps nearly cancel (drift
 /// below 0.1 % at both steps), and the stiffness books are converged (`C_t` and `C_r` move by
 /// less than 10 % from `dt` to `dt/2`). Long (four runs of 96 000 to 192 000 steps):
-/// `cargo test --release -p mdr-sim --test sim_energy_books -- --ignored --nocapture`.
+/// `cargo test -p mdr-sim --test sim_energy_books -- --ignored --nocapture column_640`.
 #[test]
 #[ignore]
 fn column_640_stiffness_books_and_time_step_gap() {
@@ -285,9 +285,11 @@ fn column_640_stiffness_books_and_time_step_gap() {
         let (first, last) = (&summary.energy[0], summary.energy.last().unwrap());
         let e0 = first.balance_j;
         let percent = |x: f64| 100.0 * x / e0;
+        // The table's `C_t` and `C_r` are the energies the springs gained without work: the
+        // columns book what they lost, `−Σ C`.
         let books = [
-            percent(last.stiffness_tangential_j),
-            percent(last.stiffness_rolling_j),
+            -percent(last.stiffness_tangential_j),
+            -percent(last.stiffness_rolling_j),
             percent(last.balance_j - e0),
         ];
         eprintln!(
