@@ -1,7 +1,8 @@
 //! `mdr-dem sim run` from the command line. Ctrl-C: SIGINT while the run is under way makes it
 //! write a final checkpoint and exit with status 130, printing the command that continues it;
 //! that command, run verbatim by a shell, completes the run in the same folder, and its summary
-//! counts the steps it ran. Exit statuses of refused input (2) and of a guard (3).
+//! counts the steps it ran. Exit statuses of refused input (2) and of a guard (3), the NaN stop
+//! among them, with the outputs written before it kept.
 //! `--threads`: one and two threads write the same energy books, and 0 is refused by name.
 
 #![cfg(unix)]
@@ -282,4 +283,77 @@ fn guards_and_refused_input_have_their_exit_statuses() {
     assert_eq!(missing.status.code(), Some(2), "{stderr}");
     assert_eq!(stderr.matches("No such file").count(), 1, "{stderr}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A state that stops being finite (one sphere under a gravity of 10³⁰⁷ m/s², whose height
+/// `z_0 − g dt² k(k+1)/2` passes the largest double at step 5996 of 1 ms) ends the command with
+/// the guard's status 3 and a message naming the particle, the step and `dt_s`; the frames of
+/// the samples before it (steps 0 to 5500, every 500) and the energy rows up to the last of
+/// them stay in the output folder.
+#[test]
+fn a_non_finite_state_exits_with_the_guard_status_and_keeps_what_was_written() {
+    let dir_guard = tempfile::tempdir().unwrap();
+    let dir = dir_guard.path();
+    write(
+        &dir.join("one.csv"),
+        "x_m,y_m,z_m,radius_m\n0,0,0.0025,0.002\n",
+    );
+    let text = r#"
+[run]
+name = "blowup"
+duration_s = 6.5
+dt_s = 1.0e-3
+max_speed_m_per_s = 1.0e-9
+output_interval_s = 0.5
+energy_interval_s = 0.1
+
+[gravity]
+acceleration_m_per_s2 = [0.0, 0.0, -1.0e307]
+
+[[material]]
+name = "grain"
+youngs_pa = 5.0e7
+poisson_ratio = 0.25
+density_kg_per_m3 = 2500.0
+
+[contact]
+normal = "mdr"
+critical_line_load_n_per_m = 100.0
+hardening_ratio = 0.37
+
+[[particles]]
+material = "grain"
+placement = "csv"
+file = "one.csv"
+"#;
+    let scene = write(&dir.join("blowup.toml"), text);
+    let out = dir.join("out");
+    let output = Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
+        .args(["sim", "run"])
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out)
+        .arg("--quiet")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(3), "{stderr}");
+    assert!(
+        stderr.contains("step 6000")
+            && stderr.contains("particle 0 has a non-finite position or velocity: reduce dt_s"),
+        "{stderr}"
+    );
+    let frames = std::fs::read_dir(out.join("frames")).unwrap().count();
+    assert_eq!(frames, 12, "{stderr}");
+    assert!(out.join("frames").join("blowup_000011.vtp").exists());
+    let csv = std::fs::read_to_string(out.join("blowup_energy.csv")).unwrap();
+    let last_time: f64 = csv
+        .lines()
+        .last()
+        .and_then(|l| l.split(',').next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert_eq!(csv.lines().count(), 1 + 56, "{csv}");
+    assert!((last_time - 5.5).abs() < 1e-9, "{csv}");
 }

@@ -1,6 +1,6 @@
 //! What a run does when it goes wrong: mesh walls whatever their winding (an open mesh is
 //! two-sided, a closed one must be wound consistently), a sphere driven through a wall, the
-//! energy guard, a resumed run's output folder.
+//! energy guard, a state that stops being finite, a resumed run's output folder.
 
 mod common;
 
@@ -338,4 +338,92 @@ fn misspelt_duplicate_and_missing_keys_are_named() {
         table.contains("[contact] is defined a second time"),
         "{table}"
     );
+}
+
+/// One sphere in free fall under a gravity of 10³⁰⁷ m/s², 1 ms steps, a frame every 500 steps.
+const NON_FINITE_SCENE: &str = r#"
+[run]
+name = "blowup"
+duration_s = 6.5
+dt_s = 1.0e-3
+max_speed_m_per_s = 1.0e-9
+output_interval_s = 0.5
+energy_interval_s = 0.1
+
+[gravity]
+acceleration_m_per_s2 = [0.0, 0.0, -1.0e307]
+
+[[material]]
+name = "grain"
+youngs_pa = 5.0e7
+poisson_ratio = 0.25
+density_kg_per_m3 = 2500.0
+
+[contact]
+normal = "mdr"
+critical_line_load_n_per_m = 100.0
+hardening_ratio = 0.37
+
+[[particles]]
+material = "grain"
+placement = "csv"
+file = "one.csv"
+"#;
+
+/// One sphere falling freely under a gravity of 10³⁰⁷ m/s² (finite, so the scene is accepted;
+/// no contact, so no stability check applies). Symplectic Euler puts it at
+/// `z_k = z_0 − g dt² k(k+1)/2`, past the largest double at step 5996, while its speed `g k dt`
+/// stays finite until step 17 977: the first non-finite state is a position alone. The check at
+/// the frame samples stops the run at step 6000 with the particle and `dt_s` named, and what the
+/// samples before it wrote stays: the 12 frames of steps 0 to 5500, the collection listing
+/// them, and the energy rows up to the last of them.
+#[test]
+fn a_non_finite_state_stops_the_run_naming_the_particle_and_dt() {
+    let dir = temp_dir("non_finite");
+    write(&dir, "one.csv", "x_m,y_m,z_m,radius_m\n0,0,0.0025,0.002\n");
+    let path = write(&dir, "blowup.toml", NON_FINITE_SCENE);
+    let scene = load_scene(&path).unwrap();
+    let (g, dt) = (1.0e307, scene.dt);
+    assert_eq!(scene.gravity.z, -g);
+    let position_overflow = (1..u64::MAX)
+        .find(|&k| (k * (k + 1) / 2) as f64 > f64::MAX / (g * dt * dt))
+        .unwrap();
+    assert_eq!(position_overflow, 5996);
+    assert!(f64::MAX / (g * dt) > 17_000.0);
+    let out = dir.join("out");
+    let e = run_scene(&scene, &RunOptions::new(&out).quiet(true)).unwrap_err();
+    let SimError::Diverged { time, step, reason } = &e else {
+        panic!("{e}");
+    };
+    assert_eq!(*step, 6000, "{e}");
+    assert!((time - 6.0).abs() < 1e-9, "{e}");
+    assert!(
+        reason.contains("particle 0 has a non-finite position or velocity")
+            && reason.contains("dt_s"),
+        "{e}"
+    );
+    assert!(e.to_string().contains("step 6000"), "{e}");
+    assert!(e.is_guard());
+    // The frames of the finite samples, and the collection that lists them.
+    let mut names: Vec<String> = std::fs::read_dir(out.join("frames"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    let expected: Vec<String> = (0..12).map(|i| format!("blowup_{i:06}.vtp")).collect();
+    assert_eq!(names, expected);
+    let pvd = std::fs::read_to_string(out.join("blowup.pvd")).unwrap();
+    assert_eq!(pvd.matches("<DataSet").count(), 12, "{pvd}");
+    // The energy rows every 100 steps up to the last finite sample (step 5500): a row at
+    // t = 0 s with every value finite (the sphere at rest), the last at t = 5.5 s.
+    let csv = std::fs::read_to_string(out.join("blowup_energy.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 56, "{csv}");
+    assert!(rows[0].iter().all(|v| v.is_finite()), "{csv}");
+    assert_eq!(rows[0][0], 0.0);
+    assert!((rows[55][0] - 5.5).abs() < 1e-9, "{csv}");
 }

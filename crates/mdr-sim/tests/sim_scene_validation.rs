@@ -337,3 +337,117 @@ fn neighbour_skin_is_checked_with_line_and_key() {
     let e = error_on(&text, "neighbour_skin_m");
     assert!(e.message.contains("neighbour-list path only"), "{e}");
 }
+
+/// A `[contact]` parameter of the wrong type is one error at its key ("invalid type"), not a
+/// second one for the number it is not.
+#[test]
+fn a_contact_parameter_that_is_not_a_number_is_one_error_at_its_key() {
+    let text = good().replace(
+        "critical_line_load_n_per_m = 100.0",
+        "critical_line_load_n_per_m = \"100\"",
+    );
+    let p = problems(&text);
+    let at_key: Vec<_> = p
+        .errors()
+        .filter(|e| e.key == "contact.critical_line_load_n_per_m")
+        .collect();
+    assert_eq!(at_key.len(), 1, "{p}");
+    assert!(
+        at_key[0].message.contains("invalid type: string")
+            && at_key[0].message.contains("expected a number"),
+        "{p}"
+    );
+    assert_eq!(at_key[0].line, line_of(&text, "critical_line_load_n_per_m"));
+}
+
+/// An unknown `[contact]` key lists the keys the table takes: `normal` first, the sub-model
+/// kinds and their parameters, then the normal law's parameters.
+#[test]
+fn an_unknown_contact_key_lists_the_keys_of_the_table() {
+    let text = good().replace(
+        "hardening_ratio = 0.37",
+        "hardening_ratio = 0.37\nfrobnicate = 1",
+    );
+    let e = error_on(&text, "contact.frobnicate");
+    assert!(e.message.contains("unknown field `frobnicate`"), "{e}");
+    let expected = e.message.split("expected one of ").nth(1).unwrap_or("");
+    assert!(expected.starts_with("`normal`, "), "{e}");
+    for key in [
+        "`tangential`",
+        "`friction`",
+        "`rolling_friction`",
+        "`critical_line_load_n_per_m`",
+        "`hardening_ratio`",
+    ] {
+        assert!(expected.contains(key), "{key} missing: {e}");
+    }
+    assert!(
+        !expected.contains("``") && !expected.contains("xyzzy"),
+        "{e}"
+    );
+}
+
+/// A scene of spheres of material `sphere` (`count` of them) on a plane of material `wall`,
+/// with the materials `(name, work of adhesion in J/m²)` in that order.
+fn adhesion_scene(materials: &[(&str, f64)], sphere: &str, count: usize, wall: &str) -> String {
+    let block: String = materials
+        .iter()
+        .map(|(name, gamma)| {
+            format!(
+                "[[material]]\nname = \"{name}\"\nyoungs_pa = 5.0e7\npoisson_ratio = 0.25\n\
+                 density_kg_per_m3 = 2500.0\nwork_of_adhesion_j_per_m2 = {gamma:?}\n\n"
+            )
+        })
+        .collect();
+    let text = common::column(1, count, 0.01, 0.0, "");
+    let start = text.find("[[material]]").unwrap();
+    let end = text.find("[contact]").unwrap();
+    let text = format!("{}{block}{}", &text[..start], &text[end..]);
+    text.replacen(
+        "material = \"grain\"\ncount",
+        &format!("material = \"{sphere}\"\ncount"),
+        1,
+    )
+    .replace(
+        "kind = \"plane\"\nmaterial = \"grain\"",
+        &format!("kind = \"plane\"\nmaterial = \"{wall}\""),
+    )
+}
+
+/// The adhesive law a scene runs carries the largest work of adhesion of the material pairs
+/// that meet, `√(Δγ_i Δγ_j)` (docs/theory.md §9): sphere–sphere pairs only of materials with
+/// spheres (a material with itself only with two spheres or more), sphere–wall pairs; a
+/// material that no sphere has and no wall names adds nothing, whether listed before or after
+/// the spheres'.
+#[test]
+fn the_adhesive_law_carries_the_largest_work_of_the_pairs_that_meet() {
+    let carried = |text: &str| {
+        let scene =
+            parse_scene(Path::new("scene.toml"), text).unwrap_or_else(|e| panic!("{e}\n{text}"));
+        assert_eq!(scene.contact.normal.law, "adhesive_mdr");
+        scene.contact.normal.values[2]
+    };
+    // Two spheres of Δγ = 1 on a floor of 4: grain–grain 1, grain–floor 2; the unused
+    // materials (16 before, 9 after) would give 4 or 8, and 3.
+    let materials = [
+        ("unused", 16.0),
+        ("grain", 1.0),
+        ("floor", 4.0),
+        ("glue", 9.0),
+    ];
+    assert_eq!(
+        carried(&adhesion_scene(&materials, "grain", 2, "floor")),
+        2.0
+    );
+    // One sphere of Δγ = 4 on a floor of 1: only the sphere–wall pair, 2 (not 4).
+    let materials = [("sticky", 4.0), ("floor", 1.0)];
+    assert_eq!(
+        carried(&adhesion_scene(&materials, "sticky", 1, "floor")),
+        2.0
+    );
+    // Two such spheres: their own pair, 4.
+    assert_eq!(
+        carried(&adhesion_scene(&materials, "sticky", 2, "floor")),
+        4.0
+    );
+}
