@@ -14,6 +14,7 @@ use crate::law::{
     LawConstants,
 };
 use crate::system::{GpuOptions, GpuState, Plane, System, SystemSpec};
+use mdr_contact::damping::StiffnessViscous;
 use mdr_contact::model::{ContactLaw, ContactModel};
 use mdr_contact::normal::{AdhesiveMdr, Hertz, MdrElastoPlastic, NormalLaw, Thornton};
 use mdr_contact::params::Declared;
@@ -111,13 +112,16 @@ pub fn gpu_scene_support(scene: &Scene) -> Result<(), GpuError> {
             );
         }
     }
-    if !matches!(
-        scene.contact.damping,
-        DampingSpec::None | DampingSpec::HertzianViscous(_)
-    ) {
+    // The kernel binds the damping law from the spec's view (`contact.damping`): its name is
+    // the one refused.
+    let unsupported_damping = match scene.contact.damping {
+        DampingSpec::None | DampingSpec::HertzianViscous(_) => None,
+        DampingSpec::StiffnessViscous(_) => Some(StiffnessViscous::DECLARATION.name),
+        DampingSpec::Other(name) => Some(name),
+    };
+    if let Some(name) = unsupported_damping {
         return refuse(format!(
-            "`damping = \"{}\"` has no GPU kernel (the GPU has `none` and `hertzian_viscous`)",
-            scene.contact.sub_models.damping.declaration.name
+            "`damping = \"{name}\"` has no GPU kernel (the GPU has `none` and `hertzian_viscous`)"
         ));
     }
     if scene.source.run.delete_below_m.is_some() {
