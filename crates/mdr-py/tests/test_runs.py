@@ -360,8 +360,12 @@ def test_ctrl_c_stops_run_scene_with_a_checkpoint_and_raises_keyboard_interrupt(
     import signal
 
     scene = tmp_path / "drop.toml"
-    # The full drop scene takes seconds; Ctrl-C (SIGINT to this process) comes after 0.5 s.
-    scene.write_text((REPO / "scenes" / "drop.toml").read_text())
+    # The drop scene run for 100 times its 0.2 s, so that it is still running when Ctrl-C
+    # (SIGINT to this process) comes after 0.5 s on a fast machine too (the shipped scene can
+    # end sooner than that).
+    text = (REPO / "scenes" / "drop.toml").read_text()
+    assert "duration_s = 0.2 " in text
+    scene.write_text(text.replace("duration_s = 0.2 ", "duration_s = 20.0 ", 1))
     timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
     timer.start()
     try:
