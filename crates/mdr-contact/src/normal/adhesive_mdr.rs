@@ -700,6 +700,36 @@ impl NormalLaw for AdhesiveMdrLaw {
 mod tests {
     use super::*;
 
+    /// The crater's profile written out anew from the paper's geometry (hardened cap
+    /// `θ x²/R + (1 − θ) s` inside the plastic radius `b = √(R s)`, the sphere outside), and
+    /// Simpson's rule on it (64 panels): the tests' reference for the force of (A3), independent
+    /// of the law's own crater.
+    struct IndependentCrater {
+        r: f64,
+        theta: f64,
+        depth: f64,
+        b: f64,
+    }
+
+    impl IndependentCrater {
+        fn profile(&self, x: f64) -> f64 {
+            if x < self.b {
+                self.theta * x * x / self.r + self.depth
+            } else {
+                x * x / self.r
+            }
+        }
+
+        fn simpson(&self, lo: f64, hi: f64) -> f64 {
+            let n = 64;
+            let step = (hi - lo) / n as f64;
+            let inner: f64 = (1..n)
+                .map(|k| self.profile(lo + k as f64 * step) * if k % 2 == 1 { 4.0 } else { 2.0 })
+                .sum();
+            (self.profile(lo) + self.profile(hi) + inner) * step / 3.0
+        }
+    }
+
     /// On every unloading step whose edge retreats, the new edge spring sits exactly at its
     /// limit: `h(a) − d = Δl_max(a)` (eq. A5) to round-off, on the elastic and the plastic
     /// branch of the crater, from small and large retreats.
@@ -869,21 +899,9 @@ mod tests {
         let theta = plain.hardening_ratio();
         let depth = (1.0 - theta) * s;
         let b = (r * s).sqrt();
-        let profile = |x: f64| {
-            if x < b {
-                theta * x * x / r + depth
-            } else {
-                x * x / r
-            }
-        };
-        let simpson = |lo: f64, hi: f64| {
-            let n = 64;
-            let step = (hi - lo) / n as f64;
-            let inner: f64 = (1..n)
-                .map(|k| profile(lo + k as f64 * step) * if k % 2 == 1 { 4.0 } else { 2.0 })
-                .sum();
-            (profile(lo) + profile(hi) + inner) * step / 3.0
-        };
+        let crater = IndependentCrater { r, theta, depth, b };
+        let profile = |x: f64| crater.profile(x);
+        let simpson = |lo: f64, hi: f64| crater.simpson(lo, hi);
         let outer = 0.95 * max_overlap;
         let inner = depth + 0.02 * (s - depth);
         for (d, excess, kappa) in [(outer, outer, 1.0 / r), (inner, inner - depth, theta / r)] {
@@ -976,21 +994,9 @@ mod tests {
         let theta = plain.hardening_ratio();
         let depth = (1.0 - theta) * s;
         let b = (r * s).sqrt();
-        let profile = |x: f64| {
-            if x < b {
-                theta * x * x / r + depth
-            } else {
-                x * x / r
-            }
-        };
-        let simpson = |lo: f64, hi: f64| {
-            let n = 64;
-            let step = (hi - lo) / n as f64;
-            let inner: f64 = (1..n)
-                .map(|k| profile(lo + k as f64 * step) * if k % 2 == 1 { 4.0 } else { 2.0 })
-                .sum();
-            (profile(lo) + profile(hi) + inner) * step / 3.0
-        };
+        let crater = IndependentCrater { r, theta, depth, b };
+        let profile = |x: f64| crater.profile(x);
+        let simpson = |lo: f64, hi: f64| crater.simpson(lo, hi);
         // An edge beyond the plastic radius whose limit lies apart (d < 0), and one inside it
         // whose limit lies in the residual crater (0 < d < h(0)): Δγ such that
         // Δl_max(a) = 2 (h(a) − h(0)), so the limit overlap 2h(0) − h(a) is below h(0).
