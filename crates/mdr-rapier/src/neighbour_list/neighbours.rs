@@ -276,6 +276,10 @@ struct CellGrid {
     dims: [usize; 3],
 }
 
+/// The most cells along one axis before the cap on the grid's size is applied (a count that
+/// fits a `usize` and an `f64` product of three exactly enough to compare with the cap).
+const MAX_CELLS_PER_AXIS: f64 = 1e15;
+
 impl CellGrid {
     fn over(points: &[Vector3<f64>], cutoff: f64) -> Self {
         let mut lo = Vector3::repeat(f64::INFINITY);
@@ -285,8 +289,18 @@ impl CellGrid {
             hi = hi.sup(p);
         }
         let mut cell = cutoff.max(1e-300);
+        // A span that is not a number (a particle at infinity, between the run's checks of the
+        // state) gives one cell along that axis: no cell count overflows and the grid can
+        // still shrink below its cap; every pair with such a particle is then out of reach.
         let dims_of = |cell: f64| -> [usize; 3] {
-            std::array::from_fn(|k| (((hi[k] - lo[k]) / cell).floor() as usize + 1).max(1))
+            std::array::from_fn(|k| {
+                let cells = ((hi[k] - lo[k]) / cell).floor();
+                if cells.is_finite() {
+                    cells.min(MAX_CELLS_PER_AXIS) as usize + 1
+                } else {
+                    1
+                }
+            })
         };
         let mut dims = dims_of(cell);
         while (dims[0] as f64) * (dims[1] as f64) * (dims[2] as f64)
@@ -691,6 +705,34 @@ mod tests {
                 let first = list.first[i] as usize..list.first[i + 1] as usize;
                 assert!(list.i[first].iter().all(|&k| k as usize == i));
             }
+        }
+    }
+
+    /// A particle at infinity, at NaN or 10^300 m away (a run going wrong between its checks
+    /// of the state) builds a list without overflowing a cell count: the finite particles keep
+    /// exactly their pairs, and the particle out of reach has none.
+    #[test]
+    fn a_particle_at_infinity_or_far_away_builds_a_list() {
+        let skin = 0.1;
+        let base = vec![
+            Vector3::new(0.0, 0.0, 0.0),
+            Vector3::new(0.5, 0.0, 0.0),
+            Vector3::new(3.0, 0.0, 0.0),
+        ];
+        for stray in [
+            Vector3::new(0.0, 0.0, f64::NEG_INFINITY),
+            Vector3::new(f64::INFINITY, 1.0, 0.0),
+            Vector3::new(f64::NAN, 0.0, 0.0),
+            Vector3::new(0.0, -1e300, 0.0),
+        ] {
+            let mut x = base.clone();
+            x.push(stray);
+            let r = vec![0.3; x.len()];
+            let mut builder = NeighbourBuilder::default();
+            let (mut old, mut list) = (PairList::<u8>::default(), PairList::<u8>::default());
+            builder.build(&Boundary::Open, &x, &r, skin, &mut old, &mut list);
+            let found: Vec<(u32, u32)> = (0..list.len()).map(|p| (list.i[p], list.j[p])).collect();
+            assert_eq!(found, vec![(0, 1)], "stray particle at {stray:?}");
         }
     }
 
