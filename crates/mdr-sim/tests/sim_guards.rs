@@ -414,16 +414,25 @@ fn a_non_finite_state_stops_the_run_naming_the_particle_and_dt() {
     assert_eq!(names, expected);
     let pvd = std::fs::read_to_string(out.join("blowup.pvd")).unwrap();
     assert_eq!(pvd.matches("<DataSet").count(), 12, "{pvd}");
-    // The energy rows every 100 steps up to the last finite sample (step 5500): a row at
-    // t = 0 s with every value finite (the sphere at rest), the last at t = 5.5 s.
+    // The energy rows every 100 steps up to the stop, those after the last finite frame sample
+    // (step 5500) included: a row at t = 0 s with every value finite (the sphere at rest), the
+    // last at t = 6 s with the height gone to -inf; no checkpoint of the broken state.
     let csv = std::fs::read_to_string(out.join("blowup_energy.csv")).unwrap();
     let rows: Vec<Vec<f64>> = csv
         .lines()
         .skip(1)
         .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
         .collect();
-    assert_eq!(rows.len(), 56, "{csv}");
+    assert_eq!(rows.len(), 61, "{csv}");
     assert!(rows[0].iter().all(|v| v.is_finite()), "{csv}");
     assert_eq!(rows[0][0], 0.0);
-    assert!((rows[55][0] - 5.5).abs() < 1e-9, "{csv}");
+    assert!((rows[60][0] - 6.0).abs() < 1e-9, "{csv}");
+    assert!(rows[60].iter().any(|v| !v.is_finite()), "{csv}");
+    assert!(
+        !out.join("checkpoints").exists()
+            || std::fs::read_dir(out.join("checkpoints"))
+                .unwrap()
+                .next()
+                .is_none()
+    );
 }

@@ -482,7 +482,12 @@ impl<'a> Sim<'a> {
                 }
             }
             if k.is_multiple_of(frame_every) || last {
-                self.check_state()?;
+                if let Err(e) = self.check_state() {
+                    // The energy rows since the last frame were booked before the state went
+                    // bad: they are written with the rest (no checkpoint of a broken state).
+                    self.write_series(out, &mut files, false)?;
+                    return Err(e);
+                }
                 let sample = self.tracker.sample(scene, self.time(), &self.view_ref());
                 self.samples.push(sample);
                 if !options.no_frames {
