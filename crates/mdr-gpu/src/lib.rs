@@ -43,4 +43,6 @@ pub use run::{
     gpu_run_support, run_gpu_scene, GpuEnergyRow, GpuRunError, GpuRunOptions, GpuRunSummary,
     GPU_ENERGY_COLUMNS,
 };
-pub use scene::{gpu_scene_support, GpuScene};
+pub use scene::{
+    gpu_scene_support, DeviceSubModels, GpuScene, DEVICE_DAMPING, DEVICE_ROLLING, DEVICE_TANGENTIAL,
+};

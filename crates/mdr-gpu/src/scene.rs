@@ -1,10 +1,16 @@
 //! Scenes on the GPU ([`GpuScene`]): force-mode scenes whose walls are all planes and boxes,
 //! with the laws the CPU neighbour-list path binds for them, species pair by species pair.
 //!
+//! The kernel's laws are chosen by the scene's declared laws' registered names
+//! ([`DeviceSubModels`]): the normal law by [`DEVICE_LAWS`], the tangential, damping and rolling
+//! laws by [`DEVICE_TANGENTIAL`], [`DEVICE_DAMPING`] and [`DEVICE_ROLLING`], each with its
+//! values read by its declared keys.
+//!
 //! A scene the device does not have every part of is refused ([`gpu_scene_support`]) with the
 //! part named: a wall of another kind (cylinder, cone, orifice plate, mesh), a rotating or
-//! removed wall, a sink, restitution mode, the rapier pipeline path, the stiffness-viscous
-//! damping law, Thornton's LIGGGHTS unloading branch or a normal law without a device kernel.
+//! removed wall, a sink, restitution mode, the rapier pipeline path, Thornton's LIGGGHTS
+//! unloading branch, or a normal, tangential, damping or rolling law without a device kernel
+//! (by its registered name, with the names the device has).
 
 use crate::accessors::system_accessors;
 use crate::checkpoint::DeviceHistory;
@@ -14,20 +20,20 @@ use crate::law::{
     LawConstants,
 };
 use crate::system::{GpuOptions, GpuState, Plane, System, SystemSpec};
-use mdr_contact::damping::StiffnessViscous;
+use mdr_contact::damping::{HertzianViscous, NoDamping};
 use mdr_contact::model::{ContactLaw, ContactModel};
 use mdr_contact::normal::{AdhesiveMdr, Hertz, MdrElastoPlastic, NormalLaw, Thornton};
-use mdr_contact::params::Declared;
-use mdr_contact::rolling::{NoRolling, RollingLaw};
-use mdr_contact::tangential::MindlinLaw;
+use mdr_contact::params::{Declared, LawKind};
+use mdr_contact::rolling::{EpsdRolling, NoRolling, RollingLaw};
+use mdr_contact::tangential::{Frictionless, Mindlin, MindlinLaw};
 use mdr_rapier::convert::to_glam;
 use mdr_rapier::neighbour_list::particles::Species;
 use mdr_rapier::neighbour_list::{Boundary, NeighbourListStepper};
 use mdr_rapier::particles::SphereBuilder;
-use mdr_sim::laws::registry::SceneParts;
+use mdr_sim::laws::registry::{sub_model_kind, SceneParts};
 use mdr_sim::laws::{AnyDamping, AnyDampingLaw, SceneNormal, SceneRolling};
 use mdr_sim::scene::schema::WallKind;
-use mdr_sim::scene::{CouplingMode, DampingSpec, ForcePath};
+use mdr_sim::scene::{ContactSpec, CouplingMode, ForcePath, SubModelSpec};
 use mdr_sim::walls::WallPiece;
 use mdr_sim::Scene;
 use nalgebra::Vector3;
@@ -48,6 +54,88 @@ const DEVICE_LAWS: [(&str, u32, u32); 4] = [
     (Thornton::DECLARATION.name, 2, 3),
     (AdhesiveMdr::DECLARATION.name, 3, 2),
 ];
+
+/// The tangential laws with a device kernel, by registered name: Mindlin's spring with its
+/// Coulomb cap, and the frictionless law as Mindlin's at `μ = 0` (no force, no displacement
+/// kept).
+pub const DEVICE_TANGENTIAL: [&str; 2] =
+    [Frictionless::DECLARATION.name, Mindlin::DECLARATION.name];
+
+/// The damping laws with a device kernel, by registered name: none, and the Hertzian viscous
+/// dashpot (its coefficient is bound per pair; the stiffness-viscous law's depends on the
+/// normal law's tangent stiffness at each step, which the kernel does not have).
+pub const DEVICE_DAMPING: [&str; 2] = [
+    NoDamping::DECLARATION.name,
+    HertzianViscous::DECLARATION.name,
+];
+
+/// The rolling-resistance laws with a device kernel, by registered name: none, and the
+/// elastic–plastic spring (off at `μ_r = 0`).
+pub const DEVICE_ROLLING: [&str; 2] = [NoRolling::DECLARATION.name, EpsdRolling::DECLARATION.name];
+
+/// What the device kernel runs for a scene's tangential and rolling laws, chosen by their
+/// registered names ([`DEVICE_TANGENTIAL`], [`DEVICE_ROLLING`]; the damping law by
+/// [`DEVICE_DAMPING`] is bound from the scene's law itself), each value read by its declared
+/// key.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DeviceSubModels {
+    /// Mindlin's Coulomb coefficient `μ` (0 for the frictionless law).
+    pub friction: f64,
+    /// The elastic–plastic rolling spring's `μ_r`; 0: the kernel runs without rolling state.
+    pub rolling_friction: f64,
+}
+
+impl DeviceSubModels {
+    /// The kernel's laws for `contact`, or the refusal naming the first of its tangential,
+    /// damping and rolling laws (by its registered name, under its `[contact]` key) that has no
+    /// device kernel, with the names the device has. Needs no device.
+    pub fn of(contact: &ContactSpec) -> Result<Self, String> {
+        let laws = &contact.sub_models;
+        let tangential = device_law(LawKind::Tangential, &laws.tangential, &DEVICE_TANGENTIAL)?;
+        device_law(LawKind::Damping, &laws.damping, &DEVICE_DAMPING)?;
+        let rolling = device_law(LawKind::Rolling, &laws.rolling, &DEVICE_ROLLING)?;
+        Ok(Self {
+            friction: if tangential == Mindlin::DECLARATION.name {
+                contact.friction()
+            } else {
+                0.0
+            },
+            rolling_friction: if rolling == EpsdRolling::DECLARATION.name {
+                contact.rolling_friction()
+            } else {
+                0.0
+            },
+        })
+    }
+
+    /// Whether the kernel runs the rolling spring (with its per-contact state).
+    pub fn rolling(&self) -> bool {
+        self.rolling_friction > 0.0
+    }
+}
+
+/// The name of `law` if it is one of `device` (the laws of its kind the kernel has), else the
+/// refusal naming it under its `[contact]` key.
+fn device_law(
+    kind: LawKind,
+    law: &SubModelSpec,
+    device: &[&'static str],
+) -> Result<&'static str, String> {
+    let name = law.declaration.name;
+    if law.declaration.kind == kind && device.contains(&name) {
+        return Ok(name);
+    }
+    let key = sub_model_kind(kind).map_or("law", |k| k.key);
+    let names: Vec<String> = device.iter().map(|n| format!("`{n}`")).collect();
+    let has = match names.split_last() {
+        Some((last, [])) => last.clone(),
+        Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+        None => "none".into(),
+    };
+    Err(format!(
+        "`{key} = \"{name}\"` has no GPU kernel (the GPU has {has})"
+    ))
+}
 
 /// Whether the GPU path runs `scene`: `Ok`, or the error naming the first part it lacks (a
 /// wall by its `[[walls]]` entry and kind, a key by its name). Needs no device.
@@ -112,17 +200,8 @@ pub fn gpu_scene_support(scene: &Scene) -> Result<(), GpuError> {
             );
         }
     }
-    // The kernel binds the damping law from the spec's view (`contact.damping`): its name is
-    // the one refused.
-    let unsupported_damping = match scene.contact.damping {
-        DampingSpec::None | DampingSpec::HertzianViscous(_) => None,
-        DampingSpec::StiffnessViscous(_) => Some(StiffnessViscous::DECLARATION.name),
-        DampingSpec::Other(name) => Some(name),
-    };
-    if let Some(name) = unsupported_damping {
-        return refuse(format!(
-            "`damping = \"{name}\"` has no GPU kernel (the GPU has `none` and `hertzian_viscous`)"
-        ));
+    if let Err(refusal) = DeviceSubModels::of(&scene.contact) {
+        return refuse(refusal);
     }
     if scene.source.run.delete_below_m.is_some() {
         return refuse("the sink `[run] delete_below_m` runs on the CPU only".into());
@@ -266,14 +345,13 @@ where
     N::Law: Send + Sync,
     F: Fn(&N::Law, f64, f64) -> Result<LawConstants, GpuError>,
 {
+    let device = DeviceSubModels::of(&scene.contact).map_err(GpuError::Unsupported)?;
     let parts = SceneParts::of(&scene.contact).map_err(mdr_rapier::error::CouplingError::from)?;
-    // The device kernel's tangential law is Mindlin's (μ = 0: frictionless).
-    let mindlin = mdr_contact::tangential::Mindlin::new(scene.contact.friction)
-        .map_err(mdr_rapier::error::CouplingError::from)?;
+    // The kernel's tangential law is Mindlin's, at the μ its registered name gives.
+    let mindlin = Mindlin::new(device.friction).map_err(mdr_rapier::error::CouplingError::from)?;
     let model = ContactModel::new(normal)
         .with_tangential(mindlin)
         .with_damping(parts.damping);
-    let mu_r = scene.contact.rolling_friction;
     match parts.rolling {
         Some(rolling) => bind_with(
             NeighbourListStepper::<N, _, AnyDamping>::new(model, Boundary::Open)
@@ -281,7 +359,7 @@ where
             scene,
             planes,
             moduli,
-            mu_r,
+            device,
             constants,
         ),
         None => bind_with(
@@ -289,18 +367,18 @@ where
             scene,
             planes,
             moduli,
-            mu_r,
+            device,
             constants,
         ),
     }
 }
 
 fn bind_with<N, R, F>(
-    mut stepper: NeighbourListStepper<N, mdr_contact::tangential::Mindlin, AnyDamping, R>,
+    mut stepper: NeighbourListStepper<N, Mindlin, AnyDamping, R>,
     scene: &Scene,
     planes: &[(usize, Plane)],
     moduli: Option<&Moduli>,
-    mu_r: f64,
+    device: DeviceSubModels,
     constants: F,
 ) -> Result<SceneLaws, GpuError>
 where
@@ -381,8 +459,8 @@ where
             sphere.push(bound_constants(
                 bound,
                 m,
-                scene.contact.friction,
-                mu_r,
+                device.friction,
+                device.rolling_friction,
                 &constants,
             )?);
         }
@@ -398,8 +476,8 @@ where
             walls.push(bound_constants(
                 bound,
                 m,
-                scene.contact.friction,
-                mu_r,
+                device.friction,
+                device.rolling_friction,
                 &constants,
             )?);
         }
@@ -560,7 +638,9 @@ impl GpuScene {
                 neck_reach: laws.neck_reach,
                 law_code,
                 normal_words,
-                rolling: scene.contact.rolling_friction > 0.0,
+                rolling: DeviceSubModels::of(&scene.contact)
+                    .map_err(GpuError::Unsupported)?
+                    .rolling(),
                 // Scenes integrate no orientations (no output reads them).
                 orientation: false,
                 options: GpuOptions {

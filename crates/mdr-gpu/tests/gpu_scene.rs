@@ -4,7 +4,7 @@
 //! each material pair adhering with its own mixed value; negative controls (a wrong radius of
 //! the second species, a wall moved by a fraction of a diameter, one work of adhesion for every
 //! pair); and the refusal of scenes with walls or
-//! sub-models the GPU path lacks. The device tests need a Vulkan (or Metal/DX12) device with
+//! other parts the GPU path lacks (its laws: `gpu_scene_laws.rs`). The device tests need a Vulkan (or Metal/DX12) device with
 //! 64-bit floats (on Linux without a GPU, Mesa's lavapipe).
 
 use mdr_gpu::{gpu_scene_support, GpuContext, GpuOptions, GpuScene, GpuState};
@@ -313,10 +313,6 @@ fn scenes_the_gpu_lacks_a_part_of_are_refused_by_name() {
     rotating.walls[0].angular_velocity = Some(Vector3::z());
     let err = gpu_scene_support(&rotating).unwrap_err().to_string();
     assert!(err.contains("angular_velocity_rad_per_s"), "{err}");
-    let mut stiffness = test_scene();
-    stiffness.contact.damping = mdr_sim::scene::DampingSpec::StiffnessViscous(0.1);
-    let err = gpu_scene_support(&stiffness).unwrap_err().to_string();
-    assert!(err.contains("stiffness_viscous"), "{err}");
     let mut restitution = test_scene();
     restitution.coupling = mdr_sim::scene::CouplingMode::Restitution;
     let err = gpu_scene_support(&restitution).unwrap_err().to_string();

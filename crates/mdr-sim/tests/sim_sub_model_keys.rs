@@ -33,24 +33,27 @@ fn sub_model_values_and_defaults_come_from_the_declarations() {
     let scene = scene_with("damping = \"hertzian_viscous\"\ndamping_gamma_n_per_m_s = 50.0")
         .expect("valid");
     let c = &scene.contact;
-    assert_eq!(c.friction, 0.3);
-    assert_eq!(c.damping, DampingSpec::HertzianViscous(50.0));
+    assert_eq!(c.friction(), 0.3);
+    assert_eq!(c.damping(), DampingSpec::HertzianViscous(50.0));
     // The declared defaults of the keys left out.
     let ratio = HertzianViscous::DECLARATION.params[1];
     assert_eq!(
         (ratio.key, ratio.default),
         ("damping_tangential_ratio", Some(0.0))
     );
-    assert_eq!(c.tangential_damping_ratio, 0.0);
-    assert_eq!(c.rolling_friction, 0.0);
+    assert_eq!(c.tangential_damping_ratio(), 0.0);
+    assert_eq!(c.rolling_friction(), 0.0);
     let scene = scene_with(
         "damping = \"stiffness_viscous\"\ndamping_eta = 0.3\ndamping_tangential_ratio = 0.5\n\
          rolling = \"epsd\"\nrolling_friction = 0.1",
     )
     .expect("valid");
     let c = &scene.contact;
-    assert_eq!(c.damping, DampingSpec::StiffnessViscous(0.3));
-    assert_eq!((c.tangential_damping_ratio, c.rolling_friction), (0.5, 0.1));
+    assert_eq!(c.damping(), DampingSpec::StiffnessViscous(0.3));
+    assert_eq!(
+        (c.tangential_damping_ratio(), c.rolling_friction()),
+        (0.5, 0.1)
+    );
 }
 
 #[test]
@@ -123,7 +126,7 @@ fn laws_are_chosen_by_registered_name_and_other_laws_keys_refused() {
     );
     // A zero coefficient of a law that is not chosen is that law off: accepted.
     let scene = scene_with("rolling = \"none\"\nrolling_friction = 0.0").expect("valid");
-    assert_eq!(scene.contact.rolling_friction, 0.0);
+    assert_eq!(scene.contact.rolling_friction(), 0.0);
     // An unknown key lists the sub-models' keys among the allowed ones.
     let m = error("rolling_frction = 0.1", "rolling_frction");
     assert!(
@@ -148,7 +151,7 @@ fn a_frictionless_scene_refuses_a_friction_coefficient() {
     );
     let text = text.replace("friction = 0.3", "friction = 0.0");
     let scene = parse_scene(Path::new("scene.toml"), &text).expect("valid");
-    assert_eq!(scene.contact.friction, 0.0);
+    assert_eq!(scene.contact.friction(), 0.0);
 }
 
 /// The `[contact]` table is written back (the text a checkpoint's fingerprint hashes) in one
@@ -186,8 +189,8 @@ fn the_contact_table_is_written_in_its_fixed_order() {
 }
 
 /// Each registered sub-model is built by its name from its validated values (the variant of
-/// its kind's enum the steppers run), the coefficients the GPU path reads are taken from them by
-/// their declared keys, a rolling law that cannot act is compiled out, and a name no entry
+/// its kind's enum the steppers run), the coefficients `ContactSpec` gives are read from them
+/// by their declared keys, a rolling law that cannot act is compiled out, and a name no entry
 /// registers is refused by name.
 #[test]
 fn sub_models_are_built_by_their_registered_names() {
@@ -228,9 +231,13 @@ fn sub_models_are_built_by_their_registered_names() {
         viscous,
         rolling.clone(),
     );
-    assert_eq!(c.damping, DampingSpec::StiffnessViscous(0.3));
+    assert_eq!(c.damping(), DampingSpec::StiffnessViscous(0.3));
     assert_eq!(
-        (c.friction, c.tangential_damping_ratio, c.rolling_friction),
+        (
+            c.friction(),
+            c.tangential_damping_ratio(),
+            c.rolling_friction()
+        ),
         (0.0, 0.5, 0.2)
     );
     let parts = SceneParts::of(&c).unwrap();
@@ -248,7 +255,7 @@ fn sub_models_are_built_by_their_registered_names() {
     let none = spec(NoDamping::DECLARATION, vec![]);
     let off = spec(EpsdRolling::DECLARATION, vec![0.0]);
     let c = contact_spec(normal.clone(), friction, none, off);
-    assert_eq!(c.friction, 0.4);
+    assert_eq!(c.friction(), 0.4);
     let parts = SceneParts::of(&c).unwrap();
     assert_eq!(
         parts.tangential,
@@ -256,10 +263,77 @@ fn sub_models_are_built_by_their_registered_names() {
     );
     assert_eq!(parts.rolling, None);
     let c = contact_spec(normal, frictionless, unregistered, rolling);
-    assert_eq!(c.damping, DampingSpec::Other("constant_viscous"));
+    assert_eq!(c.damping(), DampingSpec::Other("constant_viscous"));
     let e = SceneParts::of(&c).unwrap_err().to_string();
     assert!(
         e.contains("no registered damping law is named `constant_viscous`"),
         "{e}"
     );
+}
+
+/// `ContactSpec`'s coefficients are its declared sub-models' values found by key through each
+/// law's declaration: the keys are the built-in laws' own, and a law declaring its `friction`
+/// or `rolling_friction` second gives that value (a lookup by position would give the first).
+/// The sub-models are the one copy: replacing one changes every coefficient read from it.
+#[test]
+fn coefficients_are_read_from_the_declared_sub_models_by_key() {
+    use mdr_contact::params::{LawDeclaration, LawKind, Param, Range};
+    use mdr_contact::rolling::EpsdRolling;
+    use mdr_sim::scene::{
+        SubModelSpec, DAMPING_TANGENTIAL_RATIO_KEY, FRICTION_KEY, HERTZIAN_GAMMA_KEY,
+        ROLLING_FRICTION_KEY, STIFFNESS_ETA_KEY,
+    };
+    assert!(Mindlin::DECLARATION.param(FRICTION_KEY).is_some());
+    assert!(EpsdRolling::DECLARATION
+        .param(ROLLING_FRICTION_KEY)
+        .is_some());
+    for (law, key) in [
+        (HertzianViscous::DECLARATION, HERTZIAN_GAMMA_KEY),
+        (StiffnessViscous::DECLARATION, STIFFNESS_ETA_KEY),
+    ] {
+        assert!(law.param(key).is_some(), "{}: {key}", law.name);
+        assert!(
+            law.param(DAMPING_TANGENTIAL_RATIO_KEY).is_some(),
+            "{}",
+            law.name
+        );
+    }
+    static TANGENTIAL: &[Param] = &[
+        Param::new(
+            "tangential_stiffness_n_per_m",
+            "k_t",
+            "N/m",
+            Range::POSITIVE,
+            "",
+        ),
+        Param::new(FRICTION_KEY, "μ", "1", Range::NON_NEGATIVE, ""),
+    ];
+    static ROLLING: &[Param] = &[
+        Param::new("rolling_stiffness_n_m", "k_r", "N·m", Range::POSITIVE, ""),
+        Param::new(ROLLING_FRICTION_KEY, "μ_r", "1", Range::NON_NEGATIVE, ""),
+    ];
+    let declared = |name, kind, params| LawDeclaration {
+        name,
+        kind,
+        summary: "",
+        params,
+    };
+    let mut c = scene_with("").expect("valid").contact;
+    assert_eq!((c.friction(), c.rolling_friction()), (0.3, 0.0));
+    c.sub_models.tangential = SubModelSpec {
+        declaration: declared("linear_history", LawKind::Tangential, TANGENTIAL),
+        values: vec![1e4, 0.25],
+    };
+    c.sub_models.damping = SubModelSpec {
+        declaration: StiffnessViscous::DECLARATION,
+        values: vec![0.2, 0.4],
+    };
+    c.sub_models.rolling = SubModelSpec {
+        declaration: declared("sds", LawKind::Rolling, ROLLING),
+        values: vec![2.0, 0.05],
+    };
+    assert_eq!(c.friction(), 0.25);
+    assert_eq!(c.damping(), DampingSpec::StiffnessViscous(0.2));
+    assert_eq!(c.tangential_damping_ratio(), 0.4);
+    assert_eq!(c.rolling_friction(), 0.05);
 }

@@ -32,7 +32,7 @@ use crate::error::SimError;
 use crate::run::coupling::{
     neighbour_list_stepper, rapier_pipeline_stepper, NeighbourListScene, RapierPipelineScene,
 };
-use crate::scene::{ContactSpec, DampingSpec, NormalSpec, SubModelSpec, SubModelSpecs};
+use crate::scene::{ContactSpec, NormalSpec, SubModelSpec, SubModelSpecs};
 use mdr_contact::damping::{
     DampingLaw, DampingModel, HertzianViscous, NoDamping, StiffnessViscous,
 };
@@ -234,32 +234,16 @@ impl SubModelEntry {
 
 /// The contact model of a scene from its normal law and its tangential, damping and rolling
 /// laws as the validation read them from their declarations. The steppers take the sub-models
-/// by name ([`SceneParts::of`]); [`ContactSpec`]'s coefficients (`friction`, `damping`,
-/// `tangential_damping_ratio`, `rolling_friction`) are read from them by their declared keys,
-/// for the layers that take the built-in laws' coefficients (the GPU path).
+/// by name ([`SceneParts::of`]); [`ContactSpec`]'s coefficients ([`ContactSpec::friction`] and
+/// the others) are read from them by their declared keys.
 pub fn contact_spec(
     normal: NormalSpec,
     tangential: SubModelSpec,
     damping: SubModelSpec,
     rolling: SubModelSpec,
 ) -> ContactSpec {
-    let key = |law: &LawDeclaration, i: usize| law.params[i].key;
-    let friction = tangential
-        .value(key(&Mindlin::DECLARATION, 0))
-        .unwrap_or(0.0);
-    let rolling_friction = rolling
-        .value(key(&EpsdRolling::DECLARATION, 0))
-        .unwrap_or(0.0);
-    // The tangential ratio both viscous laws declare.
-    let tangential_damping_ratio = damping
-        .value(key(&HertzianViscous::DECLARATION, 1))
-        .unwrap_or(0.0);
     ContactSpec {
         normal,
-        friction,
-        damping: DampingSpec::of(&damping),
-        tangential_damping_ratio,
-        rolling_friction,
         works_of_adhesion: Vec::new(),
         sub_models: SubModelSpecs {
             tangential,

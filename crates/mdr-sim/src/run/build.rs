@@ -154,7 +154,7 @@ pub fn build(scene: &Scene) -> Result<Built, SimError> {
                     "restitution mode needs normal = \"mdr\" or \"adhesive_mdr\"".to_owned(),
                 ));
             };
-            let hooks = RestitutionHooks::new(model, scene.contact.friction)?;
+            let hooks = RestitutionHooks::new(model, scene.contact.friction())?;
             Coupling::Restitution(Box::new(if work_of_adhesion > 0.0 {
                 hooks.with_work_of_adhesion(work_of_adhesion)?
             } else {

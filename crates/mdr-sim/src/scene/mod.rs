@@ -54,8 +54,8 @@ impl SubModelSpec {
     }
 }
 
-/// The damping law of a scene as the layers that know the built-in laws' coefficients read it
-/// (the GPU path); the scenes' steppers take [`SubModelSpecs::damping`] by name.
+/// The damping law of a scene as the built-in laws' coefficients ([`ContactSpec::damping`]), a
+/// view of [`SubModelSpecs::damping`], which the scenes' steppers take by name.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum DampingSpec {
     /// None.
@@ -69,15 +69,20 @@ pub enum DampingSpec {
 }
 
 impl DampingSpec {
-    /// The view of a validated damping law.
+    /// The view of a validated damping law: each built-in law's coefficient read by its
+    /// declared key.
     pub fn of(law: &SubModelSpec) -> Self {
         use mdr_contact::damping::{HertzianViscous, NoDamping, StiffnessViscous};
         use mdr_contact::params::Declared;
-        let first = law.values.first().copied().unwrap_or(0.0);
+        let value = |key| law.value(key).unwrap_or(0.0);
         match law.declaration.name {
             n if n == NoDamping::DECLARATION.name => DampingSpec::None,
-            n if n == HertzianViscous::DECLARATION.name => DampingSpec::HertzianViscous(first),
-            n if n == StiffnessViscous::DECLARATION.name => DampingSpec::StiffnessViscous(first),
+            n if n == HertzianViscous::DECLARATION.name => {
+                DampingSpec::HertzianViscous(value(HERTZIAN_GAMMA_KEY))
+            }
+            n if n == StiffnessViscous::DECLARATION.name => {
+                DampingSpec::StiffnessViscous(value(STIFFNESS_ETA_KEY))
+            }
             n => DampingSpec::Other(n),
         }
     }
@@ -99,16 +104,11 @@ pub struct SubModelSpecs {
 pub struct ContactSpec {
     /// Normal law.
     pub normal: NormalSpec,
-    /// Friction coefficient `μ` of the tangential law, where it declares one (0: frictionless).
-    pub friction: f64,
-    /// Damping, as the built-in laws' coefficients.
-    pub damping: DampingSpec,
-    /// Tangential dashpot over normal dashpot, where the damping law declares it (0: none).
-    pub tangential_damping_ratio: f64,
-    /// Rolling-resistance coefficient `μ_r`, where the rolling law declares it (0: off).
-    pub rolling_friction: f64,
-    /// The tangential, damping and rolling laws by name, as the scenes' steppers take them
-    /// ([`crate::laws::registry::SceneParts::of`]); the four fields above are read from them.
+    /// The tangential, damping and rolling laws by name with their values: the one place a
+    /// scene's sub-models are held. The steppers build from them
+    /// ([`crate::laws::registry::SceneParts::of`]); [`ContactSpec::friction`],
+    /// [`ContactSpec::damping`], [`ContactSpec::tangential_damping_ratio`] and
+    /// [`ContactSpec::rolling_friction`] read them by their declared keys.
     pub sub_models: SubModelSpecs,
     /// Each material's work of adhesion `Δγ_i` (J/m², in [`Scene::materials`] order) when the
     /// scene gives adhesion per material: the contacts of materials `i` and `j` then run
@@ -118,6 +118,38 @@ pub struct ContactSpec {
 }
 
 impl ContactSpec {
+    /// The tangential law's Coulomb coefficient `μ` ([`FRICTION_KEY`]), where it declares one;
+    /// 0 for a law without (the frictionless law).
+    pub fn friction(&self) -> f64 {
+        self.sub_models
+            .tangential
+            .value(FRICTION_KEY)
+            .unwrap_or(0.0)
+    }
+
+    /// The damping law as the built-in laws' coefficients ([`DampingSpec::of`]).
+    pub fn damping(&self) -> DampingSpec {
+        DampingSpec::of(&self.sub_models.damping)
+    }
+
+    /// The tangential dashpot over the normal one ([`DAMPING_TANGENTIAL_RATIO_KEY`]), where the
+    /// damping law declares it; 0 for a law without.
+    pub fn tangential_damping_ratio(&self) -> f64 {
+        self.sub_models
+            .damping
+            .value(DAMPING_TANGENTIAL_RATIO_KEY)
+            .unwrap_or(0.0)
+    }
+
+    /// The rolling-resistance coefficient `μ_r` ([`ROLLING_FRICTION_KEY`]), where the rolling
+    /// law declares it; 0 (off) for a law without.
+    pub fn rolling_friction(&self) -> f64 {
+        self.sub_models
+            .rolling
+            .value(ROLLING_FRICTION_KEY)
+            .unwrap_or(0.0)
+    }
+
     /// The work of adhesion (J/m²) of the contacts between materials `a` and `b`: their mixed
     /// `Δγ_ij` where the scene gives adhesion per material, else the normal law's
     /// `work_of_adhesion_j_per_m2` (0 for a law without adhesion).
@@ -149,6 +181,21 @@ impl ContactSpec {
 
 /// The scene key of the adhesive law's work of adhesion (`[contact]` and `[[material]]`).
 pub const WORK_OF_ADHESION_KEY: &str = "work_of_adhesion_j_per_m2";
+
+/// The scene key of a tangential law's Coulomb coefficient `μ` (Mindlin's).
+pub const FRICTION_KEY: &str = "friction";
+
+/// The scene key of the tangential dashpot's ratio both viscous damping laws declare.
+pub const DAMPING_TANGENTIAL_RATIO_KEY: &str = "damping_tangential_ratio";
+
+/// The scene key of the Hertzian viscous damping law's `γ_n`.
+pub const HERTZIAN_GAMMA_KEY: &str = "damping_gamma_n_per_m_s";
+
+/// The scene key of the stiffness-viscous damping law's `η`.
+pub const STIFFNESS_ETA_KEY: &str = "damping_eta";
+
+/// The scene key of a rolling law's coefficient `μ_r` (the elastic–plastic spring's).
+pub const ROLLING_FRICTION_KEY: &str = "rolling_friction";
 
 /// A checked scene: every value within its range, particles placed without overlap.
 #[derive(Debug, Clone, PartialEq)]

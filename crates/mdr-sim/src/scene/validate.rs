@@ -8,14 +8,13 @@
 
 use super::problems::{KeyPath, Locator, Problem, Problems, Severity};
 use super::schema::*;
-use super::{ContactSpec, NormalSpec, Scene};
+use super::{ContactSpec, NormalSpec, Scene, ROLLING_FRICTION_KEY};
 use crate::laws::registry;
 use crate::placement::{self, ParticleInit, RadiusLaw};
 use crate::walls::{self, Wall, WallPiece};
 use mdr_contact::damping::NoDamping;
 use mdr_contact::normal::{AdhesiveMdr, MdrElastoPlastic};
 use mdr_contact::params::{Declared, ParamProblem};
-use mdr_contact::rolling::EpsdRolling;
 use mdr_contact::{ContactError, ContactPair, Material};
 use nalgebra::Vector3;
 use rand::SeedableRng;
@@ -445,8 +444,7 @@ impl Checker<'_, '_> {
                 .damping
                 .as_deref()
                 .is_some_and(|d| d != NoDamping::DECLARATION.name);
-            let rolling_friction = EpsdRolling::DECLARATION.params[0].key;
-            if damped || c.number(rolling_friction).is_some_and(|m| m > 0.0) {
+            if damped || c.number(ROLLING_FRICTION_KEY).is_some_and(|m| m > 0.0) {
                 self.warn(
                     &root.key("contact"),
                     "restitution coupling ignores damping and rolling resistance (only e_n(v) and μ enter the impulses)",
