@@ -410,7 +410,8 @@ impl GpuScene {
         let walls = scene_walls(scene)?;
         // The laws depend on the materials, not on the walls' shapes: each wall is bound as a
         // half-space (its own plane, or one no sphere reaches).
-        let planes: Vec<(usize, Plane)> = walls.iter().map(|w| (w.wall, w.law_stand_in())).collect();
+        let planes: Vec<(usize, Plane)> =
+            walls.iter().map(|w| (w.wall, w.law_stand_in())).collect();
         let laws = scene_laws(scene, &planes)?;
         let &(_, law_code, normal_words) = DEVICE_LAWS
             .iter()
@@ -502,7 +503,8 @@ impl GpuScene {
             if let Some(h) = DeviceHistory::of_wall(state, slot) {
                 let (i, k) = (slot / walls, slot % walls);
                 // A touching contact has a normal (the device ends one without).
-                let Some(overlap) = self.walls[k].signed_overlap(&state.position[i], self.radius[i])
+                let Some(overlap) =
+                    self.walls[k].signed_overlap(&state.position[i], self.radius[i])
                 else {
                     continue;
                 };

@@ -198,7 +198,10 @@ pub(crate) fn wall_support(scene: &Scene) -> Result<(), String> {
         let j = wall.index;
         let kind = scene.source.walls.get(j).map(|w| w.kind);
         let name = kind.map_or("unknown", kind_name);
-        let entry = format!("wall {j} (`[[walls]]` entry {}, `kind = \"{name}\"`)", j + 1);
+        let entry = format!(
+            "wall {j} (`[[walls]]` entry {}, `kind = \"{name}\"`)",
+            j + 1
+        );
         match kind {
             Some(WallKind::Plane | WallKind::Box) => {}
             Some(WallKind::Cylinder | WallKind::Cone | WallKind::OrificePlate) => {
@@ -217,9 +220,8 @@ pub(crate) fn wall_support(scene: &Scene) -> Result<(), String> {
             }
         }
         if let Some(omega) = wall.angular_velocity {
-            turning_support(wall, &omega).map_err(|why| {
-                format!("{entry} turns (`angular_velocity_rad_per_s`) {why}")
-            })?;
+            turning_support(wall, &omega)
+                .map_err(|why| format!("{entry} turns (`angular_velocity_rad_per_s`) {why}"))?;
         }
     }
     Ok(())
@@ -229,9 +231,11 @@ pub(crate) fn wall_support(scene: &Scene) -> Result<(), String> {
 /// axis keeps its shape and place; anything else moves.
 fn turning_support(wall: &Wall, omega: &Vector3<f64>) -> Result<(), String> {
     let Some(rev) = &wall.revolution else {
-        return Err("and its faces move: the GPU turns surfaces of revolution about their own \
+        return Err(
+            "and its faces move: the GPU turns surfaces of revolution about their own \
                     axis only"
-            .into());
+                .into(),
+        );
     };
     let axis = rev.axis.normalize();
     if omega.cross(&axis).norm() > AXIS_TOLERANCE * omega.norm() {
@@ -385,9 +389,7 @@ pub(crate) fn wall_constants(walls: &[DeviceWall]) -> String {
         WallShape::Plane(p) => f(p),
         WallShape::Revolution(_) => zero,
     };
-    let revolution = |w: &DeviceWall, f: &dyn Fn(&RevolutionWall) -> Vector3<f64>| match &w
-        .shape
-    {
+    let revolution = |w: &DeviceWall, f: &dyn Fn(&RevolutionWall) -> Vector3<f64>| match &w.shape {
         WallShape::Revolution(r) => f(r),
         WallShape::Plane(_) => zero,
     };
@@ -481,7 +483,13 @@ mod tests {
     /// rounding of `time / dt`.
     #[test]
     fn the_removal_step_is_the_first_reaching_the_time() {
-        for (time, dt) in [(0.0, 1e-5), (0.002, 2e-5), (0.1, 3e-5), (1e-3, 1e-4), (0.3, 0.1)] {
+        for (time, dt) in [
+            (0.0, 1e-5),
+            (0.002, 2e-5),
+            (0.1, 3e-5),
+            (1e-3, 1e-4),
+            (0.3, 0.1),
+        ] {
             let k = removal_step(time, dt);
             assert!(k as f64 * dt >= time, "{time} {dt}: {k}");
             assert!(k == 0 || ((k - 1) as f64) * dt < time, "{time} {dt}: {k}");
