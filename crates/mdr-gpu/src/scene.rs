@@ -470,7 +470,7 @@ impl GpuScene {
                 },
             },
         )?;
-        let mut gpu = Self {
+        Ok(Self {
             system,
             wall_of_plane: walls.iter().map(|w| w.wall).collect(),
             removal_steps: removal_steps(&walls),
@@ -482,9 +482,7 @@ impl GpuScene {
             box_len,
             sphere_energies: laws.sphere_energies,
             wall_energies: laws.wall_energies,
-        };
-        gpu.sync_removed_walls()?;
-        Ok(gpu)
+        })
     }
 
     /// The elastic energies stored in the contacts of `state` (read back at a sample, where
@@ -557,7 +555,8 @@ impl GpuScene {
 
     /// The steps of [`GpuScene::step`] (`evaluate`: of [`GpuScene::step_and_evaluate`]), cut
     /// at each wall removal so that its stage is on the device before the force pass of its
-    /// step.
+    /// step; the stage of the first force pass is put there first (after a [`GpuScene::load`],
+    /// that of the step loaded).
     fn advance(&mut self, steps: usize, evaluate: bool) -> Result<(), GpuError> {
         let end = self.system.steps() + steps as u64;
         // The last force pass of these steps.
@@ -617,7 +616,6 @@ impl GpuScene {
     /// the next one (a checkpoint's: [`GpuScene::state`] read there gives it back). A particle
     /// with more listed neighbours than the slots is refused ([`GpuError::NeighbourOverflow`]).
     pub fn load(&mut self, state: &GpuState, steps: u64) -> Result<(), GpuError> {
-        self.system.load(state, steps)?;
-        self.sync_removed_walls()
+        self.system.load(state, steps)
     }
 }

@@ -3,7 +3,8 @@
 //! the spheres thrown against its side and end discs) and a small conical hopper on an orifice
 //! plate with a gate under the orifice removed part-way, a few hundred steps with both paths;
 //! negative controls (the drum's rotation reversed or ignored, the gate kept or removed a step
-//! late on the GPU only); the built-in drum and hopper scenes' walls accepted, and the walls
+//! late on the GPU only); the hopper loaded on the device before and after its gate's removal
+//! going on bit for bit; the built-in drum and hopper scenes' walls accepted, and the walls
 //! the GPU still lacks refused by name. The device tests need a Vulkan (or Metal/DX12) device
 //! with 64-bit floats (on Linux without a GPU, Mesa's lavapipe).
 
@@ -545,4 +546,36 @@ angular_velocity_rad_per_s = [0.0, 1.0, 0.0]
         &turning_box,
         &["`kind = \"box\"`", "angular_velocity_rad_per_s"],
     );
+}
+
+/// A hopper loaded on the device at a step past its gate's removal (as from a checkpoint) goes
+/// on without the gate, bit for bit as the run that went on; loaded before the removal, it
+/// removes the gate at its step, bit for bit too.
+#[test]
+fn a_hopper_loaded_before_or_after_its_gate_removal_goes_on_bit_for_bit() {
+    let ctx = context();
+    let scene = hopper_scene();
+    let bits = |v: &[Vector3<f64>]| -> Vec<[u64; 3]> {
+        v.iter()
+            .map(|x| [x.x.to_bits(), x.y.to_bits(), x.z.to_bits()])
+            .collect()
+    };
+    for at in [60, 150] {
+        let mut whole = GpuScene::new(&ctx, &scene, &GpuOptions::default()).unwrap();
+        whole.step(at).unwrap();
+        let middle = whole.state().unwrap();
+        whole.step(STEPS - at).unwrap();
+        let whole = whole.state().unwrap();
+        let mut loaded = GpuScene::new(&ctx, &scene, &GpuOptions::default()).unwrap();
+        loaded.load(&middle, at as u64).unwrap();
+        loaded.step(STEPS - at).unwrap();
+        let loaded = loaded.state().unwrap();
+        assert_eq!(
+            bits(&whole.position),
+            bits(&loaded.position),
+            "loaded at {at}"
+        );
+        assert_eq!(bits(&whole.linvel), bits(&loaded.linvel), "loaded at {at}");
+        assert_eq!(bits(&whole.angvel), bits(&loaded.angvel), "loaded at {at}");
+    }
 }
