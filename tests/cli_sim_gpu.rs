@@ -227,13 +227,13 @@ fn sim_run_on_the_gpu_prints_the_cpu_runs_headline_and_refuses_what_it_lacks() {
     assert_eq!(cpu_flag.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("--no-checkpoints"), "{stderr}");
 
-    // A wall the GPU lacks, named.
-    let hopper = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hopper.toml");
+    // A part the GPU lacks (the funnel's sink), named.
+    let funnel = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/funnel.toml");
     let refused = mdr_dem(
         &[
             "sim",
             "run",
-            &hopper.display().to_string(),
+            &funnel.display().to_string(),
             "--device",
             "gpu",
             "--check",
@@ -243,5 +243,5 @@ fn sim_run_on_the_gpu_prints_the_cpu_runs_headline_and_refuses_what_it_lacks() {
     );
     let stderr = text(&refused.stderr);
     assert_eq!(refused.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("`kind = \"cylinder\"`"), "{stderr}");
+    assert!(stderr.contains("delete_below_m"), "{stderr}");
 }

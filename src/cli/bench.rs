@@ -50,8 +50,8 @@ pub struct SceneArgs {
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
-    /// Where the steps run (`gpu`: force-mode scenes whose walls are planes and boxes, on a
-    /// device with 64-bit floats; docs/gpu.md).
+    /// Where the steps run (`gpu`: force-mode scenes whose walls are planes, boxes and exact
+    /// cylinders, cones and orifice plates, on a device with 64-bit floats; docs/gpu.md).
     #[arg(long, value_enum, default_value_t = DeviceArg::Cpu)]
     pub device: DeviceArg,
     /// With `--device gpu`: neighbour slots per particle (1 to 64).

@@ -40,8 +40,8 @@ pub struct RunArgs {
     /// Replace the run(s) whose files are in the output folder (refused without it).
     #[arg(long)]
     pub overwrite: bool,
-    /// Where the steps run (`gpu`: force-mode scenes whose walls are planes and boxes, on a
-    /// device with 64-bit floats; it writes the frames, the kinetic and gravitational energy
+    /// Where the steps run (`gpu`: force-mode scenes whose walls are planes, boxes and exact
+    /// cylinders, cones and orifice plates, on a device with 64-bit floats; it writes the frames, the kinetic and gravitational energy
     /// books, the headline and checkpoints that either device resumes: docs/gpu.md).
     #[arg(long, value_enum, default_value_t = DeviceArg::Cpu)]
     pub device: DeviceArg,

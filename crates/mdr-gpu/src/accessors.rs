@@ -2,8 +2,7 @@
 //! they hold (a `system: System` field), written once.
 
 /// Adds to an `impl` block of a type with a `system: System` field the methods that pass
-/// straight to it: `len`, `is_empty`, `steps`, `device_bytes`, `step`, `rebuilds` and
-/// `positions`.
+/// straight to it: `len`, `is_empty`, `steps`, `device_bytes`, `rebuilds` and `positions`.
 macro_rules! system_accessors {
     () => {
         /// Particles.
@@ -24,14 +23,6 @@ macro_rules! system_accessors {
         /// Bytes of every device buffer of the system (particles, lists, histories, grid).
         pub fn device_bytes(&self) -> u64 {
             self.system.device_bytes()
-        }
-
-        /// `steps` steps: per step, the rebuild decision, the list build when due (indirect
-        /// dispatches of zero size otherwise, so the host never waits inside a batch), the
-        /// forces and the integration. Waits for the device at the end and checks the overflow
-        /// flags.
-        pub fn step(&mut self, steps: usize) -> Result<(), GpuError> {
-            self.system.step(steps)
         }
 
         /// Neighbour-list builds so far.

@@ -4,7 +4,8 @@
 use crate::accessors::system_accessors;
 use crate::device::{GpuContext, GpuError};
 use crate::law::{BoundLaws, DeviceLaw, GpuLaws};
-use crate::system::{Plane, System, SystemSpec};
+use crate::system::{System, SystemSpec};
+use crate::walls::{DeviceWall, Plane};
 use mdr_rapier::neighbour_list::bed::{Bed, BedError, BenchSettings};
 use mdr_rapier::neighbour_list::boundary::Boundary;
 use nalgebra::Vector3;
@@ -79,7 +80,10 @@ impl GpuBed {
                 species_table: vec![bound.species],
                 sphere_laws: vec![bound.sphere],
                 wall_laws: vec![bound.floor],
-                walls: vec![Plane::infinite(Vector3::z(), Vector3::zeros())],
+                walls: vec![DeviceWall::fixed_plane(
+                    0,
+                    Plane::infinite(Vector3::z(), Vector3::zeros()),
+                )],
                 periodic: Some((lo, hi)),
                 gravity: Vector3::new(0.0, 0.0, bound.gravity_z),
                 dt: bound.dt,
@@ -100,6 +104,13 @@ impl GpuBed {
     }
 
     system_accessors!();
+
+    /// `steps` steps: per step, the rebuild decision, the list build when due (indirect
+    /// dispatches of zero size otherwise, so the host never waits inside a batch), the forces
+    /// and the integration. Waits for the device at the end and checks the overflow flags.
+    pub fn step(&mut self, steps: usize) -> Result<(), GpuError> {
+        self.system.step(steps)
+    }
 
     /// The contact model.
     pub fn laws(&self) -> GpuLaws {

@@ -1,7 +1,8 @@
 // The step of the neighbour-list path in f64 (docs/gpu.md): list build by cell binning, pair
 // forces with histories (Hertz, MDR, Thornton or adhesive MDR normal law, Mindlin, Hertzian
-// viscous damping, optionally rolling resistance) bound per species pair, planar walls
-// (half-spaces), open space or the x/y periodic box, gravity, and rapier's symplectic Euler
+// viscous damping, optionally rolling resistance) bound per species pair, walls (half-spaces and
+// exact surfaces of revolution, fixed, turning about their own axis or removed at a stage set by
+// the host), open space or the x/y periodic box, gravity, and rapier's symplectic Euler
 // integration. The settled bed is the case of one species, one floor plane and the periodic box.
 // Every formula is the CPU path's,
 // written in the same order (mdr-contact and mdr-rapier's kernel): `normal_law` is
@@ -55,13 +56,17 @@ const CROSSING: f64 = __CROSSING__lf;
 // f64 words per species in `tables` (radius, mass, 1/mass, 1/inertia).
 const SPECIES_WORDS: u32 = 4u;
 // The walls, written in by the host (constants, so that the compiler folds a floor's normal
-// `(0, 0, 1)` into its arithmetic): the outward normal, a point of the plane, and the corners
-// of the box the centre of a touching sphere must lie in.
+// `(0, 0, 1)` into its arithmetic; `crate::walls::wall_constants`), one entry per wall in each
+// array: its kind (`WALL_PLANE` or `WALL_REVOLUTION`); a plane's outward normal, a point of the
+// plane, and the corners of the box the centre of a touching sphere must lie in; a surface of
+// revolution's origin (the CPU collider's pose), its axis point relative to it, its unit axis
+// and its profile points `(radius, axial position)` `PROFILE[WALL_PROFILE_START[k] ..
+// WALL_PROFILE_END[k]]`; the angular velocity and a point of its axis (zero: a fixed wall); the
+// removal stage from which on the wall acts no more (`Params::walls_removed`; all ones: never).
 const WALLS: u32 = __WALLS__u;
-const WALL_NORMAL = array<vec3<f64>, __WALLSLOTS__>(__WALL_NORMAL__);
-const WALL_POINT = array<vec3<f64>, __WALLSLOTS__>(__WALL_POINT__);
-const WALL_LO = array<vec3<f64>, __WALLSLOTS__>(__WALL_LO__);
-const WALL_HI = array<vec3<f64>, __WALLSLOTS__>(__WALL_HI__);
+const WALL_PLANE: u32 = 0u;
+const WALL_REVOLUTION: u32 = 1u;
+__WALL_CONSTANTS__
 
 // The constants of one bound law (a pair of species, or a species and a wall).
 struct Law {
@@ -115,7 +120,7 @@ struct Params {
     species: u32,      // species (the sphere laws are `species²`, then `species · walls`)
     walls: u32,
     periodic: u32,     // 1: x/y periodic box; 0: open space
-    pad: u32,
+    walls_removed: u32, // removal stages reached: a wall of `WALL_STAGE` at most this is gone
 }
 
 @group(0) @binding(0) var<uniform> p: Params;
@@ -1012,6 +1017,101 @@ fn pair_wrench(law: Law, h: ptr<function, History>, overlap: f64, n: vec3<f64>, 
 }
 
 // ---------------------------------------------------------------------------------------------
+// Wall contacts.
+
+// The contact of a sphere with a wall: its overlap (negative while apart), the unit normal from
+// the wall towards the sphere, the contact point (mid-overlap), and whether it has a normal (a
+// centre on a surface of revolution has none: no contact, as on the CPU path).
+struct WallContact {
+    overlap: f64,
+    normal: vec3<f64>,
+    point: vec3<f64>,
+    defined: bool,
+}
+
+// `sphere_half_space_signed`: the plane through `o` with outward normal `n`.
+fn plane_contact(k: u32, x: vec3<f64>, r: f64) -> WallContact {
+    let n = WALL_NORMAL[k];
+    let o = WALL_POINT[k];
+    let signed = dot3(n, x - o);
+    let overlap = r - signed;
+    return WallContact(overlap, n, x - n * (signed + 0.5lf * overlap), true);
+}
+
+// `v / s` component by component (nalgebra's division of a vector by a scalar).
+fn divide3(v: vec3<f64>, s: f64) -> vec3<f64> {
+    return vec3<f64>(v.x / s, v.y / s, v.z / s);
+}
+
+// `SurfaceOfRevolution::nearest` and `::sphere_contact_signed` (mdr-rapier's geometry.rs, which
+// derives it): the point of the surface nearest to the centre lies in the meridional half-plane
+// through it, so the distance is the planar distance from `(ρ, a)` (the centre's distance from
+// the axis and its axial position) to the profile polyline; a profile vertex gives the contact
+// with the rim it sweeps. The pose is the collider's, `WALL_ORIGIN` without rotation (a surface
+// turning about its own axis keeps its place).
+fn revolution_contact(k: u32, x: vec3<f64>, r: f64) -> WallContact {
+    let local = x - WALL_ORIGIN[k];
+    let axis = WALL_AXIS[k];
+    let rel = local - WALL_CENTER[k];
+    let a = dot3(rel, axis);
+    let radial = rel - axis * a;
+    let rho = sqrt(dot3(radial, radial));
+    var e: vec3<f64>;
+    if rho > 0.0lf {
+        e = divide3(radial, rho);
+    } else {
+        // On the axis every meridional half-plane is nearest: any direction across it.
+        var t = vec3<f64>(0.0lf, 1.0lf, 0.0lf);
+        if abs(axis.x) < 0.9lf {
+            t = vec3<f64>(1.0lf, 0.0lf, 0.0lf);
+        }
+        let u = t - axis * dot3(t, axis);
+        e = divide3(u, sqrt(dot3(u, u)));
+    }
+    var best2 = 0.0lf;
+    var best_r = 0.0lf;
+    var best_a = 0.0lf;
+    var first = true;
+    for (var q = WALL_PROFILE_START[k]; q + 1u < WALL_PROFILE_END[k]; q++) {
+        let p0 = PROFILE[q];
+        let p1 = PROFILE[q + 1u];
+        let dr = p1.x - p0.x;
+        let da = p1.y - p0.y;
+        let len2 = dr * dr + da * da;
+        var t = 0.0lf;
+        if len2 > 0.0lf {
+            t = clamp(((rho - p0.x) * dr + (a - p0.y) * da) / len2, 0.0lf, 1.0lf);
+        }
+        let qr = p0.x + t * dr;
+        let qa = p0.y + t * da;
+        let d2 = (rho - qr) * (rho - qr) + (a - qa) * (a - qa);
+        if first || d2 < best2 {
+            first = false;
+            best2 = d2;
+            best_r = qr;
+            best_a = qa;
+        }
+    }
+    let nearest = (WALL_CENTER[k] + e * best_r) + axis * best_a;
+    let dist = sqrt(best2);
+    if dist == 0.0lf {
+        return WallContact(r, axis, x, false);
+    }
+    let normal = divide3(local - nearest, dist);
+    let overlap = r - dist;
+    let surface = x - normal * dist;
+    return WallContact(overlap, normal, surface - normal * (0.5lf * overlap), true);
+}
+
+// The contact of a sphere (centre `x`, radius `r`) with wall `k`.
+fn wall_contact(k: u32, x: vec3<f64>, r: f64) -> WallContact {
+    if WALL_KIND[k] == WALL_REVOLUTION {
+        return revolution_contact(k, x, r);
+    }
+    return plane_contact(k, x, r);
+}
+
+// ---------------------------------------------------------------------------------------------
 // Forces: each particle gathers its own wrench (walls first, in order, then its neighbours in key
 // order). A pair is always evaluated with its lower index as body 1, so both particles compute the
 // same bits and get exactly opposite forces and identical histories.
@@ -1030,19 +1130,24 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
     let ri = radius_of(si);
     var force = zero;
     var torque = zero;
-    // Each wall: the plane through `o` with outward normal `n` (`sphere_half_space`;
-    // `sphere_half_space_signed` for a held adhesive contact).
+    // Each wall (`wall_contact`: a plane, or a surface of revolution); a held adhesive
+    // contact goes on at its negative overlap. A removed wall acts no more: its contact ends.
     for (var k = 0u; k < WALLS; k++) {
-        let n = WALL_NORMAL[k];
-        let o = WALL_POINT[k];
-        let signed = dot3(n, xi - o);
-        let overlap = ri - signed;
         let slot = i * p.walls + k;
         let was_active = wall_hist[FS * slot] != 0.0lf;
+        if WALL_STAGE[k] <= p.walls_removed {
+            if was_active {
+                store_wall(slot, false, default_history());
+            }
+            continue;
+        }
+        let contact = wall_contact(k, xi, ri);
+        let n = contact.normal;
+        let overlap = contact.overlap;
         var h = load_wall(slot);
         let law = laws[p.species * p.species + si * p.walls + k];
         let held = was_active && holds(law, h);
-        if overlap <= 0.0lf && !held {
+        if !contact.defined || (overlap <= 0.0lf && !held) {
             if was_active {
                 store_wall(slot, false, default_history());
             }
@@ -1050,7 +1155,7 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
             // A wall piece of finite extent (a box's side) acts as its plane only while the
             // centre lies within its face's box: elsewhere the run stops instead of going on
             // wrongly.
-            if any(xi < WALL_LO[k]) || any(xi > WALL_HI[k]) {
+            if WALL_KIND[k] == WALL_PLANE && (any(xi < WALL_LO[k]) || any(xi > WALL_HI[k])) {
                 atomicMax(&status[S_OFF_FACE], i + 1u);
                 atomicMax(&status[S_OFF_FACE_WALL], k + 1u);
             }
@@ -1063,10 +1168,13 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
                     atomicMax(&status[S_CROSSING_SLOT], slot + 1u);
                 }
             }
-            let point = xi - n * (signed + 0.5lf * overlap);
-            let arm1 = point - xi;
-            let rv = vi + cross3(wi, arm1);
-            let out = pair_wrench(law, &h, overlap, n, rv, wi, zero);
+            let arm1 = contact.point - xi;
+            // The wall's velocity at the contact point, `ω × (x − c)` (zero for a fixed wall):
+            // `relative_velocity` of the CPU kernel with the wall as body 2.
+            let w2 = WALL_OMEGA[k];
+            let arm2 = contact.point - WALL_PIVOT[k];
+            let rv = vi + (cross3(wi, arm1) - cross3(w2, arm2));
+            let out = pair_wrench(law, &h, overlap, n, rv, wi, w2);
             store_wall(slot, true, h);
             force = force + out.force;
             torque = torque + (cross3(arm1, out.force) + out.rolling_torque);

@@ -1,7 +1,9 @@
 //! The neighbour-list path of mdr-dem on the GPU: wgpu compute shaders in f64 (Vulkan, Metal or
 //! DX12 with `SHADER_F64`) running the settled-bed system of `mdr-dem bench bed` ([`GpuBed`])
-//! and force-mode scenes whose walls are planes and boxes ([`GpuScene`]; others are refused by
-//! [`gpu_scene_support`]; `sim run --device gpu` is [`run_gpu_scene`]) with the CPU path's arithmetic: the same law formulas (Hertz, MDR,
+//! and force-mode scenes whose walls are planes, boxes and exact surfaces of revolution
+//! (cylinders, cones, orifice plates), fixed, turning about their own axis or removed at a time
+//! ([`GpuScene`]; others are refused by [`gpu_scene_support`]; `sim run --device gpu` is
+//! [`run_gpu_scene`]) with the CPU path's arithmetic: the same law formulas (Hertz, MDR,
 //! Thornton or adhesive MDR normal, Mindlin tangential, Hertzian viscous damping, optionally
 //! rolling resistance) bound per species pair, the same integrator order, the same list and
 //! history semantics ([`GpuLaws`]).
@@ -30,6 +32,7 @@ mod law;
 mod run;
 mod scene;
 mod system;
+mod walls;
 
 pub use bed::{GpuBed, GpuOptions, GpuPair, GpuState};
 pub use bench::{

@@ -312,7 +312,7 @@ impl GpuRun<'_> {
             scene.contact.normal.law,
             &data,
             scene.particles.len(),
-            self.gpu.planes().len(),
+            self.gpu.walls().len(),
             mdr_sim::run::build::skin(scene),
         )?;
         self.gpu.load(&state, data.step)?;

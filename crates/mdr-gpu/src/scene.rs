@@ -1,5 +1,7 @@
-//! Scenes on the GPU ([`GpuScene`]): force-mode scenes whose walls are all planes and boxes,
-//! with the laws the CPU neighbour-list path binds for them, species pair by species pair.
+//! Scenes on the GPU ([`GpuScene`]): force-mode scenes whose walls the device has (planes,
+//! boxes, and cylinders, cones and orifice plates as exact surfaces of revolution; fixed,
+//! turning about their own axis, or removed at a time: `crate::walls`), with the laws the CPU
+//! neighbour-list path binds for them, species pair by species pair.
 //!
 //! The kernel's laws are chosen by the scene's declared laws' registered names
 //! ([`DeviceSubModels`]): the normal law by [`DEVICE_LAWS`], the tangential, damping and rolling
@@ -7,10 +9,10 @@
 //! values read by its declared keys.
 //!
 //! A scene the device does not have every part of is refused ([`gpu_scene_support`]) with the
-//! part named: a wall of another kind (cylinder, cone, orifice plate, mesh), a rotating or
-//! removed wall, a sink, restitution mode, the rapier pipeline path, Thornton's LIGGGHTS
-//! unloading branch, or a normal, tangential, damping or rolling law without a device kernel
-//! (by its registered name, with the names the device has).
+//! part named: a mesh wall, a cylinder, cone or orifice plate of flat pieces, a turning box or a
+//! surface turning about another axis than its own, a sink, restitution mode, the rapier
+//! pipeline path, Thornton's LIGGGHTS unloading branch, or a normal, tangential, damping or
+//! rolling law without a device kernel (by its registered name, with the names the device has).
 
 use crate::accessors::system_accessors;
 use crate::checkpoint::DeviceHistory;
@@ -19,7 +21,8 @@ use crate::law::{
     adhesive_constants, bound_constants, hertz_constants, mdr_law_constants, thornton_constants,
     LawConstants,
 };
-use crate::system::{GpuOptions, GpuState, Plane, System, SystemSpec};
+use crate::system::{GpuOptions, GpuState, System, SystemSpec};
+use crate::walls::{removal_stage, removal_steps, scene_walls, wall_support, DeviceWall, Plane};
 use mdr_contact::damping::{HertzianViscous, NoDamping};
 use mdr_contact::model::{ContactLaw, ContactModel};
 use mdr_contact::normal::{AdhesiveMdr, Hertz, MdrElastoPlastic, NormalLaw, Thornton};
@@ -32,9 +35,7 @@ use mdr_rapier::neighbour_list::{Boundary, NeighbourListStepper};
 use mdr_rapier::particles::SphereBuilder;
 use mdr_sim::laws::registry::{sub_model_kind, SceneParts};
 use mdr_sim::laws::{AnyDamping, AnyDampingLaw, SceneNormal, SceneRolling};
-use mdr_sim::scene::schema::WallKind;
 use mdr_sim::scene::{ContactSpec, CouplingMode, ForcePath, SubModelSpec};
-use mdr_sim::walls::WallPiece;
 use mdr_sim::Scene;
 use nalgebra::Vector3;
 use rapier3d_f64::prelude::{ColliderBuilder, PhysicsWorld, SharedShape};
@@ -154,36 +155,8 @@ pub fn gpu_scene_support(scene: &Scene) -> Result<(), GpuError> {
     if scene.force_path == ForcePath::Rapier {
         return refuse("`force_path = \"rapier\"` is the CPU's rapier pipeline path".into());
     }
-    for wall in &scene.walls {
-        let j = wall.index;
-        let kind = scene.source.walls.get(j).map(|w| w.kind);
-        if !matches!(kind, Some(WallKind::Plane | WallKind::Box)) || wall.revolution.is_some() {
-            return refuse(format!(
-                "wall {j} (`[[walls]]` entry {}, `kind = \"{}\"`{}) has no GPU kernel: the GPU \
-                 has `plane` and `box` walls only",
-                j + 1,
-                kind.map_or("unknown", kind_name),
-                if wall.revolution.is_some() {
-                    ", an exact surface of revolution"
-                } else {
-                    ""
-                }
-            ));
-        }
-        if wall.angular_velocity.is_some() {
-            return refuse(format!(
-                "wall {j} (`[[walls]]` entry {}) rotates (`angular_velocity_rad_per_s`): the GPU \
-                 has fixed walls only",
-                j + 1
-            ));
-        }
-        if wall.removed_at.is_some() {
-            return refuse(format!(
-                "wall {j} (`[[walls]]` entry {}) is removed during the run (`removed_at_s`): \
-                 the GPU has fixed walls only",
-                j + 1
-            ));
-        }
+    if let Err(why) = wall_support(scene) {
+        return refuse(why);
     }
     if !DEVICE_LAWS.iter().any(|l| l.0 == scene.contact.normal.law) {
         return refuse(format!(
@@ -207,86 +180,6 @@ pub fn gpu_scene_support(scene: &Scene) -> Result<(), GpuError> {
         return refuse("the sink `[run] delete_below_m` runs on the CPU only".into());
     }
     Ok(())
-}
-
-/// The scene file's name of a wall kind.
-fn kind_name(kind: WallKind) -> &'static str {
-    match kind {
-        WallKind::Plane => "plane",
-        WallKind::Box => "box",
-        WallKind::Cylinder => "cylinder",
-        WallKind::Mesh => "mesh",
-        WallKind::OrificePlate => "orifice_plate",
-        WallKind::Cone => "cone",
-    }
-}
-
-/// The planes of `scene`'s walls in the CPU path's surface order, each with its wall index:
-/// a plane wall's half-space, and a box's slabs as the planes of their inner faces, each
-/// valid over its face.
-fn scene_planes(scene: &Scene) -> Result<Vec<(usize, Plane)>, GpuError> {
-    let mut planes = Vec::new();
-    for wall in &scene.walls {
-        for piece in &wall.pieces {
-            let plane = match piece {
-                WallPiece::HalfSpace { point, normal } => {
-                    Plane::infinite(normal.normalize(), wall.origin + point)
-                }
-                WallPiece::Cuboid {
-                    center,
-                    rotation,
-                    half_extents,
-                } if *rotation == nalgebra::UnitQuaternion::identity() => {
-                    let center = wall.origin + center;
-                    // The slab's thin axis; its inner face looks towards the box's centre.
-                    let axis = (0..3)
-                        .min_by(|&a, &b| half_extents[a].total_cmp(&half_extents[b]))
-                        .unwrap_or(2);
-                    let box_center = wall.origin + pieces_center(&wall.pieces);
-                    let side = if center[axis] > box_center[axis] {
-                        1.0
-                    } else {
-                        -1.0
-                    };
-                    let mut normal = Vector3::zeros();
-                    normal[axis] = -side;
-                    let mut point = center;
-                    point[axis] -= side * half_extents[axis];
-                    let mut lo = center - half_extents;
-                    let mut hi = center + half_extents;
-                    lo[axis] = f64::MIN;
-                    hi[axis] = f64::MAX;
-                    Plane {
-                        normal,
-                        point,
-                        lo,
-                        hi,
-                    }
-                }
-                _ => {
-                    return Err(GpuError::Unsupported(format!(
-                        "wall {} has a piece that is neither a half-space nor an axis-aligned slab",
-                        wall.index
-                    )))
-                }
-            };
-            planes.push((wall.index, plane));
-        }
-    }
-    Ok(planes)
-}
-
-/// The mean of the centres of a box's slabs: inside the box, on the inner side of every slab
-/// (an open top leaves the mean above the bottom slab).
-fn pieces_center(pieces: &[WallPiece]) -> Vector3<f64> {
-    let centers: Vec<_> = pieces
-        .iter()
-        .filter_map(|p| match p {
-            WallPiece::Cuboid { center, .. } => Some(*center),
-            _ => None,
-        })
-        .collect();
-    centers.iter().sum::<Vector3<f64>>() / centers.len().max(1) as f64
 }
 
 /// The species of `scene`'s particles as the CPU stepper numbers them (in order of first
@@ -553,12 +446,15 @@ fn scene_laws(scene: &Scene, planes: &[(usize, Plane)]) -> Result<SceneLaws, Gpu
 }
 
 /// A force-mode scene stepped on the device: the steps of the CPU neighbour-list path
-/// (`mdr_sim::run::SceneSteps`) for a scene whose walls are planes and boxes, without the
-/// energy books and the headline tracker.
+/// (`mdr_sim::run::SceneSteps`) for a scene whose walls the device has ([`gpu_scene_support`]:
+/// planes, boxes, exact cylinders, cones and orifice plates, fixed or turning about their own
+/// axis, removed at a time or not), without the energy books and the headline tracker.
 pub struct GpuScene {
     system: System,
     wall_of_plane: Vec<usize>,
-    planes: Vec<Plane>,
+    walls: Vec<DeviceWall>,
+    /// The steps at whose force pass walls are removed, ascending (removal stages).
+    removal_steps: Vec<u64>,
     /// Each particle's mass and radius (its species').
     mass: Vec<f64>,
     radius: Vec<f64>,
@@ -567,8 +463,8 @@ pub struct GpuScene {
     species_count: usize,
     /// The x/y periodic box's side lengths (zero in open space).
     box_len: [f64; 2],
-    /// The elastic energies by species pair `a · species + b`, and by `species · planes +
-    /// plane`.
+    /// The elastic energies by species pair `a · species + b`, and by `species · walls +
+    /// wall`.
     sphere_energies: Vec<ElasticEnergies>,
     wall_energies: Vec<ElasticEnergies>,
 }
@@ -577,7 +473,7 @@ impl std::fmt::Debug for GpuScene {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("GpuScene")
             .field("system", &self.system)
-            .field("planes", &self.planes)
+            .field("walls", &self.walls)
             .finish()
     }
 }
@@ -588,7 +484,11 @@ impl GpuScene {
     /// named when the GPU path lacks one ([`gpu_scene_support`]).
     pub fn new(ctx: &GpuContext, scene: &Scene, options: &GpuOptions) -> Result<Self, GpuError> {
         gpu_scene_support(scene)?;
-        let planes = scene_planes(scene)?;
+        let walls = scene_walls(scene)?;
+        // The laws depend on the materials, not on the walls' shapes: each wall is bound as a
+        // half-space (its own plane, or one no sphere reaches).
+        let planes: Vec<(usize, Plane)> =
+            walls.iter().map(|w| (w.wall, w.law_stand_in())).collect();
         let laws = scene_laws(scene, &planes)?;
         let &(_, law_code, normal_words) = DEVICE_LAWS
             .iter()
@@ -630,7 +530,7 @@ impl GpuScene {
                 species_table: laws.species_table,
                 sphere_laws: laws.sphere,
                 wall_laws: laws.walls,
-                walls: planes.iter().map(|p| p.1).collect(),
+                walls: walls.clone(),
                 periodic,
                 gravity: scene.gravity,
                 dt: scene.dt,
@@ -651,8 +551,9 @@ impl GpuScene {
         )?;
         Ok(Self {
             system,
-            wall_of_plane: planes.iter().map(|p| p.0).collect(),
-            planes: planes.iter().map(|p| p.1).collect(),
+            wall_of_plane: walls.iter().map(|w| w.wall).collect(),
+            removal_steps: removal_steps(&walls),
+            walls,
             mass,
             radius,
             species,
@@ -674,12 +575,16 @@ impl GpuScene {
                 *t += e;
             }
         };
-        let walls = self.planes.len();
+        let walls = self.walls.len();
         for slot in 0..state.floor.len() {
             if let Some(h) = DeviceHistory::of_wall(state, slot) {
                 let (i, k) = (slot / walls, slot % walls);
-                let plane = &self.planes[k];
-                let overlap = self.radius[i] - plane.normal.dot(&(state.position[i] - plane.point));
+                // A touching contact has a normal (the device ends one without).
+                let Some(overlap) =
+                    self.walls[k].signed_overlap(&state.position[i], self.radius[i])
+                else {
+                    continue;
+                };
                 let law = self.species[i] as usize * walls + k;
                 add((self.wall_energies[law])(&h, overlap));
             }
@@ -705,17 +610,65 @@ impl GpuScene {
 
     system_accessors!();
 
-    /// The scene's wall (`[[walls]]` index) of each wall plane, in the device's order (a box
-    /// gives five or six).
+    /// The scene's wall (`[[walls]]` index) of each device wall, in the device's order (a box
+    /// gives five or six planes; a cylinder, cone or orifice plate one surface of revolution).
     pub fn wall_of_plane(&self) -> &[usize] {
         &self.wall_of_plane
     }
 
+    /// `steps` steps: per step, the rebuild decision, the list build when due (indirect
+    /// dispatches of zero size otherwise, so the host never waits inside a batch), the forces
+    /// and the integration; a wall removed at a time acts no more from the force pass of the
+    /// first step whose time `k · dt` reaches it, as on the CPU run. Waits for the device at
+    /// the end and checks the overflow flags.
+    pub fn step(&mut self, steps: usize) -> Result<(), GpuError> {
+        self.advance(steps, false)
+    }
+
     /// `steps` steps, then the forces of the next one: the state read back holds `x_k`,
     /// `v_k` and the contacts at `x_k`, where the CPU run takes its samples (see
-    /// [`crate::GpuBed::step`] for the steps).
+    /// [`GpuScene::step`] for the steps).
     pub fn step_and_evaluate(&mut self, steps: usize) -> Result<(), GpuError> {
-        self.system.step_and_evaluate(steps)
+        self.advance(steps, true)
+    }
+
+    /// The steps of [`GpuScene::step`] (`evaluate`: of [`GpuScene::step_and_evaluate`]), cut
+    /// at each wall removal so that its stage is on the device before the force pass of its
+    /// step; the stage of the first force pass is put there first (after a [`GpuScene::load`],
+    /// that of the step loaded).
+    fn advance(&mut self, steps: usize, evaluate: bool) -> Result<(), GpuError> {
+        let end = self.system.steps() + steps as u64;
+        // The last force pass of these steps.
+        let last_pass = if evaluate {
+            Some(end)
+        } else {
+            end.checked_sub(1)
+        };
+        loop {
+            self.sync_removed_walls()?;
+            let next = self.system.next_force_step();
+            let removal = self
+                .removal_steps
+                .iter()
+                .find(|&&r| r > next && last_pass.is_some_and(|last| r <= last));
+            match removal {
+                // Up to the removal's step, its force pass still to come.
+                Some(&r) => self.system.step((r - self.system.steps()) as usize)?,
+                None => break,
+            }
+        }
+        let rest = (end - self.system.steps()) as usize;
+        if evaluate {
+            self.system.step_and_evaluate(rest)
+        } else {
+            self.system.step(rest)
+        }
+    }
+
+    /// Put on the device the removal stage of the next force pass.
+    fn sync_removed_walls(&mut self) -> Result<(), GpuError> {
+        let stage = removal_stage(&self.removal_steps, self.system.next_force_step());
+        self.system.set_walls_removed(stage)
     }
 
     /// Each particle's mass (kg), as the CPU stepper's species table has it.
@@ -728,12 +681,12 @@ impl GpuScene {
         &self.radius
     }
 
-    /// The wall planes, in the device's order.
-    pub(crate) fn planes(&self) -> &[Plane] {
-        &self.planes
+    /// The device walls, in the device's order.
+    pub(crate) fn walls(&self) -> &[DeviceWall] {
+        &self.walls
     }
 
-    /// The whole state, read back (wall slot `particle · planes + plane`).
+    /// The whole state, read back (wall slot `particle · walls + wall`).
     pub fn state(&self) -> Result<GpuState, GpuError> {
         self.system.state()
     }

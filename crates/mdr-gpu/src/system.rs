@@ -1,10 +1,11 @@
 //! A system of spheres on the device: several species with their laws bound per species pair,
-//! planar walls, open space or the x/y periodic box, gravity; buffers, pipelines, steps and
+//! walls (`crate::walls`), open space or the x/y periodic box, gravity; buffers, pipelines, steps and
 //! read-back ([`System`]). The settled bed ([`crate::GpuBed`]) and the scenes
 //! ([`crate::GpuScene`]) are systems.
 
 use crate::device::{GpuContext, GpuError};
 use crate::law::LawConstants;
+use crate::walls::{wall_constants, DeviceWall};
 use mdr_rapier::neighbour_list::particles::Species;
 use nalgebra::Vector3;
 use wgpu::util::DeviceExt;
@@ -93,31 +94,7 @@ struct Params {
     species: u32,
     walls: u32,
     periodic: u32,
-    pad: u32,
-}
-
-/// A planar wall of a system: the half-space behind the plane through `point` with outward
-/// (towards the spheres) unit `normal`, acting where a sphere's centre lies in `[lo, hi]`
-/// (a box's side is its slab's inner face, valid over the face; elsewhere the step stops with
-/// [`GpuError::OffFace`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Plane {
-    pub normal: Vector3<f64>,
-    pub point: Vector3<f64>,
-    pub lo: Vector3<f64>,
-    pub hi: Vector3<f64>,
-}
-
-impl Plane {
-    /// An infinite plane.
-    pub fn infinite(normal: Vector3<f64>, point: Vector3<f64>) -> Self {
-        Self {
-            normal,
-            point,
-            lo: Vector3::repeat(f64::MIN),
-            hi: Vector3::repeat(f64::MAX),
-        }
-    }
+    walls_removed: u32,
 }
 
 /// Everything a [`System`] is made of.
@@ -132,7 +109,7 @@ pub(crate) struct SystemSpec<'a> {
     pub sphere_laws: Vec<LawConstants>,
     /// Wall laws by `(species, wall)` at `species · walls + wall`.
     pub wall_laws: Vec<LawConstants>,
-    pub walls: Vec<Plane>,
+    pub walls: Vec<DeviceWall>,
     /// The x/y periodic box `(lo, hi)`, or open space.
     pub periodic: Option<([f64; 2], [f64; 2])>,
     pub gravity: Vector3<f64>,
@@ -288,6 +265,8 @@ pub(crate) struct System {
     state_words: u32,
     wall_words: u32,
     device_bytes: u64,
+    /// The uniform block as on the device (the host writes its removal stage).
+    params: Params,
     steps: u64,
     /// The forces of step `steps` are evaluated and its integration is still to come
     /// ([`System::step_and_evaluate`]).
@@ -330,20 +309,6 @@ impl ErrorScopes {
 /// `a · b · …` in bytes, or `None` on overflow.
 fn bytes_of(factors: &[u64]) -> Option<u64> {
     factors.iter().try_fold(1u64, |acc, &f| acc.checked_mul(f))
-}
-
-/// WGSL `vec3<f64>` constants of `vectors`, comma-separated (one zero vector for none: the
-/// arrays of `bed.wgsl` have at least one entry). Rust's `{:?}` writes the shortest decimal
-/// that reads back as the same double, so the device gets the exact values.
-fn wgsl_vectors(vectors: impl Iterator<Item = Vector3<f64>>) -> String {
-    let list: Vec<String> = vectors
-        .map(|v| format!("vec3<f64>({:?}lf, {:?}lf, {:?}lf)", v.x, v.y, v.z))
-        .collect();
-    if list.is_empty() {
-        "vec3<f64>(0.0lf, 0.0lf, 0.0lf)".to_owned()
-    } else {
-        list.join(", ")
-    }
 }
 
 /// The lower and upper end of `values`.
@@ -543,7 +508,7 @@ impl System {
             species: nspecies as u32,
             walls: nwalls as u32,
             periodic: u32::from(spec.periodic.is_some()),
-            pad: 0,
+            walls_removed: 0,
         };
         let tables: Vec<f64> = spec
             .species_table
@@ -588,7 +553,7 @@ impl System {
             params: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("params"),
                 contents: bytemuck::bytes_of(&params),
-                usage: wgpu::BufferUsages::UNIFORM,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             }),
             pos: init(
                 "position",
@@ -657,24 +622,8 @@ impl System {
             )
             .replace("__NN__", &normal_words.to_string())
             .replace("__ROLLING__", if spec.rolling { "true" } else { "false" })
-            .replace("__WALLSLOTS__", &nwalls.max(1).to_string())
             .replace("__WALLS__", &nwalls.to_string())
-            .replace(
-                "__WALL_NORMAL__",
-                &wgsl_vectors(spec.walls.iter().map(|w| w.normal)),
-            )
-            .replace(
-                "__WALL_POINT__",
-                &wgsl_vectors(spec.walls.iter().map(|w| w.point)),
-            )
-            .replace(
-                "__WALL_LO__",
-                &wgsl_vectors(spec.walls.iter().map(|w| w.lo)),
-            )
-            .replace(
-                "__WALL_HI__",
-                &wgsl_vectors(spec.walls.iter().map(|w| w.hi)),
-            )
+            .replace("__WALL_CONSTANTS__", &wall_constants(&spec.walls))
             .replace(
                 "__CROSSING__",
                 &format!("{:?}", mdr_sim::run::CROSSING_OVERLAP),
@@ -764,6 +713,7 @@ impl System {
             state_words,
             wall_words,
             device_bytes,
+            params,
             steps: 0,
             pending_integration: false,
         })
@@ -782,6 +732,26 @@ impl System {
     /// Bytes of every device buffer of the system (particles, lists, histories, grid).
     pub fn device_bytes(&self) -> u64 {
         self.device_bytes
+    }
+
+    /// The step whose force pass comes next: `steps`, or `steps + 1` when the forces of step
+    /// `steps` are evaluated and its integration is pending ([`System::step_and_evaluate`]).
+    pub fn next_force_step(&self) -> u64 {
+        self.steps + u64::from(self.pending_integration)
+    }
+
+    /// From the next force pass on, the walls of removal stage at most `stage` act no more
+    /// (`Params::walls_removed` of `bed.wgsl`).
+    pub fn set_walls_removed(&mut self, stage: u32) -> Result<(), GpuError> {
+        if self.params.walls_removed == stage {
+            return Ok(());
+        }
+        self.params.walls_removed = stage;
+        let scopes = ErrorScopes::push(&self.device);
+        self.queue
+            .write_buffer(&self.buffers.params, 0, bytemuck::bytes_of(&self.params));
+        self.queue.submit([]);
+        scopes.pop()
     }
 
     /// `steps` steps: per step, the rebuild decision, the list build when due (indirect

@@ -404,11 +404,14 @@ fn what_the_gpu_run_cannot_write_is_refused_by_its_key() {
     let err = gpu_run_support(&guard).unwrap_err().to_string();
     assert!(err.contains("max_energy_drift"), "{err}");
     // The scene refusals of `bench scene --device gpu`, by name.
-    let hopper =
+    let mut hopper =
         load_scene(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/hopper.toml"))
             .unwrap_or_else(|p| panic!("{p}"));
+    // Its cylinder of flat pieces instead of the exact surface.
+    hopper.walls[0].revolution = None;
     let err = gpu_run_support(&hopper).unwrap_err().to_string();
     assert!(err.contains("`kind = \"cylinder\"`"), "{err}");
+    assert!(err.contains("exact_surface"), "{err}");
     let mut sink = base.clone();
     sink.source.run.delete_below_m = Some(-0.1);
     let err = gpu_run_support(&sink).unwrap_err().to_string();

@@ -288,16 +288,11 @@ fn scene_file(name: &str) -> Scene {
 
 #[test]
 fn scenes_the_gpu_lacks_a_part_of_are_refused_by_name() {
-    for (file, named) in [
-        ("hopper.toml", "`kind = \"cylinder\"`"),
-        ("drum.toml", "`kind = \"cylinder\"`"),
-    ] {
-        let err = gpu_scene_support(&scene_file(file))
-            .unwrap_err()
-            .to_string();
-        assert!(err.contains(named), "{file}: {err}");
-        assert!(err.contains("--device gpu"), "{file}: {err}");
-    }
+    let err = gpu_scene_support(&scene_file("funnel.toml"))
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("delete_below_m"), "funnel.toml: {err}");
+    assert!(err.contains("--device gpu"), "funnel.toml: {err}");
     for file in ["column.toml", "bed.toml", "drop.toml"] {
         gpu_scene_support(&scene_file(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
     }
@@ -307,8 +302,7 @@ fn scenes_the_gpu_lacks_a_part_of_are_refused_by_name() {
     assert!(err.contains("delete_below_m"), "{err}");
     let mut removed = test_scene();
     removed.walls[0].removed_at = Some(0.001);
-    let err = gpu_scene_support(&removed).unwrap_err().to_string();
-    assert!(err.contains("removed_at_s"), "{err}");
+    gpu_scene_support(&removed).unwrap();
     let mut rotating = test_scene();
     rotating.walls[0].angular_velocity = Some(Vector3::z());
     let err = gpu_scene_support(&rotating).unwrap_err().to_string();
