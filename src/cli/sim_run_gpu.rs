@@ -1,6 +1,6 @@
 //! `mdr-dem sim run SCENE.toml --device gpu`: the scene on the GPU path
 //! ([`mdr_gpu::run_gpu_scene`]) with the CPU run's output folder, frames, headline and progress;
-//! the energy books the device keeps; checkpoints in the CPU run's format, and `--resume` from a
+//! the CPU run's energy books and energy guard; checkpoints in the CPU run's format, and `--resume` from a
 //! checkpoint of either device. What the GPU path lacks is refused by name before anything is
 //! written.
 
@@ -14,12 +14,6 @@ use std::sync::Arc;
 /// Run a checked scene on the GPU (`--check`: only say whether it would run).
 pub fn run(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Result<()> {
     mdr_gpu::gpu_run_support(scene)?;
-    if scene.source.run.max_energy_drift.is_none() {
-        eprintln!(
-            "--device gpu: the energy guard (max_energy_drift) is not applied: the GPU keeps no \
-             dissipated works; the wall guard is checked at every step"
-        );
-    }
     if args.check {
         eprintln!("--device gpu: the GPU path runs this scene");
         return Ok(());

@@ -10,7 +10,7 @@ use mdr_rapier::neighbour_list::bed::{Bed, BedError, BenchSettings};
 use mdr_rapier::neighbour_list::boundary::Boundary;
 use nalgebra::Vector3;
 
-pub use crate::system::{GpuOptions, GpuPair, GpuState};
+pub use crate::system::{GpuBooks, GpuOptions, GpuPair, GpuState};
 
 /// The reference bed system (`reference_system` of `mdr_rapier::neighbour_list::bed`: the
 /// floor `z = 0`, x/y periodic box, `g = 1` along −z, `dt = 1e-4`, Hertz or MDR with Mindlin and
@@ -93,6 +93,8 @@ impl GpuBed {
                 normal_words: laws.normal.state_words(),
                 rolling: laws.rolling.is_some(),
                 orientation: settings.orientation,
+                // The benchmark keeps no books (the CPU bench's `NoBooks`).
+                books: false,
                 options: *options,
             },
         )?;

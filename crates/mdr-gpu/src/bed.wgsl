@@ -12,13 +12,36 @@
 // step 4.
 //
 // `MAXN` (neighbour slots per particle), `CELLCAP` (particles per cell), `NN` (f64 words of the
-// normal law's state) and `ROLLING` are written in by the host before the module is compiled.
+// normal law's state), `ROLLING` and `BOOKED` are written in by the host before the module is
+// compiled.
+//
+// With `BOOKED`, the force pass books each contact's dissipated works as the CPU path's
+// `ContactLaw::update`, `MindlinLaw::update`, `EpsdRollingLaw::update` and
+// `AdhesiveMdrLaw::update` book them, at the step they happen, into its particle's words of
+// `books` (`BOOK_WORDS` per particle; a sphere pair books half into each sphere's words, so
+// both particles' threads, which evaluate the pair with the same bits, book it alike): friction,
+// damping, rolling, the energy the tangential and rolling springs gain without work, the
+// adhesive work, and the plastic work of each contact that ends (the normal law's
+// `dissipated_work` less its adhesive work, when the contact separates or a rebuild drops it).
+// The plastic work of the live contacts is a function of their histories, read back at a
+// sample.
 
 
 const MAXN: u32 = __MAXN__u;
 const CELLCAP: u32 = __CELLCAP__u;
 const NN: u32 = __NN__u;
 const ROLLING: bool = __ROLLING__;
+const BOOKED: bool = __BOOKED__;
+// Words per particle of `books` (`crate::system::GpuBooks`).
+const BOOK_WORDS: u32 = 8u;
+const B_PLASTIC: u32 = 0u;
+const B_FRICTION: u32 = 1u;
+const B_DAMPING: u32 = 2u;
+const B_ROLLING: u32 = 3u;
+const B_TANGENTIAL_STIFFNESS: u32 = 4u;
+const B_ROLLING_STIFFNESS: u32 = 5u;
+const B_ADHESIVE: u32 = 6u;
+const B_WALL_WORK: u32 = 7u;
 // f64 words per slot of `h_state`: the normal law's state, then the rolling law's (torque,
 // stiffness).
 const NR: u32 = select(0u, 4u, ROLLING);
@@ -142,7 +165,19 @@ struct Params {
 @group(0) @binding(16) var<storage, read_write> species_of: array<u32>;
 @group(0) @binding(17) var<storage, read_write> tables: array<f64>;     // the species
 @group(0) @binding(18) var<storage, read_write> laws: array<Law>;       // sphere, then wall laws
-@group(0) @binding(19) var<storage, read_write> indirect: array<u32>;   // particles (3), cells (3)
+@group(0) @binding(19) var<storage, read_write> books: array<f64>;      // BOOK_WORDS per particle
+@group(0) @binding(20) var<storage, read_write> indirect: array<u32>;   // particles (3), cells (3)
+
+// The works the current thread's contacts booked in this pass, and the share of the contact
+// being evaluated that is this particle's (1 for a wall contact, ½ for a sphere pair).
+var<private> booked: array<f64, BOOK_WORDS>;
+var<private> book_share: f64;
+
+fn book(word: u32, work: f64) {
+    if BOOKED {
+        booked[word] += book_share * work;
+    }
+}
 
 fn particle_index(gid: vec3<u32>) -> u32 {
     return gid.x + gid.y * p.groups_x * WG;
@@ -397,12 +432,14 @@ fn search(@builtin(global_invocation_id) gid: vec3<u32>) {
         old_h[CARRY * q + NS + 3u] = h_radius[base + q];
     }
     var q = 0u;
+    var carried: array<bool, MAXN>;
     for (var s = 0u; s < m; s++) {
         let key = found[s];
         while q < old_m && (old_keys[q] & ~ACTIVE) < key {
             q++;
         }
         if q < old_m && old_keys[q] == (key | ACTIVE) {
+            carried[q] = true;
             keys[base + s] = key | ACTIVE;
             for (var k = 0u; k < NS; k++) {
                 h_state[NS * (base + s) + k] = old_h[CARRY * q + k];
@@ -416,6 +453,24 @@ fn search(@builtin(global_invocation_id) gid: vec3<u32>) {
         }
     }
     counts[i] = m;
+    if BOOKED {
+        // A touching pair the build dropped (a sphere moved by more than the skin) ends: its
+        // plastic work is booked, half to each sphere.
+        var dropped = 0.0lf;
+        let si = species_of[i];
+        for (var o = 0u; o < old_m; o++) {
+            if (old_keys[o] & ACTIVE) != 0u && !carried[o] {
+                let j = (old_keys[o] & ~ACTIVE) / 9u;
+                let law = laws[si * p.species + species_of[j]];
+                var state = vec3<f64>(0.0lf, 0.0lf, 0.0lf);
+                for (var w = 0u; w < NN; w++) {
+                    state[w] = old_h[CARRY * o + w];
+                }
+                dropped += 0.5lf * plastic_work(law, state);
+            }
+        }
+        books[BOOK_WORDS * i + B_PLASTIC] += dropped;
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -788,6 +843,183 @@ fn normal_law(law: Law, state: ptr<function, vec3<f64>>, d: f64) -> NormalOut {
     return adhesive_mdr_law(law, state, d);
 }
 
+// ---------------------------------------------------------------------------------------------
+// Work books (with `BOOKED`).
+
+fn pow5_2(d: f64) -> f64 {
+    return d * d * sqrt(d);
+}
+
+// `MdrLaw::loading_work`: `(8/15) E* √R [d^{5/2} − (1 − θ)(d − u_c)₊^{5/2}]` (docs/theory.md §4).
+fn mdr_loading_work(law: Law, d: f64) -> f64 {
+    if d <= 0.0lf {
+        return 0.0lf;
+    }
+    let s = max(d - law.yield_displacement, 0.0lf);
+    return 0.4lf * law.force_coefficient * (pow5_2(d) - law.plastic_fraction * pow5_2(s));
+}
+
+// `MdrLaw::stored_energy` at the largest overlap itself: the flattened part (Hertz with radius
+// R/θ, from the residual depth `(1 − θ)s` to `s`) and the outer part (`s` to `d_max`).
+fn mdr_stored_at_max(law: Law, max_overlap: f64) -> f64 {
+    let d = max_overlap;
+    let s = max_overlap - law.yield_displacement;
+    if s <= 0.0lf {
+        if d > 0.0lf {
+            return 0.4lf * law.force_coefficient * pow5_2(d);
+        }
+        return 0.0lf;
+    }
+    let residual = law.plastic_fraction * s;
+    if d <= residual {
+        return 0.0lf;
+    }
+    var flat = 0.0lf;
+    if law.hardening_ratio > 0.0lf {
+        flat = 0.4lf * law.flat_force_coefficient * pow5_2(min(d, s) - residual);
+    }
+    var outer = 0.0lf;
+    if d > s {
+        outer = 0.4lf * law.force_coefficient * (pow5_2(d) - pow5_2(s))
+            - law.plastic_fraction * law.force_coefficient * pow3_2(s) * (d - s);
+    }
+    return flat + outer;
+}
+
+// `ThorntonLaw::loading_work`: Hertz to `δ_y`, then the linear plastic branch.
+fn thornton_loading_work(law: Law, d: f64) -> f64 {
+    if d <= law.yield_displacement {
+        return 0.4lf * law.force_coefficient * pow5_2(max(d, 0.0lf));
+    }
+    let x = d - law.yield_displacement;
+    return 0.4lf * law.force_coefficient * pow5_2(law.yield_displacement)
+        + law.yield_force * x
+        + 0.5lf * PI * law.yield_pressure * law.effective_radius * x * x;
+}
+
+// `NormalLaw::dissipated_work` of a history (`state`: the normal law's words) less its
+// adhesive work, which the adhesive law books as it happens: `W(d_max) − U(d_max)`, the loading
+// work less the energy stored at the largest overlap (zero for Hertz).
+fn plastic_work(law: Law, state: vec3<f64>) -> f64 {
+    if p.law == LAW_HERTZ {
+        return 0.0lf;
+    }
+    let d = state.x;
+    if p.law == LAW_THORNTON {
+        // `ThorntonLaw::elastic_energy` at `d_max` on the 1997 unloading branch.
+        var stored = 0.4lf * law.force_coefficient * pow5_2(max(d, 0.0lf));
+        if d > law.yield_displacement {
+            stored = 0.4lf * state.y * pow5_2(max(d - state.z, 0.0lf));
+        }
+        return max(thornton_loading_work(law, d) - stored, 0.0lf);
+    }
+    return max(mdr_loading_work(law, d) - mdr_stored_at_max(law, d), 0.0lf);
+}
+
+// `AdhesiveMdrLaw::annulus_work`: `π Δγ (outer² − inner²)`, with `π Δγ = E* c² / 2` from the
+// detach coefficient `c = √(2π Δγ / E*)`.
+fn annulus_work(law: Law, outer: f64, inner: f64) -> f64 {
+    return 0.5lf * law.effective_modulus * law.detach_coefficient * law.detach_coefficient
+        * (outer * outer - inner * inner);
+}
+
+// `AdhesiveMdrLaw::edge_overlap`: `δ(a) = h(a) − c √a`, the overlap at which the edge at `a`
+// holds (A5).
+fn edge_overlap(law: Law, c: Crater, a: f64) -> f64 {
+    return crater_height(c, a) - law.detach_coefficient * sqrt(a);
+}
+
+// `Crater::spring_energy`: `E* ∫_{−a}^{a} (d − h)² dx / 2`, the energy of the attached springs
+// (A6).
+fn spring_energy(law: Law, c: Crater, d: f64, a: f64) -> f64 {
+    let r = law.effective_radius;
+    let inner = min(a, sqrt(c.plastic_radius_sq));
+    let e = d - c.depth;
+    let k = c.theta / r;
+    let inner3 = inner * inner * inner;
+    var integral = e * e * inner - 2.0lf / 3.0lf * e * k * inner3
+        + k * k * (inner3 * inner * inner) / 5.0lf;
+    if a > inner {
+        let a3 = a * a * a;
+        let pa = d * d * a - 2.0lf / 3.0lf * d * a3 / r + a3 * a * a / (5.0lf * r * r);
+        let pi = d * d * inner - 2.0lf / 3.0lf * d * inner3 / r
+            + inner3 * inner * inner / (5.0lf * r * r);
+        integral += pa - pi;
+    }
+    return law.effective_modulus * integral;
+}
+
+// `AdhesiveMdrLaw::let_go_work` (eq. A6): the edge retreats to the weakest edge `a*` (A7: the
+// stationary points `(cR/4)^{2/3}` and `(cR/(4θ))^{2/3}` of `δ` on either branch, the plastic
+// radius, or the edge itself), then the springs inside it let go with the energy they hold at
+// `δ(a*)`.
+fn let_go_work(law: Law, c: Crater, previous: f64) -> f64 {
+    let b_sq = c.plastic_radius_sq;
+    var best = previous;
+    var best_overlap = edge_overlap(law, c, previous);
+    let outer = pow2_3(law.detach_coefficient * law.effective_radius / 4.0lf);
+    if outer * outer >= b_sq && outer <= previous {
+        let o = edge_overlap(law, c, outer);
+        if o < best_overlap {
+            best = outer;
+            best_overlap = o;
+        }
+    }
+    if b_sq > 0.0lf && b_sq < previous * previous {
+        let b = sqrt(b_sq);
+        let o = edge_overlap(law, c, b);
+        if o < best_overlap {
+            best = b;
+            best_overlap = o;
+        }
+    }
+    if c.theta > 0.0lf {
+        let inner = pow2_3(law.detach_coefficient * law.effective_radius / (4.0lf * c.theta));
+        if inner * inner < b_sq && inner <= previous {
+            let o = edge_overlap(law, c, inner);
+            if o < best_overlap {
+                best = inner;
+                best_overlap = o;
+            }
+        }
+    }
+    return annulus_work(law, previous, best) + spring_energy(law, c, best_overlap, best);
+}
+
+// The adhesive work of one update of the adhesive law (`AdhesiveMdrState::adhesive_work`'s
+// increment): the annulus the attached edge left from `previous` to the new attached radius
+// `state.y`, or the whole neck's energy when it lets go (the radius drops to zero).
+fn book_adhesive_work(law: Law, previous: f64, state: vec3<f64>) {
+    if !BOOKED || p.law != LAW_ADHESIVE_MDR || law.detach_coefficient == 0.0lf {
+        return;
+    }
+    let a = state.y;
+    if a >= previous {
+        return;
+    }
+    if a > 0.0lf {
+        book(B_ADHESIVE, annulus_work(law, previous, a));
+    } else {
+        book(B_ADHESIVE, let_go_work(law, crater_of(law, state.x), previous));
+    }
+}
+
+// The energy a Mindlin spring of displacement `xi` held at contact radius `radius`, released
+// when its contact opens (`MindlinLaw::stiffness_energy_change` to a zero radius: the energy
+// gained is minus `½ k_t(a) |ξ|²`, `k_t = 2 G* a`).
+fn book_released_tangential_spring(law: Law, xi: vec3<f64>, radius: f64) {
+    book(B_TANGENTIAL_STIFFNESS, -(0.5lf * (2.0lf * law.shear_modulus * radius) * dot3(xi, xi)));
+}
+
+// Add this pass's works to particle `i`'s books.
+fn store_books(i: u32) {
+    if BOOKED {
+        for (var w = 0u; w < BOOK_WORDS; w++) {
+            books[BOOK_WORDS * i + w] += booked[w];
+        }
+    }
+}
+
 // `NormalLaw::holds`: an adhesive contact with attached springs holds apart.
 fn holds(law: Law, h: History) -> bool {
     return p.law == LAW_ADHESIVE_MDR && law.detach_coefficient > 0.0lf && h.normal.y > 0.0lf;
@@ -889,9 +1121,12 @@ fn contact_update(law: Law, h: ptr<function, History>, overlap: f64, n: vec3<f64
                   rv: vec3<f64>) -> ContactOut {
     let zero = vec3<f64>(0.0lf, 0.0lf, 0.0lf);
     var normal_state = (*h).normal;
+    let attached = normal_state.y;
     let normal = normal_law(law, &normal_state, overlap);
     (*h).normal = normal_state;
+    book_adhesive_work(law, attached, normal_state);
     if normal.force <= 0.0lf && normal.radius <= 0.0lf {
+        book_released_tangential_spring(law, (*h).xi, (*h).radius);
         (*h).xi = zero;
         (*h).radius = 0.0lf;
         return ContactOut(zero, 0.0lf, 0.0lf);
@@ -904,12 +1139,15 @@ fn contact_update(law: Law, h: ptr<function, History>, overlap: f64, n: vec3<f64
     }
     let damping = dashpot * approach_rate;
     let normal_force = max(normal.force + damping, min(normal.force, 0.0lf));
+    // Both dashpots' work of this step (`ContactLaw::update`), booked once below.
+    var damping_power = (normal_force - normal.force) * approach_rate;
     // Mindlin, with the Coulomb cap on the total normal force plus twice the pull-off force.
     let a = normal.radius;
     let cap_force = normal_force + 2.0lf * law.pull_off;
     var t_force = zero;
     var sliding = false;
     if a <= 0.0lf || cap_force <= 0.0lf {
+        book_released_tangential_spring(law, (*h).xi, (*h).radius);
         (*h).xi = zero;
         (*h).radius = 0.0lf;
     } else {
@@ -936,6 +1174,9 @@ fn contact_update(law: Law, h: ptr<function, History>, overlap: f64, n: vec3<f64
                 ratio = a / previous;
             }
             xi = xi * (frame * ratio);
+            // `MindlinLaw::carried_energy_change`: `½ k |ξ|² ratio² − ½ k_t(a_prev) |ξ|²`.
+            let before = 0.5lf * (2.0lf * law.shear_modulus * previous) * old_len2;
+            book(B_TANGENTIAL_STIFFNESS, 0.5lf * k * old_len2 * ratio * ratio - before);
         }
         let inc = rv * p.dt;
         let du = inc - n * dot3(n, inc);
@@ -951,6 +1192,8 @@ fn contact_update(law: Law, h: ptr<function, History>, overlap: f64, n: vec3<f64
             }
             xi = xi * keep;
             sliding = true;
+            // Gross slip: `μ F_N` times the slip length.
+            book(B_FRICTION, cap * (len * (1.0lf - keep)));
         }
         (*h).xi = xi;
         (*h).radius = a;
@@ -962,8 +1205,10 @@ fn contact_update(law: Law, h: ptr<function, History>, overlap: f64, n: vec3<f64
         if eta_t > 0.0lf {
             let v_t = rv - n * normal_speed;
             force = force - v_t * eta_t;
+            damping_power += eta_t * dot3(v_t, v_t);
         }
     }
+    book(B_DAMPING, damping_power * p.dt);
     return ContactOut(force, normal_force, normal.stiffness);
 }
 
@@ -972,6 +1217,10 @@ fn rolling_update(law: Law, h: ptr<function, History>, n: vec3<f64>, increment: 
                   normal_force: f64, normal_stiffness: f64) -> vec3<f64> {
     let zero = vec3<f64>(0.0lf, 0.0lf, 0.0lf);
     if normal_force <= 0.0lf {
+        // The released spring's energy is dissipated (`EpsdRollingState::elastic_energy`).
+        if (*h).rolling_stiffness > 0.0lf {
+            book(B_ROLLING, 0.5lf * dot3((*h).torque, (*h).torque) / (*h).rolling_stiffness);
+        }
         (*h).torque = zero;
         (*h).rolling_stiffness = 0.0lf;
         return zero;
@@ -987,12 +1236,25 @@ fn rolling_update(law: Law, h: ptr<function, History>, n: vec3<f64>, increment: 
     }
     let rotation = increment - n * dot3(n, increment);
     let stiffness = law.rolling_stiffness_ratio * normal_stiffness;
+    // `EpsdRollingState::stiffness_energy_change`: `½|M|² (1/k_r − 1/k_r,prev)`.
+    let previous_stiffness = (*h).rolling_stiffness;
+    if previous_stiffness > 0.0lf && stiffness > 0.0lf {
+        book(B_ROLLING_STIFFNESS,
+             0.5lf * old_len2 * (1.0lf / stiffness - 1.0lf / previous_stiffness));
+    }
     torque = torque + rotation * (-stiffness);
     let cap = law.rolling_arm * normal_force;
     let magnitude2 = dot3(torque, torque);
     if magnitude2 > cap * cap {
         let magnitude = sqrt(magnitude2);
+        // The excess rotation `(|M_trial| − cap)/k_r` is plastic and dissipates `cap` times it.
+        let excess = magnitude - cap;
         torque = torque * (cap / magnitude);
+        if stiffness > 0.0lf {
+            book(B_ROLLING, cap * excess / stiffness);
+        } else {
+            book(B_ROLLING, cap * sqrt(dot3(rotation, rotation)));
+        }
     }
     (*h).torque = torque;
     (*h).rolling_stiffness = stiffness;
@@ -1130,6 +1392,10 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
     let ri = radius_of(si);
     var force = zero;
     var torque = zero;
+    for (var w = 0u; w < BOOK_WORDS; w++) {
+        booked[w] = 0.0lf;
+    }
+    book_share = 1.0lf;
     // Each wall (`wall_contact`: a plane, or a surface of revolution); a held adhesive
     // contact goes on at its negative overlap. A removed wall acts no more: its contact ends.
     for (var k = 0u; k < WALLS; k++) {
@@ -1137,6 +1403,8 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         let was_active = wall_hist[FS * slot] != 0.0lf;
         if WALL_STAGE[k] <= p.walls_removed {
             if was_active {
+                let law = laws[p.species * p.species + si * p.walls + k];
+                book(B_PLASTIC, plastic_work(law, load_wall(slot).normal));
                 store_wall(slot, false, default_history());
             }
             continue;
@@ -1149,6 +1417,7 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         let held = was_active && holds(law, h);
         if !contact.defined || (overlap <= 0.0lf && !held) {
             if was_active {
+                book(B_PLASTIC, plastic_work(law, h.normal));
                 store_wall(slot, false, default_history());
             }
         } else {
@@ -1175,6 +1444,9 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
             let arm2 = contact.point - WALL_PIVOT[k];
             let rv = vi + (cross3(wi, arm1) - cross3(w2, arm2));
             let out = pair_wrench(law, &h, overlap, n, rv, wi, w2);
+            // A turning wall's power on the sphere, its force times the wall's velocity at the
+            // contact point (the CPU's `wall_power`).
+            book(B_WALL_WORK, dot3(out.force, cross3(w2, arm2)) * p.dt);
             store_wall(slot, true, h);
             force = force + out.force;
             torque = torque + (cross3(arm1, out.force) + out.rolling_torque);
@@ -1182,6 +1454,7 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let base = i * MAXN;
     let m = counts[i];
+    book_share = 0.5lf;
     for (var s = 0u; s < m; s++) {
         let key = keys[base + s];
         let j = (key & ~ACTIVE) / 9u;
@@ -1216,7 +1489,11 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         // A held adhesive contact goes on at its negative overlap until its law lets go.
         let held = was_active && dist2 != 0.0lf && holds(law, h);
         if !(touch || held) {
-            // Separated: inactive, the history left as it is (reset when it touches again).
+            // Separated: inactive, the history left as it is (reset when it touches again);
+            // the contact's plastic work is booked.
+            if was_active {
+                book(B_PLASTIC, plastic_work(law, h.normal));
+            }
             keys[base + s] = key & ~ACTIVE;
             continue;
         }
@@ -1242,6 +1519,7 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     store_wrench(2u * i, force);
     store_wrench(2u * i + 1u, torque);
+    store_books(i);
 }
 
 // ---------------------------------------------------------------------------------------------

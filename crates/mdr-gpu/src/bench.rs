@@ -18,7 +18,7 @@ use nalgebra::Vector3;
 
 /// Figures of one GPU bed run: the CPU benchmark's ([`BenchFigures`]; `threads` is 0,
 /// `cpu_seconds` the host's, `stepper_bytes_per_particle` the device buffers', `work_books`
-/// false: the device keeps no work books) and the device's own.
+/// false: the bed's device keeps no work books) and the device's own.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GpuBenchFigures {
     /// The figures in the CPU benchmark's form.

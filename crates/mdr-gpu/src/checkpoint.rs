@@ -11,9 +11,15 @@
 //! its order (`crate::scene`), and a GPU checkpoint lists every (particle, surface) pair as a
 //! candidate (the device tests every wall at every step). Orientations are kept as they are:
 //! the scenes on the GPU integrate none (a sphere's forces do not depend on it).
+//!
+//! The energy books: the device books every work per particle as it happens ([`GpuBooks`]),
+//! the CPU run per contact (each live history's own books) and in its totals (the contacts
+//! that ended). A GPU checkpoint writes the device's totals as the CPU totals with live
+//! histories that carry no books; a CPU checkpoint's totals and its live histories' books
+//! become the device's totals. Either run then continues the other's books.
 
 use crate::device::GpuError;
-use crate::system::{GpuPair, GpuState};
+use crate::system::{GpuBooks, GpuPair, GpuState};
 use mdr_contact::model::{Books as ContactBooks, ContactState};
 use mdr_contact::normal::{
     AdhesiveMdr, AdhesiveMdrState, Hertz, MdrElastoPlastic, MdrState, Thornton, ThorntonState,
@@ -267,6 +273,7 @@ pub(crate) fn state_of_checkpoint(
         floor_rolling_torque[slot] = h.rolling_torque;
         floor_rolling_stiffness[slot] = h.rolling_stiffness;
     }
+    let books = device_books(law, data, lists, n);
     let body = |i: usize| &data.bodies[i];
     Ok(GpuState {
         position: (0..n).map(|i| Vector3::from(body(i).translation)).collect(),
@@ -283,5 +290,54 @@ pub(crate) fn state_of_checkpoint(
         rebuild_due: lists.max_displacement > 0.5 * skin,
         walls,
         rebuilds: lists.rebuilds,
+        books,
     })
+}
+
+/// The device's books of a checkpoint: its totals (`CheckpointData::books`: the contacts that
+/// ended) and its live histories' own books, as the CPU run's energy row adds them; per
+/// particle, the checkpoint's plastic work per particle, and what the totals hold beyond it in
+/// the first particle's words. The device keeps the adhesive work apart from the plastic work,
+/// and the live histories it loads carry none: their adhesive work so far joins the totals.
+fn device_books(
+    law: &str,
+    data: &CheckpointData,
+    lists: &NeighbourListRecord,
+    n: usize,
+) -> Vec<GpuBooks> {
+    let b = &data.books;
+    let mut total = GpuBooks {
+        plastic: b.plastic - b.adhesive,
+        friction: b.friction,
+        damping: b.damping,
+        rolling: b.rolling,
+        tangential_stiffness: -b.stiffness_tangential,
+        rolling_stiffness: -b.stiffness_rolling,
+        adhesive: b.adhesive,
+        wall_work: b.wall_work,
+    };
+    for r in lists.pair_histories.iter().chain(&lists.surface_histories) {
+        let books = &r.contact.books;
+        if law == AdhesiveMdr::DECLARATION.name {
+            total.plastic += r.contact.normal.adhesive_mdr.adhesive_work;
+        }
+        total.friction += books.friction_work;
+        total.damping += books.damping_work;
+        total.rolling += r.rolling.dissipated_work;
+        total.tangential_stiffness += books.tangential_stiffness_energy;
+        total.rolling_stiffness += books.rolling_stiffness_energy;
+    }
+    let mut books = vec![GpuBooks::default(); n];
+    if n == 0 {
+        return books;
+    }
+    for (book, &plastic) in books.iter_mut().zip(&b.particle_plastic) {
+        book.plastic = plastic;
+    }
+    let per_particle: f64 = books.iter().map(|book| book.plastic).sum();
+    books[0] = GpuBooks {
+        plastic: books[0].plastic + (total.plastic - per_particle),
+        ..total
+    };
+    books
 }

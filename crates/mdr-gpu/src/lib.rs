@@ -34,7 +34,7 @@ mod scene;
 mod system;
 mod walls;
 
-pub use bed::{GpuBed, GpuOptions, GpuPair, GpuState};
+pub use bed::{GpuBed, GpuBooks, GpuOptions, GpuPair, GpuState};
 pub use bench::{
     bench_bed_gpu, cpu_reference_run, cpu_reference_run_with, differences, CpuPair, CpuState,
     Differences, GpuBenchFigures,

@@ -1,20 +1,23 @@
 //! `sim run` on the GPU ([`run_gpu_scene`]): a force-mode scene stepped on the device
 //! ([`GpuScene`]) with the outputs of the CPU run that the device's state gives: the VTK frames
-//! and their ParaView collection (every field but `plastic_work_j`), the energy books the
-//! state holds ([`GPU_ENERGY_COLUMNS`]), the headline with its series, CSV, plots and TOML
-//! report, and a progress bar.
+//! and their ParaView collection (every field but `plastic_work_j`), the energy books with the
+//! CPU run's columns ([`GPU_ENERGY_COLUMNS`]) and its energy guard (`max_energy_drift`), the
+//! headline with its series, CSV, plots and TOML report, and a progress bar.
 //!
 //! The samples are taken where the CPU run takes them: at step `k` the device has evaluated
 //! the forces at `x_k` (the pass that sets each contact's state) and not yet integrated, so
 //! positions, velocities and contacts all describe `x_k` ([`GpuScene::step_and_evaluate`]).
 //!
-//! The elastic energies stored in the contacts are evaluated from the histories read back at
-//! each energy sample, by the law crate ([`GpuScene`]'s bound laws). What the device does not
-//! keep is never written as a number: the dissipated works (plastic, friction, damping,
-//! rolling, adhesive), summed along each contact's path, the wall work and so the balance, and
-//! the per-particle plastic work. A scene that asks for a
-//! contact network or an explicit energy guard (`max_energy_drift`) is refused with the key
-//! named ([`gpu_run_support`]).
+//! The elastic energies stored in the contacts, and the plastic work of the live contacts, are
+//! evaluated from the histories read back at each energy sample, by the law crate
+//! ([`GpuScene`]'s bound laws). The dissipated works (friction, damping, rolling, the
+//! springs' stiffness energy, the adhesive work, and the plastic work of the contacts that
+//! ended) are booked on the device at every step, per particle, in f64 ([`GpuBooks`]), and
+//! summed in particle order at a sample; the balance then closes as the CPU run's does, and
+//! the energy guard stops a run whose balance drifts beyond `max_energy_drift` at the sample
+//! where the CPU run would stop (the same message). The turning walls' work is booked on the
+//! device like the other works; the GPU has no sinks, so the removed energy is zero. A scene that asks for a contact network is
+//! refused with the key named ([`gpu_run_support`]).
 //!
 //! Checkpoints are the CPU run's ([`mdr_sim::run::CheckpointData`], written where the CPU run
 //! writes them: every `checkpoint_interval_s`, at an interrupt and at the end), taken before
@@ -24,7 +27,7 @@
 use crate::checkpoint::{lists_record, particle_records, state_of_checkpoint};
 use crate::device::{GpuContext, GpuError};
 use crate::scene::{gpu_scene_support, GpuScene};
-use crate::system::{GpuOptions, GpuState};
+use crate::system::{GpuBooks, GpuOptions, GpuState};
 use indicatif::{ProgressBar, ProgressStyle};
 use mdr_sim::checkpoint::{self, CheckpointError};
 use mdr_sim::headline::{HeadlineReport, HeadlineSample, ParticleView, Tracker};
@@ -39,18 +42,29 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-/// The energy-book columns a GPU run writes (`<name>_energy.csv`), in the CPU run's order:
-/// the kinetic and gravitational energies from the state read back, the elastic energies the
-/// contacts' histories store, and the contacts alive.
-pub const GPU_ENERGY_COLUMNS: [&str; 8] = [
+/// The energy-book columns a GPU run writes (`<name>_energy.csv`), the CPU run's, in its
+/// order (and `adhesive_j` after them when a row books adhesive work, as the CPU run writes
+/// it): the kinetic and gravitational energies from the state read back, the elastic energies
+/// the contacts' histories store, the works booked on the device, the balance, and the
+/// contacts alive. `removed_j` is zero (the GPU has no sinks).
+pub const GPU_ENERGY_COLUMNS: [&str; 17] = [
     "time_s",
     "kinetic_translational_j",
     "kinetic_rotational_j",
     "gravitational_j",
     "elastic_normal_j",
     "elastic_tangential_j",
+    "plastic_j",
+    "friction_j",
+    "damping_j",
+    "wall_work_j",
+    "balance_j",
     "contacts",
     "elastic_rolling_j",
+    "rolling_j",
+    "stiffness_tangential_j",
+    "stiffness_rolling_j",
+    "removed_j",
 ];
 
 /// Steps between two looks at the interrupt flag and the progress bar.
@@ -96,6 +110,25 @@ pub struct GpuEnergyRow {
     pub elastic_rolling_j: f64,
     /// Contacts alive (touching, or held by an adhesive neck): sphere pairs and wall contacts.
     pub contacts: u64,
+    /// Work dissipated by plasticity since the start (J): the contacts that ended, booked on
+    /// the device, and the live contacts' from their histories.
+    pub plastic_j: f64,
+    /// Work dissipated by friction since the start (J).
+    pub friction_j: f64,
+    /// Work dissipated by damping since the start (J).
+    pub damping_j: f64,
+    /// Work dissipated by rolling resistance since the start (J).
+    pub rolling_j: f64,
+    /// Energy the tangential springs lost without work since the start (J).
+    pub stiffness_tangential_j: f64,
+    /// Energy the rolling springs lost without work since the start (J).
+    pub stiffness_rolling_j: f64,
+    /// Adhesive work since the start (J).
+    pub adhesive_j: f64,
+    /// Work the turning walls did on the particles since the start (J).
+    pub wall_work_j: f64,
+    /// The sum of the books (`EnergyRow::with_balance`): constant in an exact integration.
+    pub balance_j: f64,
 }
 
 impl GpuEnergyRow {
@@ -110,14 +143,20 @@ impl GpuEnergyRow {
             elastic_tangential_j: row.elastic_tangential_j,
             elastic_rolling_j: row.elastic_rolling_j,
             contacts: row.contacts,
+            plastic_j: row.plastic_j,
+            friction_j: row.friction_j,
+            damping_j: row.damping_j,
+            rolling_j: row.rolling_j,
+            stiffness_tangential_j: row.stiffness_tangential_j,
+            stiffness_rolling_j: row.stiffness_rolling_j,
+            adhesive_j: row.adhesive_j,
+            wall_work_j: row.wall_work_j,
+            balance_j: row.balance_j,
         }
     }
 
-    /// The row in the CPU run's type (for its CSV writer, which writes only
-    /// [`GPU_ENERGY_COLUMNS`], and for a checkpoint): the works the device does not keep, and
-    /// so the balance, are NaN (not a number: a CPU run continued from the checkpoint writes
-    /// them so, and its energy guard starts from its own first row); the wall work and the
-    /// removed spheres' energy are zero (the GPU has fixed walls and no sinks).
+    /// The row in the CPU run's type (for its CSV writer and for a checkpoint); the removed
+    /// spheres' energy is zero (the GPU has no sinks).
     fn as_energy_row(&self) -> EnergyRow {
         EnergyRow {
             time_s: self.time_s,
@@ -128,14 +167,16 @@ impl GpuEnergyRow {
             elastic_tangential_j: self.elastic_tangential_j,
             elastic_rolling_j: self.elastic_rolling_j,
             contacts: self.contacts,
-            plastic_j: f64::NAN,
-            friction_j: f64::NAN,
-            damping_j: f64::NAN,
-            rolling_j: f64::NAN,
-            stiffness_tangential_j: f64::NAN,
-            stiffness_rolling_j: f64::NAN,
-            balance_j: f64::NAN,
-            ..EnergyRow::default()
+            plastic_j: self.plastic_j,
+            friction_j: self.friction_j,
+            damping_j: self.damping_j,
+            rolling_j: self.rolling_j,
+            stiffness_tangential_j: self.stiffness_tangential_j,
+            stiffness_rolling_j: self.stiffness_rolling_j,
+            adhesive_j: self.adhesive_j,
+            balance_j: self.balance_j,
+            wall_work_j: self.wall_work_j,
+            removed_j: 0.0,
         }
     }
 }
@@ -204,8 +245,8 @@ pub enum GpuRunError {
 }
 
 /// Whether `sim run --device gpu` runs `scene`: [`gpu_scene_support`], and the outputs the
-/// GPU run cannot write refused by their key: `contact_network`, an explicit
-/// `max_energy_drift`, `orifice_sweep_m`. Needs no device.
+/// GPU run cannot write refused by their key: `contact_network`, `orifice_sweep_m`. Needs no
+/// device.
 pub fn gpu_run_support(scene: &Scene) -> Result<(), GpuError> {
     gpu_scene_support(scene)?;
     let refuse = |what: &str| {
@@ -219,12 +260,6 @@ pub fn gpu_run_support(scene: &Scene) -> Result<(), GpuError> {
         return refuse(
             "`contact_network = true`: the GPU keeps no per-pair forces for the contact-network \
              frames (run on the CPU path, or leave the key out)",
-        );
-    }
-    if run.max_energy_drift.is_some() {
-        return refuse(
-            "`[run] max_energy_drift`: the energy guard needs the balance, and the GPU keeps no \
-             dissipated works (leave the key out to run without the guard)",
         );
     }
     if run.orifice_sweep_m.is_some() {
@@ -265,6 +300,7 @@ pub fn run_gpu_scene(
         samples: Vec::new(),
         checkpoints: Vec::new(),
         step: 0,
+        guard_floor_j: mdr_sim::run::one_diameter_lift_j(scene),
     };
     if let Some(path) = &options.resume {
         run.resume(path)?;
@@ -288,6 +324,8 @@ struct GpuRun<'a> {
     /// The device holds `x_step`, `v_step` and the histories up to `x_{step−1}` at the top of
     /// the loop; the forces at `x_step` are evaluated before the samples.
     step: u64,
+    /// The floor of the energy guard's scale (J; `mdr_sim::run::one_diameter_lift_j`).
+    guard_floor_j: f64,
 }
 
 /// The state at a sample and what the outputs read from it.
@@ -351,9 +389,7 @@ impl GpuRun<'_> {
                 self.step,
             ));
         let state = self.device(|gpu| gpu.state())?;
-        // The device keeps no work books: the totals are zero, with one plastic work per
-        // particle as the CPU run's checkpoint has.
-        let books = Books::new(state.position.len());
+        let books = cpu_books(&state);
         let run = NeighbourListRun {
             step: self.step,
             particles: particle_records(&state),
@@ -555,6 +591,10 @@ impl GpuRun<'_> {
         if energy_due {
             let row = self.energy_row(&sample);
             self.energy.push(row);
+            let rows: Vec<EnergyRow> = self.energy.iter().map(|r| r.as_energy_row()).collect();
+            if let Some(reason) = mdr_sim::run::energy_guard(scene, &rows, self.guard_floor_j) {
+                return Err(self.stop(reason));
+            }
         }
         if frame_due {
             let headline = self.tracker.sample(scene, self.time(), &view);
@@ -568,7 +608,9 @@ impl GpuRun<'_> {
     }
 
     /// The kinetic and gravitational energies, summed in particle order as the CPU run sums
-    /// them, the contacts' elastic energies ([`GpuScene::elastic_energies`]) and the contacts.
+    /// them, the contacts' elastic energies and the live contacts' plastic work
+    /// ([`GpuScene::contact_energies`]), the works booked on the device (summed in particle
+    /// order), the balance and the contacts.
     fn energy_row(&self, sample: &Sample) -> GpuEnergyRow {
         let g = self.scene.gravity;
         let s = &sample.state;
@@ -589,13 +631,26 @@ impl GpuRun<'_> {
             row.kinetic_rotational_j += 0.5 * 0.4 * m * r * r * w.norm_squared();
             row.gravitational_j -= m * g.dot(x);
         }
+        let live_plastic;
         [
             row.elastic_normal_j,
             row.elastic_tangential_j,
             row.elastic_rolling_j,
-        ] = self.gpu.elastic_energies(s);
+            live_plastic,
+        ] = self.gpu.contact_energies(s);
         row.contacts = (s.pairs.iter().filter(|p| p.active).count()
             + s.floor.iter().filter(|w| w.is_some()).count()) as u64;
+        let booked = GpuBooks::total(&s.books);
+        row.plastic_j = booked.plastic + live_plastic;
+        row.adhesive_j = booked.adhesive;
+        row.wall_work_j = booked.wall_work;
+        row.friction_j = booked.friction;
+        row.damping_j = booked.damping;
+        row.rolling_j = booked.rolling;
+        // The books hold the energy the springs gained; the columns, what they lost.
+        row.stiffness_tangential_j = -booked.tangential_stiffness;
+        row.stiffness_rolling_j = -booked.rolling_stiffness;
+        row.balance_j = row.as_energy_row().with_balance().balance_j;
         row
     }
 
@@ -632,7 +687,7 @@ impl GpuRun<'_> {
         let out = &self.out;
         let csv = out.join(format!("{name}_energy.csv"));
         let rows: Vec<EnergyRow> = self.energy.iter().map(|r| r.as_energy_row()).collect();
-        energy::write_csv_columns(&csv, &rows, &GPU_ENERGY_COLUMNS).map_err(output(&csv))?;
+        energy::write_csv(&csv, &rows).map_err(output(&csv))?;
         if !plots {
             return Ok(());
         }
@@ -646,24 +701,8 @@ impl GpuRun<'_> {
             files.push(series_csv);
         }
         let svg = out.join(format!("{name}_energy.svg"));
-        let col = |f: fn(&GpuEnergyRow) -> f64| {
-            self.energy
-                .iter()
-                .map(|r| (r.time_s, f(r)))
-                .collect::<Vec<_>>()
-        };
-        plot::write_lines(
-            &svg,
-            &format!("{name}: energy books (GPU: kinetic and gravitational)"),
-            "time (s)",
-            "energy (J)",
-            &[
-                ("kinetic (transl.)", col(|r| r.kinetic_translational_j)),
-                ("kinetic (rot.)", col(|r| r.kinetic_rotational_j)),
-                ("gravitational", col(|r| r.gravitational_j)),
-            ],
-        )
-        .map_err(output(&svg))?;
+        plot::write_energy_plot(&svg, &format!("{name}: energy books"), &rows)
+            .map_err(output(&svg))?;
         files.push(svg);
         if let Some(path) = self
             .tracker
@@ -674,6 +713,29 @@ impl GpuRun<'_> {
         }
         Ok(())
     }
+}
+
+/// The CPU run's books of a device state read between two steps (a checkpoint's): the totals
+/// of the works booked on the device. The CPU books hold the ended contacts' works and add the
+/// live contacts' own books when read; the checkpoint's live histories carry no books (zero),
+/// so the device's totals, which hold the live contacts' works so far too, continue there.
+/// The CPU's plastic work includes the adhesive work; its stiffness books hold the energy
+/// lost. Per particle, the plastic work of the contacts that ended.
+fn cpu_books(state: &GpuState) -> Books {
+    let total = GpuBooks::total(&state.books);
+    let mut books = Books::new(state.position.len());
+    books.plastic = total.plastic + total.adhesive;
+    books.adhesive = total.adhesive;
+    books.friction = total.friction;
+    books.damping = total.damping;
+    books.rolling = total.rolling;
+    books.stiffness_tangential = -total.tangential_stiffness;
+    books.stiffness_rolling = -total.rolling_stiffness;
+    books.wall_work = total.wall_work;
+    for (p, b) in books.particle_plastic.iter_mut().zip(&state.books) {
+        *p = b.plastic;
+    }
+    books
 }
 
 /// Each particle's contacts alive: its sphere pairs and its wall contacts.

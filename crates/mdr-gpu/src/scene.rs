@@ -42,10 +42,11 @@ use rapier3d_f64::prelude::{ColliderBuilder, PhysicsWorld, SharedShape};
 use std::sync::Arc;
 
 /// The elastic energies a contact's history stores at an overlap, `[normal, tangential,
-/// rolling]` (J), by the law crate's laws bound for its pair as the CPU run's energy books take
-/// them: `NormalLaw::elastic_energy`, `½ k_t |ξ|²` with Mindlin's `k_t = 2 G* a`,
-/// `RollingLaw::elastic_energy`.
-type ElasticEnergies = Arc<dyn Fn(&DeviceHistory, f64) -> [f64; 3] + Send + Sync>;
+/// rolling]` (J), and its plastic work so far, by the law crate's laws bound for its pair as
+/// the CPU run's energy books take them: `NormalLaw::elastic_energy`, `½ k_t |ξ|²` with
+/// Mindlin's `k_t = 2 G* a`, `RollingLaw::elastic_energy`, `NormalLaw::dissipated_work` (the
+/// device books the adhesive work apart, as it happens: the history carries none).
+type ElasticEnergies = Arc<dyn Fn(&DeviceHistory, f64) -> [f64; 4] + Send + Sync>;
 
 /// The normal laws with a device kernel: scene name, `Params::law` code of `bed.wgsl`, f64
 /// words of per-contact state.
@@ -286,11 +287,12 @@ where
         let energies: ElasticEnergies = Arc::new(move |h: &DeviceHistory, overlap: f64| {
             let r = h.record(N::DECLARATION.name, 0);
             let t = &r.contact.tangential;
+            let normal = N::restore(&r.contact.normal);
             [
-                law.normal
-                    .elastic_energy(&N::restore(&r.contact.normal), overlap),
+                law.normal.elastic_energy(&normal, overlap),
                 0.5 * law.tangential.stiffness(t.contact_radius) * t.displacement.norm_squared(),
                 rolling.elastic_energy(&R::restore(&r.rolling)),
+                law.normal.dissipated_work(&normal),
             ]
         });
         energies
@@ -543,6 +545,8 @@ impl GpuScene {
                     .rolling(),
                 // Scenes integrate no orientations (no output reads them).
                 orientation: false,
+                // The energy books of `sim run`.
+                books: true,
                 options: GpuOptions {
                     laws: None,
                     ..*options
@@ -565,12 +569,13 @@ impl GpuScene {
     }
 
     /// The elastic energies stored in the contacts of `state` (read back at a sample, where
-    /// the force pass set each contact's state), `[normal, tangential, rolling]` (J): each
-    /// touching contact's history at its overlap now, by its pair's laws, the wall contacts
-    /// first, as the CPU run's energy books sum them.
-    pub(crate) fn elastic_energies(&self, state: &GpuState) -> [f64; 3] {
-        let mut total = [0.0; 3];
-        let mut add = |e: [f64; 3]| {
+    /// the force pass set each contact's state), `[normal, tangential, rolling]` (J), and the
+    /// plastic work of those live contacts so far: each touching contact's history at its
+    /// overlap now, by its pair's laws, the wall contacts first, as the CPU run's energy books
+    /// sum them.
+    pub(crate) fn contact_energies(&self, state: &GpuState) -> [f64; 4] {
+        let mut total = [0.0; 4];
+        let mut add = |e: [f64; 4]| {
             for (t, e) in total.iter_mut().zip(e) {
                 *t += e;
             }

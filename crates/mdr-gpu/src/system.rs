@@ -15,7 +15,7 @@ const WORKGROUP: u32 = 64;
 /// Steps encoded per command buffer between two status checks.
 const STEPS_PER_SUBMIT: usize = 200;
 /// Storage buffers the step binds.
-const STORAGE_BINDINGS: u32 = 19;
+const STORAGE_BINDINGS: u32 = 20;
 /// Set in a key while its pair touches (`ACTIVE` of `bed.wgsl`).
 const ACTIVE: u32 = 0x8000_0000;
 /// f64 words of a bound law (`Law` of `bed.wgsl`).
@@ -122,7 +122,61 @@ pub(crate) struct SystemSpec<'a> {
     pub normal_words: u32,
     pub rolling: bool,
     pub orientation: bool,
+    /// Whether the force pass books the contacts' works ([`GpuBooks`]).
+    pub books: bool,
     pub options: GpuOptions,
+}
+
+/// The works one particle's contacts booked on the device since the start (J), summed over
+/// its steps in the force pass (`bed.wgsl`, `BOOKED`); a sphere pair books half of each work
+/// into each of its spheres. The field order is the shader's (`B_*`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct GpuBooks {
+    /// Plastic work of the contacts that ended (`NormalLaw::dissipated_work` less the adhesive
+    /// work); the live contacts' is a function of their histories.
+    pub plastic: f64,
+    /// Work dissipated by friction (Mindlin's gross slip).
+    pub friction: f64,
+    /// Work dissipated by the normal and tangential dashpots.
+    pub damping: f64,
+    /// Work dissipated by rolling resistance (its slip, and the springs released when their
+    /// contacts opened).
+    pub rolling: f64,
+    /// Energy the tangential springs gained without work (negative when lost).
+    pub tangential_stiffness: f64,
+    /// Energy the rolling springs gained without work (negative when lost).
+    pub rolling_stiffness: f64,
+    /// Adhesive work: the energy the adhesive springs held when they let go.
+    pub adhesive: f64,
+    /// Work the turning walls did on the particle (their force times the wall's velocity at
+    /// the contact point, per step).
+    pub wall_work: f64,
+}
+
+impl GpuBooks {
+    /// `f64` words per particle (`BOOK_WORDS` of `bed.wgsl`).
+    const WORDS: u64 = (std::mem::size_of::<GpuBooks>() / 8) as u64;
+
+    /// Add `other` field by field.
+    pub fn add(&mut self, other: &GpuBooks) {
+        self.plastic += other.plastic;
+        self.friction += other.friction;
+        self.damping += other.damping;
+        self.rolling += other.rolling;
+        self.tangential_stiffness += other.tangential_stiffness;
+        self.rolling_stiffness += other.rolling_stiffness;
+        self.adhesive += other.adhesive;
+        self.wall_work += other.wall_work;
+    }
+
+    /// The sum over `books`, in their order.
+    pub fn total(books: &[GpuBooks]) -> GpuBooks {
+        books.iter().fold(GpuBooks::default(), |mut t, b| {
+            t.add(b);
+            t
+        })
+    }
 }
 
 /// One sphere–sphere pair of the device's list, as the CPU's half list has it (`i < j`).
@@ -187,6 +241,9 @@ pub struct GpuState {
     pub walls: usize,
     /// Neighbour-list builds so far.
     pub rebuilds: u64,
+    /// Per particle, the works its contacts booked on the device ([`GpuBooks`]); empty for a
+    /// system that keeps no books (the settled bed's benchmark).
+    pub books: Vec<GpuBooks>,
 }
 
 struct Buffers {
@@ -209,11 +266,12 @@ struct Buffers {
     species: wgpu::Buffer,
     tables: wgpu::Buffer,
     laws: wgpu::Buffer,
+    books: wgpu::Buffer,
     indirect: wgpu::Buffer,
 }
 
 impl Buffers {
-    fn all(&self) -> [&wgpu::Buffer; 20] {
+    fn all(&self) -> [&wgpu::Buffer; 21] {
         [
             &self.params,
             &self.pos,
@@ -234,6 +292,7 @@ impl Buffers {
             &self.species,
             &self.tables,
             &self.laws,
+            &self.books,
             &self.indirect,
         ]
     }
@@ -264,6 +323,7 @@ pub(crate) struct System {
     normal_words: u32,
     state_words: u32,
     wall_words: u32,
+    books: bool,
     device_bytes: u64,
     /// The uniform block as on the device (the host writes its removal stage).
     params: Params,
@@ -404,7 +464,12 @@ impl System {
         let cap = u64::from(options.cell_capacity);
         // Sizes, checked before anything is allocated; indices in the shaders are u32.
         let ns64 = nspecies as u64;
-        let sizes: [(&'static str, Option<u64>); 17] = [
+        let book_bytes = if spec.books {
+            bytes_of(&[n64, GpuBooks::WORDS, 8])
+        } else {
+            Some(0)
+        };
+        let sizes: [(&'static str, Option<u64>); 18] = [
             ("position", bytes_of(&[n64, 24])),
             ("velocity", bytes_of(&[n64, 24])),
             ("angular velocity", bytes_of(&[n64, 24])),
@@ -431,6 +496,7 @@ impl System {
                 "laws",
                 bytes_of(&[ns64, ns64 + nwalls as u64, 8 * LAW_WORDS]),
             ),
+            ("work books", book_bytes),
         ];
         let u32_indices = bytes_of(&[n64, slots, u64::from(state_words.max(3))])
             .is_some_and(|k| k <= u64::from(u32::MAX))
@@ -608,6 +674,7 @@ impl System {
                 bytemuck::cast_slice(&laws),
                 wgpu::BufferUsages::empty(),
             ),
+            books: zeroed("work books", book_bytes.unwrap_or(0)),
             indirect: init(
                 "indirect",
                 bytemuck::cast_slice(&[0u32; 8]),
@@ -622,6 +689,7 @@ impl System {
             )
             .replace("__NN__", &normal_words.to_string())
             .replace("__ROLLING__", if spec.rolling { "true" } else { "false" })
+            .replace("__BOOKED__", if spec.books { "true" } else { "false" })
             .replace("__WALLS__", &nwalls.to_string())
             .replace("__WALL_CONSTANTS__", &wall_constants(&spec.walls))
             .replace(
@@ -712,6 +780,7 @@ impl System {
             normal_words,
             state_words,
             wall_words,
+            books: spec.books,
             device_bytes,
             params,
             steps: 0,
@@ -946,6 +1015,11 @@ impl System {
         let h_state: Vec<f64> = self.read(&self.buffers.h_state, total * sw as u64 * 8)?;
         let h_xi: Vec<f64> = self.read(&self.buffers.h_xi, total * 24)?;
         let h_radius: Vec<f64> = self.read(&self.buffers.h_radius, total * 8)?;
+        let books: Vec<GpuBooks> = if self.books {
+            self.read(&self.buffers.books, n as u64 * GpuBooks::WORDS * 8)?
+        } else {
+            Vec::new()
+        };
         let entry = |i: usize, s: usize| -> GpuPair {
             let k = i * slots + s;
             let key = keys[k] & !ACTIVE;
@@ -1079,6 +1153,7 @@ impl System {
             rebuild_due: status[0] != 0,
             walls: self.walls,
             rebuilds: u64::from(status[1]),
+            books,
         })
     }
 
@@ -1110,6 +1185,7 @@ impl System {
             ]
             .iter()
             .all(|&len| len == n * self.walls)
+            && (state.books.is_empty() || state.books.len() == n)
             && state
                 .pairs
                 .iter()
@@ -1206,6 +1282,11 @@ impl System {
         write(&b.h_xi, bytemuck::cast_slice(&h_xi));
         write(&b.h_radius, bytemuck::cast_slice(&h_radius));
         write(&b.status, bytemuck::cast_slice(&status));
+        if self.books {
+            let mut books = state.books.clone();
+            books.resize(n, GpuBooks::default());
+            write(&b.books, bytemuck::cast_slice(&books));
+        }
         self.queue.submit([]);
         scopes.pop()?;
         self.steps = steps;

@@ -157,9 +157,9 @@ impl BalanceDrift {
         }
     }
 
-    /// The drift over a whole series of rows from its first row with a balance (a GPU run's
-    /// rows, continued on the CPU from its checkpoint, have none: `balance_j` is NaN); `None`
-    /// when there is no such row.
+    /// The drift over a whole series of rows from its first row with a balance (a finite
+    /// `balance_j`: rows taken over from a checkpoint that had none are skipped); `None` when
+    /// there is no such row.
     pub fn of(rows: &[EnergyRow]) -> Option<Self> {
         let first = rows.iter().find(|r| r.balance_j.is_finite())?;
         Some(Self::between(first, rows.last()?))

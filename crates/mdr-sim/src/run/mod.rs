@@ -761,20 +761,7 @@ impl<'a> Sim<'a> {
     /// The energy guard: why the books' drift from their first row is beyond the scene's
     /// `max_energy_drift`, if it is.
     fn energy_guard(&self) -> Option<String> {
-        let max = self.scene.max_energy_drift?;
-        let drift = BalanceDrift::of(&self.energy)?.at_least(self.guard_floor_j);
-        (drift.fraction.abs() > max).then(|| {
-            format!(
-                "the energy balance drifted by {:+.3e} J, {:+.2} % of the energy scale {:.3e} J, beyond \
-                 `run.max_energy_drift` = {max} ({} %): the time step is too coarse for the contacts \
-                 (lower dt_s or raise steps_per_contact), or a wall pushes spheres the wrong way (a \
-                 mesh's winding); raise max_energy_drift to go on",
-                drift.joules,
-                100.0 * drift.fraction,
-                drift.scale_j,
-                100.0 * max
-            )
-        })
+        energy_guard(self.scene, &self.energy, self.guard_floor_j)
     }
 
     /// Stop the run on a guard at step `k` (after its forces and samples): the step is finished
@@ -851,9 +838,30 @@ fn progress_bar(quiet: bool, total: u64, start: u64) -> ProgressBar {
     bar
 }
 
+/// The energy guard of a run of `scene` whose energy rows are `rows`: why the balance's drift
+/// from its first row with a balance is beyond the scene's `max_energy_drift` (measured against
+/// at least `floor_j`, [`one_diameter_lift_j`]), if it is. Both devices' runs check it at each
+/// energy sample.
+pub fn energy_guard(scene: &Scene, rows: &[EnergyRow], floor_j: f64) -> Option<String> {
+    let max = scene.max_energy_drift?;
+    let drift = BalanceDrift::of(rows)?.at_least(floor_j);
+    (drift.fraction.abs() > max).then(|| {
+        format!(
+            "the energy balance drifted by {:+.3e} J, {:+.2} % of the energy scale {:.3e} J, beyond \
+             `run.max_energy_drift` = {max} ({} %): the time step is too coarse for the contacts \
+             (lower dt_s or raise steps_per_contact), or a wall pushes spheres the wrong way (a \
+             mesh's winding); raise max_energy_drift to go on",
+            drift.joules,
+            100.0 * drift.fraction,
+            drift.scale_j,
+            100.0 * max
+        )
+    })
+}
+
 /// The work of lifting every particle of the scene by its own diameter against gravity (J):
 /// the floor of the energy guard's scale.
-fn one_diameter_lift_j(scene: &Scene) -> f64 {
+pub fn one_diameter_lift_j(scene: &Scene) -> f64 {
     let g = scene.gravity.norm();
     scene
         .particles

@@ -1,0 +1,475 @@
+//! The energy books of `sim run` on the GPU against the CPU run of the same scene: a box of 27
+//! spheres thrown about for 300 steps with each normal law on the device (MDR, Hertz,
+//! Thornton, adhesive MDR) and Mindlin friction, Hertzian damping and rolling resistance; each
+//! dissipated work the device books (friction, damping, rolling, the springs' stiffness
+//! energy, plastic, adhesive), the balance and its drift, compared with the CPU run's columns
+//! read back from disk; a negative control (the balance without one work); the energy guard
+//! (`max_energy_drift`) stopping both runs at the same sample; the books continued across a
+//! checkpoint in both directions (and a checkpoint without its books as a negative control);
+//! and the device's books repeating themselves bit for bit. The device tests need a Vulkan (or
+//! Metal/DX12) device with 64-bit floats (on Linux without a GPU, Mesa's lavapipe).
+
+use mdr_gpu::{run_gpu_scene, GpuContext, GpuRunError, GpuRunOptions, GPU_ENERGY_COLUMNS};
+use mdr_sim::output::run_dir::checkpoint_name;
+use mdr_sim::run::{Books, CheckpointData};
+use mdr_sim::scene::load_scene;
+use mdr_sim::{run_scene, RunOptions, Scene};
+use std::path::{Path, PathBuf};
+
+/// The dissipated works and stiffness books the device books, by their CSV column.
+const WORKS: [&str; 7] = [
+    "plastic_j",
+    "friction_j",
+    "damping_j",
+    "rolling_j",
+    "stiffness_tangential_j",
+    "stiffness_rolling_j",
+    "adhesive_j",
+];
+
+/// Largest difference of a work column between the GPU and the CPU run, over every row, as a
+/// fraction of the energy scale (the initial kinetic energy): measured on lavapipe over the
+/// 300 steps of the four laws, at most 3.0e-16 (Thornton's plastic work; the others' 4.8e-17
+/// and below), and 7.7e-16 for the balance, a sum of a dozen columns of up to twice that
+/// scale.
+const WORK_TOLERANCE: f64 = 2e-15;
+
+fn context() -> GpuContext {
+    GpuContext::new().unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join("gpu_books")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// 27 spheres of radius 2 mm (E = 2 MPa) on a 6 mm lattice in the closed box
+/// `[-1, 1] cm³ × [0, 2] cm`, each with a fixed pseudo-random velocity of up to 0.5 m/s per
+/// component: within 300 steps (6 ms) they collide with each other and the walls, load
+/// plastically, slide, roll, are damped, separate and (adhesive law) let go.
+const BOX: &str = r#"
+[run]
+name = "box"
+duration_s = 0.006
+dt_s = 2.0e-5
+max_speed_m_per_s = 1.0
+output_interval_s = 0.003
+energy_interval_s = 0.0005
+{RUN}
+
+[gravity]
+acceleration_m_per_s2 = [0.0, 0.0, -9.81]
+
+[[material]]
+name = "grain"
+youngs_pa = 2.0e6
+poisson_ratio = 0.25
+density_kg_per_m3 = 2500.0
+
+[contact]
+{NORMAL}
+tangential = "mindlin"
+friction = 0.5
+rolling_friction = 0.1
+damping = "hertzian_viscous"
+damping_gamma_n_per_m_s = 1.0e4
+damping_tangential_ratio = 0.5
+
+[[particles]]
+material = "grain"
+placement = "csv"
+file = "particles.csv"
+
+[[walls]]
+kind = "box"
+material = "grain"
+min_m = [-0.01, -0.01, 0.0]
+max_m = [0.01, 0.01, 0.02]
+thickness_m = 0.004
+open_top = false
+"#;
+
+/// The `[contact]` keys of each normal law.
+const LAWS: [(&str, &str); 4] = [
+    (
+        "mdr",
+        "normal = \"mdr\"\ncritical_line_load_n_per_m = 20.0\nhardening_ratio = 0.37",
+    ),
+    ("hertz", "normal = \"hertz\""),
+    (
+        "thornton",
+        "normal = \"thornton\"\nyield_pressure_pa = 2.0e5",
+    ),
+    (
+        "adhesive_mdr",
+        "normal = \"adhesive_mdr\"\ncritical_line_load_n_per_m = 20.0\nhardening_ratio = 0.37\n\
+         work_of_adhesion_j_per_m2 = 1.0",
+    ),
+];
+
+fn box_csv() -> String {
+    let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut next = || {
+        // SplitMix64: a fixed sequence, the same on every machine.
+        seed = seed.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = seed;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let mut csv = String::from("x_m,y_m,z_m,radius_m,vx_m_per_s,vy_m_per_s,vz_m_per_s\n");
+    for k in 0..3 {
+        for j in 0..3 {
+            for i in 0..3 {
+                let at = |n: usize| -0.006 + 0.006 * n as f64;
+                let v = [next(), next(), next()];
+                csv.push_str(&format!(
+                    "{:.6},{:.6},{:.6},0.002,{:.6},{:.6},{:.6}\n",
+                    at(i),
+                    at(j),
+                    0.004 + 0.006 * k as f64,
+                    v[0],
+                    v[1],
+                    v[2]
+                ));
+            }
+        }
+    }
+    csv
+}
+
+/// The box scene with the normal law's keys `normal` and extra `[run]` keys `run`, written
+/// into `dir`.
+fn box_scene(dir: &Path, normal: &str, run: &str) -> Scene {
+    std::fs::write(dir.join("particles.csv"), box_csv()).unwrap();
+    let text = BOX.replace("{NORMAL}", normal).replace("{RUN}", run);
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, text).unwrap();
+    load_scene(&path).unwrap_or_else(|p| panic!("{p}"))
+}
+
+fn gpu_options(out: &Path) -> GpuRunOptions {
+    GpuRunOptions {
+        out_dir: out.to_path_buf(),
+        quiet: true,
+        no_frames: true,
+        ..GpuRunOptions::default()
+    }
+}
+
+fn gpu_run(ctx: &GpuContext, scene: &Scene, out: &Path) -> mdr_gpu::GpuRunSummary {
+    run_gpu_scene(ctx, scene, &gpu_options(out)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn cpu_options(out: &Path) -> RunOptions {
+    RunOptions::new(out).quiet(true).no_frames(true)
+}
+
+/// The energy CSV of a run: its header and rows.
+struct Energy {
+    header: Vec<String>,
+    rows: Vec<Vec<f64>>,
+}
+
+impl Energy {
+    fn read(out: &Path) -> Self {
+        let text = std::fs::read_to_string(out.join("box_energy.csv")).unwrap();
+        let mut lines = text.lines();
+        let header = lines
+            .next()
+            .unwrap()
+            .split(',')
+            .map(str::to_owned)
+            .collect();
+        let rows = lines
+            .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+            .collect();
+        Self { header, rows }
+    }
+
+    /// Column `name` (zeros where the CSV leaves it out: `adhesive_j` without adhesive work).
+    fn column(&self, name: &str) -> Vec<f64> {
+        match self.header.iter().position(|h| h == name) {
+            Some(k) => self.rows.iter().map(|r| r[k]).collect(),
+            None => vec![0.0; self.rows.len()],
+        }
+    }
+
+    /// The initial kinetic energy: the scale the differences are measured against.
+    fn scale(&self) -> f64 {
+        self.column("kinetic_translational_j")[0] + self.column("kinetic_rotational_j")[0]
+    }
+
+    /// The balance's drift from the first row to the last (J).
+    fn drift(&self) -> f64 {
+        let b = self.column("balance_j");
+        b[b.len() - 1] - b[0]
+    }
+}
+
+/// The largest difference of column `name` between two runs over every row, as a fraction of
+/// `scale`.
+fn column_difference(a: &Energy, b: &Energy, name: &str, scale: f64) -> f64 {
+    let (x, y) = (a.column(name), b.column(name));
+    assert_eq!(x.len(), y.len(), "{name}: rows");
+    x.iter()
+        .zip(&y)
+        .map(|(u, v)| (u - v).abs() / scale)
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn each_work_the_gpu_books_is_the_cpu_runs_for_every_normal_law() {
+    let ctx = context();
+    for (law, normal) in LAWS {
+        let dir = scratch(law);
+        let scene = box_scene(&dir, normal, "");
+        let (cpu_out, gpu_out) = (dir.join("cpu"), dir.join("gpu"));
+        run_scene(&scene, &cpu_options(&cpu_out)).unwrap_or_else(|e| panic!("{law}: {e}"));
+        let summary = gpu_run(&ctx, &scene, &gpu_out);
+        // The default energy guard (5 %) holds on both devices: the runs finish.
+        assert!(!summary.stopped_early);
+        assert_eq!(summary.step, 300);
+        let (cpu, gpu) = (Energy::read(&cpu_out), Energy::read(&gpu_out));
+        assert_eq!(gpu.header, cpu.header, "{law}: the CPU run's columns");
+        assert_eq!(&gpu.header[..GPU_ENERGY_COLUMNS.len()], GPU_ENERGY_COLUMNS);
+        assert_eq!(gpu.rows.len(), 13, "{law}: rows every 0.5 ms over 6 ms");
+        let scale = cpu.scale();
+        let mut worst = 0.0f64;
+        for name in WORKS {
+            let d = column_difference(&cpu, &gpu, name, scale);
+            let last = |e: &Energy| *e.column(name).last().unwrap();
+            println!(
+                "{law}: {name} CPU {:.6e} GPU {:.6e} J, largest difference {d:.3e} of the \
+                 initial kinetic energy {scale:.3e} J",
+                last(&cpu),
+                last(&gpu)
+            );
+            worst = worst.max(d);
+            assert!(d < WORK_TOLERANCE, "{law}: {name} differs by {d:.3e}");
+        }
+        // Every work the law has is booked (the comparison is not of zeros).
+        let booked = |name: &str| gpu.column(name).last().unwrap().abs() > 1e-6 * scale;
+        for name in [
+            "friction_j",
+            "damping_j",
+            "rolling_j",
+            "stiffness_tangential_j",
+        ] {
+            assert!(booked(name), "{law}: {name} is booked");
+        }
+        assert_eq!(booked("plastic_j"), law != "hertz", "{law}: plastic_j");
+        assert_eq!(
+            booked("adhesive_j"),
+            law == "adhesive_mdr",
+            "{law}: adhesive_j"
+        );
+        // The balance closes on the GPU as on the CPU.
+        let d = column_difference(&cpu, &gpu, "balance_j", scale);
+        let (drift_cpu, drift_gpu) = (cpu.drift() / scale, gpu.drift() / scale);
+        println!(
+            "{law}: balance differs by {d:.3e}; drift CPU {drift_cpu:+.3e}, GPU {drift_gpu:+.3e} \
+             of the initial kinetic energy; works within {worst:.3e}"
+        );
+        assert!(d < WORK_TOLERANCE, "{law}: balance_j differs by {d:.3e}");
+        assert!(
+            (drift_gpu - drift_cpu).abs() < WORK_TOLERANCE,
+            "{law}: drift CPU {drift_cpu:.3e} GPU {drift_gpu:.3e}"
+        );
+
+        // Negative control: the GPU's balance without its friction work misses the CPU's
+        // balance by far more than the tolerance.
+        let friction = gpu.column("friction_j");
+        let without: Vec<f64> = gpu
+            .column("balance_j")
+            .iter()
+            .zip(&friction)
+            .map(|(b, f)| b - f)
+            .collect();
+        let missed = cpu
+            .column("balance_j")
+            .iter()
+            .zip(&without)
+            .map(|(c, g)| (c - g).abs() / scale)
+            .fold(0.0, f64::max);
+        println!("{law}: without the friction work the balance misses by {missed:.3e}");
+        assert!(missed > 1e3 * WORK_TOLERANCE, "{law}: {missed:.3e}");
+    }
+}
+
+#[test]
+fn the_gpu_books_repeat_themselves_bit_for_bit() {
+    let ctx = context();
+    let dir = scratch("repeat");
+    let scene = box_scene(&dir, LAWS[3].1, "");
+    let (a, b) = (dir.join("a"), dir.join("b"));
+    gpu_run(&ctx, &scene, &a);
+    gpu_run(&ctx, &scene, &b);
+    let text = |out: &Path| std::fs::read_to_string(out.join("box_energy.csv")).unwrap();
+    assert_eq!(text(&a), text(&b));
+}
+
+/// A guard of `max_energy_drift = 1e-15` stops both runs at the first energy sample after the
+/// start (step 25), with the CPU run's message; the default guard lets both run to the end
+/// (each law's run above).
+#[test]
+fn the_energy_guard_stops_the_gpu_run_where_it_stops_the_cpu_run() {
+    let ctx = context();
+    let dir = scratch("guard");
+    let scene = box_scene(&dir, LAWS[0].1, "max_energy_drift = 1e-15");
+    assert_eq!(scene.max_energy_drift, Some(1e-15));
+    let cpu = run_scene(&scene, &cpu_options(&dir.join("cpu")))
+        .expect_err("the CPU run stops")
+        .to_string();
+    let gpu =
+        run_gpu_scene(&ctx, &scene, &gpu_options(&dir.join("gpu"))).expect_err("the GPU run stops");
+    let GpuRunError::Stopped { step, reason, .. } = &gpu else {
+        panic!("{gpu}");
+    };
+    println!("CPU: {cpu}\nGPU: {gpu}");
+    assert_eq!(*step, 25, "the first energy sample after the start");
+    assert!(
+        reason.starts_with("the energy balance drifted by"),
+        "{reason}"
+    );
+    // The CPU run's message, figures included, at the same time.
+    assert!(cpu.contains(reason.as_str()), "{cpu}");
+    assert!(cpu.contains("t = 5.000000e-4 s (step 25)"), "{cpu}");
+    // The series up to the stop are written.
+    let gpu_rows = Energy::read(&dir.join("gpu"));
+    assert_eq!(gpu_rows.rows.len(), 2);
+}
+
+fn checkpoint_path(out: &Path, step: u64) -> PathBuf {
+    out.join("checkpoints").join(checkpoint_name("box", step))
+}
+
+/// The largest difference of the work columns and the balance between two runs' last rows, as
+/// a fraction of the initial kinetic energy.
+fn last_row_difference(a: &Energy, b: &Energy) -> f64 {
+    let scale = a.scale();
+    WORKS
+        .iter()
+        .chain(&["balance_j"])
+        .map(|name| {
+            let (x, y) = (a.column(name), b.column(name));
+            (x.last().unwrap() - y.last().unwrap()).abs() / scale
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The books continue across a checkpoint at step 200 in both directions: the adhesive scene
+/// to step 200 (where every work has begun) on one device and on to 300 on the other ends with the CPU run's books, within
+/// the tolerance of the straight runs; a GPU checkpoint whose books are cleared does not.
+#[test]
+fn the_books_continue_across_devices() {
+    let ctx = context();
+    let dir = scratch("across");
+    let scene = box_scene(&dir, LAWS[3].1, "");
+    let cpu_straight = dir.join("cpu_straight");
+    run_scene(&scene, &cpu_options(&cpu_straight)).unwrap_or_else(|e| panic!("{e}"));
+    let cpu = Energy::read(&cpu_straight);
+
+    // GPU to step 200, then the CPU.
+    let gpu_half = dir.join("gpu_half");
+    let stopped = run_gpu_scene(
+        &ctx,
+        &scene,
+        &GpuRunOptions {
+            stop_at_step: Some(200),
+            ..gpu_options(&gpu_half)
+        },
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let gpu_checkpoint = stopped.checkpoint.unwrap();
+    let data = CheckpointData::read(&gpu_checkpoint).unwrap();
+    let b = &data.books;
+    assert!(
+        b.friction > 0.0 && b.plastic > b.adhesive && b.adhesive > 0.0,
+        "{b:?}"
+    );
+    assert!(data.energy.iter().all(|r| r.balance_j.is_finite()));
+    let on_cpu = dir.join("on_cpu");
+    run_scene(
+        &scene,
+        &cpu_options(&on_cpu).resume(Some(gpu_checkpoint.clone())),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let gpu_then_cpu = last_row_difference(&cpu, &Energy::read(&on_cpu));
+
+    // CPU to step 200, then the GPU.
+    let cpu_half = dir.join("cpu_half");
+    let stopped = run_scene(&scene, &cpu_options(&cpu_half).stop_at_step(Some(200)))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let on_gpu = dir.join("on_gpu");
+    run_gpu_scene(
+        &ctx,
+        &scene,
+        &GpuRunOptions {
+            resume: stopped.checkpoint,
+            ..gpu_options(&on_gpu)
+        },
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let cpu_then_gpu = last_row_difference(&cpu, &Energy::read(&on_gpu));
+    println!(
+        "books after 300 steps vs the CPU run: GPU then CPU {gpu_then_cpu:.3e}, CPU then GPU \
+         {cpu_then_gpu:.3e} of the initial kinetic energy"
+    );
+    assert!(gpu_then_cpu < WORK_TOLERANCE, "{gpu_then_cpu:.3e}");
+    assert!(cpu_then_gpu < WORK_TOLERANCE, "{cpu_then_gpu:.3e}");
+    assert!(checkpoint_path(&on_gpu, 300).exists());
+
+    // Negative control: the GPU checkpoint with its books cleared breaks the balance by more
+    // than the default guard's 5 %, so the CPU run continued from it stops at its first
+    // sample, and so does a GPU run continued from the CPU's checkpoint with its books
+    // cleared: the guard stops a GPU run whose balance breaks.
+    let cleared = |path: &Path, dir: &Path| -> PathBuf {
+        let mut data = CheckpointData::read(path).unwrap();
+        data.books = Books::new(scene.particles.len());
+        let lists = data.neighbour_list.as_mut().unwrap();
+        for r in lists
+            .pair_histories
+            .iter_mut()
+            .chain(lists.surface_histories.iter_mut())
+        {
+            r.contact.books = Default::default();
+            r.rolling.dissipated_work = 0.0;
+            r.contact.normal.adhesive_mdr.adhesive_work = 0.0;
+        }
+        let out = checkpoint_path(dir, 200);
+        mdr_sim::checkpoint::write(&out, &data).unwrap();
+        out
+    };
+    let control = dir.join("cpu_control");
+    let path = cleared(&gpu_checkpoint, &control);
+    let err = run_scene(&scene, &cpu_options(&control).resume(Some(path)))
+        .expect_err("the CPU guard stops the run")
+        .to_string();
+    println!("a GPU checkpoint without its books, on the CPU: {err}");
+    assert!(err.contains("the energy balance drifted by"), "{err}");
+    let control = dir.join("gpu_control");
+    let path = cleared(&checkpoint_path(&cpu_half, 200), &control);
+    let err = run_gpu_scene(
+        &ctx,
+        &scene,
+        &GpuRunOptions {
+            resume: Some(path),
+            ..gpu_options(&control)
+        },
+    )
+    .expect_err("the GPU guard stops the run");
+    println!("a CPU checkpoint without its books, on the GPU: {err}");
+    let GpuRunError::Stopped { step, reason, .. } = &err else {
+        panic!("{err}");
+    };
+    assert_eq!(*step, 200);
+    assert!(
+        reason.starts_with("the energy balance drifted by"),
+        "{reason}"
+    );
+}
