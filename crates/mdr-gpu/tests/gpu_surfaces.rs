@@ -579,3 +579,79 @@ fn a_hopper_loaded_before_or_after_its_gate_removal_goes_on_bit_for_bit() {
         assert_eq!(bits(&whole.angvel), bits(&loaded.angvel), "loaded at {at}");
     }
 }
+
+/// Column `name` of the energy CSV `scene_energy.csv` in `out`.
+fn energy_column(out: &Path, scene: &str, name: &str) -> Vec<f64> {
+    let text = std::fs::read_to_string(out.join(format!("{scene}_energy.csv"))).unwrap();
+    let mut lines = text.lines();
+    let k = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .position(|h| h == name)
+        .unwrap_or_else(|| panic!("no column {name}"));
+    lines
+        .map(|l| l.split(',').nth(k).unwrap().parse().unwrap())
+        .collect()
+}
+
+/// The turning drum's work on the spheres is booked on the device as the CPU run books it
+/// (`wall_power`: the wall's force on the sphere times the wall's velocity at the contact
+/// point), so the GPU run's balance is the CPU run's; without the wall work it misses by that
+/// work.
+#[test]
+fn the_turning_drum_books_its_work_as_the_cpu_run() {
+    let ctx = context();
+    let scene = drum_scene();
+    let base = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu_drum_books");
+    let _ = std::fs::remove_dir_all(&base);
+    let (cpu_out, gpu_out) = (base.join("cpu"), base.join("gpu"));
+    mdr_sim::run::run_scene(
+        &scene,
+        &mdr_sim::run::RunOptions::new(&cpu_out)
+            .quiet(true)
+            .no_frames(true),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let options = mdr_gpu::GpuRunOptions {
+        out_dir: gpu_out.clone(),
+        quiet: true,
+        no_frames: true,
+        ..mdr_gpu::GpuRunOptions::default()
+    };
+    mdr_gpu::run_gpu_scene(&ctx, &scene, &options).unwrap_or_else(|e| panic!("{e}"));
+    let column = |out: &Path, name: &str| energy_column(out, &scene.name, name);
+    let scale = column(&cpu_out, "kinetic_translational_j")[0]
+        + column(&cpu_out, "kinetic_rotational_j")[0];
+    let largest = |name: &str| {
+        let (c, g) = (column(&cpu_out, name), column(&gpu_out, name));
+        assert_eq!(c.len(), g.len(), "{name}: rows");
+        c.iter()
+            .zip(&g)
+            .map(|(a, b)| (a - b).abs() / scale)
+            .fold(0.0, f64::max)
+    };
+    let wall_work = column(&cpu_out, "wall_work_j");
+    let done = wall_work.iter().fold(0.0f64, |m, w| m.max(w.abs())) / scale;
+    let (work, balance) = (largest("wall_work_j"), largest("balance_j"));
+    println!("drum: wall work up to {done:.3e}, GPU-CPU wall work {work:.2e}, balance {balance:.2e} of the initial kinetic energy");
+    assert!(
+        done > 1e-3,
+        "the turning drum does work on the spheres: {done:e}"
+    );
+    assert!(work < 1e-14, "wall work: {work:e}");
+    assert!(balance < 1e-14, "balance: {balance:e}");
+    // Negative control: the GPU balance without the wall work misses the CPU's by it.
+    let (c, g, w) = (
+        column(&cpu_out, "balance_j"),
+        column(&gpu_out, "balance_j"),
+        column(&gpu_out, "wall_work_j"),
+    );
+    let without = c
+        .iter()
+        .zip(&g)
+        .zip(&w)
+        .map(|((a, b), w)| (a - (b + w)).abs() / scale)
+        .fold(0.0, f64::max);
+    assert!(without > 1e-3, "without the wall work: {without:e}");
+}
