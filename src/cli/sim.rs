@@ -78,7 +78,9 @@ pub struct ImpactRunArgs {
     /// Coupling mode.
     #[arg(long, value_enum, default_value = "force")]
     pub mode: ModeArg,
-    /// Force mode: time steps per Hertz contact time [default: 1000] (same as --steps).
+    /// Force mode: time steps per contact time: Hertz's, or for a registered law other than mdr,
+    /// adhesive_mdr, thornton and hertz the shorter of Hertz's and the law's [default: 1000]
+    /// (same as --steps).
     #[arg(long)]
     pub steps_per_contact: Option<f64>,
     /// Output CSV file, `-` for standard output.
