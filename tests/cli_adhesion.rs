@@ -209,7 +209,10 @@ fn sim_drop_and_pair_stick_and_rebound_with_adhesion() {
                 "0.02,0.5",
             ])));
             let mut lines = text.lines();
-            assert_eq!(lines.next().unwrap(), "v0_m_per_s,e_n,steps,stuck");
+            assert_eq!(
+                lines.next().unwrap(),
+                "v0_m_per_s,e_n,steps,stuck,time_step_s"
+            );
             let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
             assert_eq!((rows[0][1], rows[0][3]), ("0", "1"), "{command} {mode}");
             assert_eq!(rows[1][3], "0", "{command} {mode}");

@@ -1,7 +1,8 @@
 //! The law registry on the command line: `mdr-dem sim laws` lists what the laws declare, and a
 //! law added as one file and one registry line (the demo linear spring, `demo-laws` feature,
-//! which `cargo test` builds this program with) runs from `mdr-dem sim run` as its analytic
-//! solution, its scene key's range error derived from its declaration.
+//! which `cargo test` builds this program with) runs from `mdr-dem sim run`, `sim drop`,
+//! `sim pair` and `impact` as its analytic solution, its scene key's and flag's range errors
+//! derived from its declaration.
 
 mod common;
 
@@ -251,7 +252,8 @@ fn impact_curve_runs_the_demo_law_as_its_analytic_solution() {
     );
 }
 
-/// A missing, out-of-range or misplaced demo-law parameter is refused naming its flag.
+/// A missing, out-of-range or misplaced demo-law parameter is refused naming its flag, and
+/// restitution mode (the MDR law's `e(v)`) refuses the law naming `--mode`.
 #[test]
 fn impact_refuses_demo_law_parameters_by_their_derived_flag() {
     let fails = |args: &[&str], needles: &[&str]| {
@@ -303,14 +305,90 @@ fn impact_refuses_demo_law_parameters_by_their_derived_flag() {
     fails(
         &[
             "sim",
+            "pair",
+            "--law",
+            "linear_spring",
+            "--normal-stiffness-n-per-m",
+            "-5",
+            "--v0",
+            "1",
+        ],
+        &[
+            "invalid value for --normal-stiffness-n-per-m",
+            "(0, inf)",
+            "k_n",
+        ],
+    );
+    fails(
+        &[
+            "sim",
             "drop",
             "--law",
             "linear_spring",
             "--normal-stiffness-n-per-m",
             "1e4",
+            "--mode",
+            "restitution",
             "--v0",
             "1",
         ],
-        &["--law", "sim run"],
+        &["invalid value for --mode", "force mode"],
     );
+}
+
+/// `mdr-dem sim drop|pair` run the demo law in rapier's impact scene by its registered name,
+/// its stiffness given by its derived flag: an undamped linear spring returns the approach
+/// speed (`e_n = 1` to the integrator's step error, of order `(π dt / t_c)²`) after half a
+/// period, `t_c = π √(m*/k_n)` (`steps × time_step_s`, to a step), with the reduced mass of
+/// the pair (a 1 cm steel target sphere of 7850 kg/m³).
+#[test]
+fn sim_drop_and_pair_run_the_demo_law_as_its_analytic_solution() {
+    let k = 1.0e6;
+    let ball = paper_ball_mass();
+    let target = 4.0 / 3.0 * std::f64::consts::PI * 0.01_f64.powi(3) * 7850.0;
+    for (command, mass, extra) in [
+        ("drop", ball, &[][..]),
+        (
+            "pair",
+            ball * target / (ball + target),
+            &["--target-radius", "0.01", "--target-density", "7850"][..],
+        ),
+    ] {
+        let mut args = vec![
+            "sim",
+            command,
+            "--law",
+            "linear-spring",
+            "--normal-stiffness-n-per-m",
+            "1e6",
+            "--v0",
+            "0.1,1",
+        ];
+        args.extend_from_slice(extra);
+        let text = stdout(&mdr_dem(&args));
+        let mut lines = text.lines();
+        assert_eq!(
+            lines.next().unwrap(),
+            "v0_m_per_s,e_n,steps,stuck,time_step_s"
+        );
+        let contact_time = std::f64::consts::PI * (mass / k).sqrt();
+        let rows: Vec<Vec<f64>> = lines
+            .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+            .collect();
+        assert_eq!(rows.len(), 2, "{text}");
+        for row in rows {
+            let (e_n, steps, stuck, dt) = (row[1], row[2], row[3], row[4]);
+            let step_error = (std::f64::consts::PI * dt / contact_time).powi(2);
+            assert!(
+                (e_n - 1.0).abs() < 0.5 * step_error + 1e-12,
+                "{command}: e_n = {e_n} (dt {dt})"
+            );
+            assert!(
+                (steps * dt - contact_time).abs() <= 1.01 * dt,
+                "{command}: contact time {} vs {contact_time}",
+                steps * dt
+            );
+            assert_eq!(stuck, 0.0);
+        }
+    }
 }

@@ -7,7 +7,7 @@ use common::mdr_dem;
 
 use std::process::Output;
 
-/// The rows of a successful `v0_m_per_s,e_n,steps,stuck` CSV on stdout.
+/// The rows of a successful `v0_m_per_s,e_n,steps,stuck,time_step_s` CSV on stdout.
 fn rows(output: &Output) -> Vec<Vec<f64>> {
     assert!(
         output.status.success(),
@@ -16,7 +16,10 @@ fn rows(output: &Output) -> Vec<Vec<f64>> {
     );
     let text = String::from_utf8(output.stdout.clone()).unwrap();
     let mut lines = text.lines();
-    assert_eq!(lines.next().unwrap(), "v0_m_per_s,e_n,steps,stuck");
+    assert_eq!(
+        lines.next().unwrap(),
+        "v0_m_per_s,e_n,steps,stuck,time_step_s"
+    );
     lines
         .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
         .collect()

@@ -2,7 +2,9 @@
 //! Each subcommand parses its flags here and calls a small function; the physics lives in the
 //! library crates.
 
-use super::impact::{contact_error, friction, materials, normal_laws, CommonArgs, MethodName};
+use super::impact::{
+    contact_error, friction, materials, normal_laws, registered_law, CommonArgs, MethodName,
+};
 use anyhow::{anyhow, bail, Context};
 use clap::{Args, Subcommand, ValueEnum};
 use mdr_contact::normal::{AdhesiveMdr, MdrElastoPlastic};
@@ -17,10 +19,10 @@ use std::path::Path;
 #[derive(Debug, Subcommand)]
 pub enum SimCommand {
     /// A sphere launched without gravity at a fixed half-space in rapier; prints
-    /// `v0_m_per_s,e_n,steps,stuck`.
+    /// `v0_m_per_s,e_n,steps,stuck,time_step_s`.
     Drop(DropArgs),
     /// Head-on impact of two free spheres in rapier (`--v0` is the relative approach speed);
-    /// prints `v0_m_per_s,e_n,steps,stuck`.
+    /// prints `v0_m_per_s,e_n,steps,stuck,time_step_s`.
     Pair(PairArgs),
     /// A planetary-ring shearing box (REBOUND's shearing sheet) with the MDR, Bridges or a
     /// constant restitution law.
@@ -76,7 +78,9 @@ pub struct ImpactRunArgs {
     /// Coupling mode.
     #[arg(long, value_enum, default_value = "force")]
     pub mode: ModeArg,
-    /// Force mode: time steps per Hertz contact time [default: 1000] (same as --steps).
+    /// Force mode: time steps per contact time: Hertz's, or for a registered law other than mdr,
+    /// adhesive_mdr, thornton and hertz the shorter of Hertz's and the law's [default: 1000]
+    /// (same as --steps).
     #[arg(long)]
     pub steps_per_contact: Option<f64>,
     /// Output CSV file, `-` for standard output.
@@ -166,10 +170,12 @@ impl SceneSettings {
             [NormalSpec::Mdr(model)] => SceneLaw::Mdr(*model),
             [NormalSpec::Hertz] => SceneLaw::Mdr(MdrElastoPlastic::elastic()),
             [NormalSpec::Thornton(model)] => SceneLaw::Thornton(*model),
-            [NormalSpec::Declared(law)] => bail!(
-                "invalid value for --law: `sim drop|pair` run mdr, thornton and hertz; run `{}` \
-                 in a scene (`mdr-dem sim run`) or in the validator (`mdr-dem impact`)",
-                law.name()
+            // Any other registered law, with the values its declared flags gave (checked there).
+            [NormalSpec::Declared(law)] => SceneLaw::Declared(
+                registered_law(law.name())?
+                    .impact_scene
+                    .with_values(law.values())
+                    .map_err(|e| anyhow!("invalid value for --law: {e}"))?,
             ),
             _ => bail!("invalid value for --law: `sim drop|pair` run one law at a time"),
         };
@@ -267,17 +273,19 @@ fn run_impacts(args: &ImpactRunArgs, sphere_target: bool, angle: f64) -> anyhow:
     write_csv(&args.csv, &rows)
 }
 
-/// Write `v0_m_per_s,e_n,steps,stuck` rows to `path` (atomically) or stdout; `stuck` is 1
-/// where the sphere stuck (adhesion; `e_n = 0`), else 0, as in `mdr-dem impact`.
+/// Write `v0_m_per_s,e_n,steps,stuck,time_step_s` rows to `path` (atomically) or stdout;
+/// `stuck` is 1 where the sphere stuck (adhesion; `e_n = 0`), else 0, as in `mdr-dem impact`;
+/// in force mode `steps × time_step_s` is the contact's duration.
 fn write_csv(path: &str, rows: &[SceneOutcome]) -> anyhow::Result<()> {
-    let mut text = String::from("v0_m_per_s,e_n,steps,stuck\n");
+    let mut text = String::from("v0_m_per_s,e_n,steps,stuck,time_step_s\n");
     for r in rows {
         text.push_str(&format!(
-            "{},{},{},{}\n",
+            "{},{},{},{},{}\n",
             r.speed,
             r.normal_restitution,
             r.steps,
-            u8::from(r.stuck)
+            u8::from(r.stuck),
+            r.time_step
         ));
     }
     if path == "-" {

@@ -35,6 +35,16 @@ pub enum CouplingError {
     /// A combination of options that the chosen coupling does not support.
     #[error("unsupported: {0}")]
     Unsupported(&'static str),
+    /// An impact scene's bodies were still in contact, or had not met, after its step budget
+    /// (200 contact times of its time step).
+    #[error(
+        "the impact did not end within {steps} steps (200 contact times); the law's contact \
+         lasts far longer than its time step resolves"
+    )]
+    ContactDidNotEnd {
+        /// The steps run.
+        steps: u64,
+    },
     /// The body handle does not name a rigid body of the body set.
     #[error("rigid body {0:?} is not in the rigid-body set")]
     UnknownBody(RigidBodyHandle),

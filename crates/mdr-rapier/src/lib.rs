@@ -93,7 +93,9 @@ pub use registration::COUPLING_SOLVER_GROUP;
 pub use restitution::{
     FrictionRule, ImpactHistory, RestitutionHooks, RestitutionReport, WithUserHooks,
 };
-pub use scenario::{CouplingMode, ImpactScene, SceneLaw, SceneOutcome, Target};
+pub use scenario::{
+    CouplingMode, DeclaredSceneLaw, ImpactScene, SceneLaw, SceneLawEntry, SceneOutcome, Target,
+};
 pub use store::{ContactStore, PairKey};
 pub use timestep::{check_time_step, stable_time_step, TimeStepAdvice, TimeStepWarning};
 

@@ -26,13 +26,16 @@ fn spec(scene: &ImpactScene) -> NormalSpec {
         SceneLaw::Mdr(model) => NormalSpec::Mdr(model),
         SceneLaw::Thornton(model) => NormalSpec::Thornton(model),
         SceneLaw::AdhesiveMdr(model) => NormalSpec::Mdr(*model.params()),
+        SceneLaw::Declared(law) => panic!("the built-in laws only, not `{}`", law.name()),
     }
 }
 
 fn reference_restitution(scene: &ImpactScene) -> f64 {
     let route = match scene.model {
         SceneLaw::Mdr(_) => Route::Energy,
-        SceneLaw::Thornton(_) | SceneLaw::AdhesiveMdr(_) => Route::TimeIntegration,
+        SceneLaw::Thornton(_) | SceneLaw::AdhesiveMdr(_) | SceneLaw::Declared(_) => {
+            Route::TimeIntegration
+        }
     };
     Impact::new(scene.pair().unwrap(), spec(scene), scene.speed)
         .route(route)

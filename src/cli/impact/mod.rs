@@ -23,6 +23,7 @@ pub use common::{CommonArgs, MethodName};
 pub use curve::CurveArgs;
 pub use fig2::Fig2Args;
 pub use fit::FitArgs;
+pub(crate) use law_flags::registered_law;
 pub use oblique::ObliqueArgs;
 pub use trace::TraceArgs;
 

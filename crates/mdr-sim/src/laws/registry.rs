@@ -8,7 +8,8 @@
 //!
 //! Each entry also carries the law's validator entry ([`mdr_impact::DeclaredLaw`]), so the
 //! single-impact validator (`mdr-dem impact …`, Python's `curve`/`oblique`) runs every
-//! registered law by name too.
+//! registered law by name too, and its impact-scene entry ([`SceneLawEntry`]), so rapier's
+//! single-impact scene (`mdr-dem sim drop|pair`) does.
 //!
 //! Adding a normal law: write its file in `mdr-contact` (a [`NormalModel`] with a
 //! [`Declared`] declaration and a state with a checkpoint record,
@@ -52,6 +53,7 @@ use mdr_contact::tangential::{
 use mdr_contact::{ContactError, ContactPair, Result};
 use mdr_impact::DeclaredLaw;
 use mdr_rapier::neighbour_list::Boundary;
+use mdr_rapier::scenario::SceneLawEntry;
 
 /// The normal laws of scenes, by name.
 pub static NORMAL_LAWS: &[NormalEntry] = &[
@@ -309,6 +311,8 @@ pub struct NormalEntry {
     rapier_pipeline: RapierPipelineBuilder,
     /// The single-impact validator's integrators compiled for the law.
     pub impact: DeclaredLaw,
+    /// Rapier's single-impact scene (force mode) compiled for the law.
+    pub impact_scene: SceneLawEntry,
 }
 
 /// Builds the neighbour-list stepper of one law from its parameter values.
@@ -326,6 +330,7 @@ impl NormalEntry {
             neighbour_list: neighbour_list::<L>,
             rapier_pipeline: rapier_pipeline::<L>,
             impact: DeclaredLaw::of::<L>(),
+            impact_scene: SceneLawEntry::of::<L>(),
         }
     }
 

@@ -1,7 +1,13 @@
 //! Single-impact scenes in rapier, in either coupling mode: a sphere launched without gravity at
 //! a fixed half-space ("drop") or at a free sphere ("pair"), measuring the coefficients of
 //! restitution as rapier integrates them. Used by `mdr-dem sim drop|pair`, the tests and the
-//! docs; compare with the single-impact validator (`mdr-impact`).
+//! docs; compare with the single-impact validator (`mdr-impact`). Besides the built-in laws, any
+//! declared normal law runs in force mode through its entry ([`SceneLawEntry`]), which a scene
+//! registry holds for every registered law.
+
+mod declared;
+
+pub use declared::{DeclaredSceneLaw, SceneLawEntry, MAX_SCENE_LAW_PARAMS};
 
 use crate::error::{positive, CouplingError, Result};
 use crate::force_mode::ForceModeStepper;
@@ -27,7 +33,8 @@ pub enum CouplingMode {
 }
 
 /// The normal law of a scene. Hertz is [`MdrElastoPlastic::elastic`] (the MDR law without
-/// plasticity is Hertz exactly, `docs/theory.md` §4).
+/// plasticity is Hertz exactly, `docs/theory.md` §4); any other declared law is
+/// [`SceneLaw::Declared`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SceneLaw {
     /// The MDR elasto-plastic law (or Hertz, when elastic): both coupling modes.
@@ -37,6 +44,15 @@ pub enum SceneLaw {
     Thornton(Thornton),
     /// The adhesive MDR law (docs/theory.md §9): both coupling modes; an impact can stick.
     AdhesiveMdr(AdhesiveMdr),
+    /// Any declared normal law with its parameter values, run by the force-mode stepper
+    /// compiled for it ([`SceneLawEntry::of`]): force mode only.
+    Declared(DeclaredSceneLaw),
+}
+
+impl From<DeclaredSceneLaw> for SceneLaw {
+    fn from(law: DeclaredSceneLaw) -> Self {
+        SceneLaw::Declared(law)
+    }
 }
 
 impl From<AdhesiveMdr> for SceneLaw {
@@ -91,7 +107,8 @@ pub struct ImpactScene {
     pub speed: f64,
     /// Angle of the approach velocity from the normal (degrees, half-space only).
     pub angle_degrees: f64,
-    /// Force mode: time steps per Hertz contact time.
+    /// Force mode: time steps per contact time (Hertz's; for a declared law the shorter of
+    /// Hertz's and the law's, [`DeclaredSceneLaw::contact_time`]).
     pub steps_per_contact: f64,
 }
 
@@ -175,10 +192,26 @@ impl ImpactScene {
             let a = self.angle_degrees.to_radians();
             (self.speed * a.cos(), self.speed * a.sin())
         };
-        let dt = match mode {
-            CouplingMode::Force => stable_time_step(&pair, vn, self.steps_per_contact)?.time_step,
+        let hertz_time = pair.hertz_contact_time(vn);
+        // Force mode stops after 200 contact times without a separation.
+        let (dt, max_steps) = match (mode, self.model) {
             // Hard spheres: any step; take the contact time so the flight is a few steps.
-            CouplingMode::Restitution => pair.hertz_contact_time(vn),
+            (CouplingMode::Restitution, _) => (hertz_time, 0),
+            // A law's own contact time may be shorter (stiffer) or longer (softer) than
+            // Hertz's: the step resolves the shorter one, the run lasts for the longer one.
+            (CouplingMode::Force, SceneLaw::Declared(law)) => {
+                let law_time = law.contact_time(&pair, vn)?;
+                let steps =
+                    self.steps_per_contact * law_time.max(hertz_time) / law_time.min(hertz_time);
+                (
+                    law_time.min(hertz_time) / self.steps_per_contact,
+                    (200.0 * steps) as u64 + 100,
+                )
+            }
+            (CouplingMode::Force, _) => (
+                stable_time_step(&pair, vn, self.steps_per_contact)?.time_step,
+                (200.0 * self.steps_per_contact) as u64 + 100,
+            ),
         };
         let mut world = PhysicsWorld {
             gravity: Vector::ZERO,
@@ -187,44 +220,51 @@ impl ImpactScene {
         world.integration_parameters.length_unit = 2.0 * self.radius;
         // Start 2.5 steps of flight apart: the first contact falls inside a step.
         let gap = 2.5 * vn * dt;
-        let launch = Vector::new(vt, -vn, 0.0);
-        let centre = Vector::new(0.0, self.radius + gap, 0.0);
+        let flight = Flight {
+            world,
+            dt,
+            centre: Vector::new(0.0, self.radius + gap, 0.0),
+            launch: Vector::new(vt, -vn, 0.0),
+            normal_speed: vn,
+            tangential_speed: vt,
+            max_steps,
+        };
         match (mode, self.model) {
-            (CouplingMode::Force, SceneLaw::Mdr(model)) => {
-                self.run_force(model, world, dt, centre, launch, (vn, vt))
-            }
-            (CouplingMode::Force, SceneLaw::Thornton(model)) => {
-                self.run_force(model, world, dt, centre, launch, (vn, vt))
-            }
+            (CouplingMode::Force, SceneLaw::Mdr(model)) => self.run_force(model, flight),
+            (CouplingMode::Force, SceneLaw::Thornton(model)) => self.run_force(model, flight),
+            (CouplingMode::Force, SceneLaw::AdhesiveMdr(model)) => self.run_force(model, flight),
+            (CouplingMode::Force, SceneLaw::Declared(law)) => law.run_force(self, flight),
             (CouplingMode::Restitution, SceneLaw::Thornton(_)) => Err(CouplingError::Unsupported(
                 "restitution mode takes its e(v) and history from the MDR law (or Hertz); \
                      use force mode for Thornton's law",
             )),
-            (CouplingMode::Force, SceneLaw::AdhesiveMdr(model)) => {
-                self.run_force(model, world, dt, centre, launch, (vn, vt))
-            }
+            (CouplingMode::Restitution, SceneLaw::Declared(_)) => Err(CouplingError::Unsupported(
+                "restitution mode takes its e(v) and history from the MDR law (or Hertz); \
+                     use force mode for the other declared laws",
+            )),
             (CouplingMode::Restitution, SceneLaw::Mdr(model)) => {
                 let hooks = RestitutionHooks::new(model, self.friction)?;
-                self.run_restitution(hooks, world, dt, centre, launch, (vn, vt))
+                self.run_restitution(hooks, flight)
             }
             (CouplingMode::Restitution, SceneLaw::AdhesiveMdr(model)) => {
                 let hooks = RestitutionHooks::new(*model.params(), self.friction)?
                     .with_work_of_adhesion(model.work_of_adhesion())?;
-                self.run_restitution(hooks, world, dt, centre, launch, (vn, vt))
+                self.run_restitution(hooks, flight)
             }
         }
     }
 
     /// Restitution mode with `hooks`: step until the bodies separate.
-    fn run_restitution(
-        &self,
-        mut hooks: RestitutionHooks,
-        mut world: PhysicsWorld,
-        dt: f64,
-        centre: Vector,
-        launch: Vector,
-        (vn, vt): (f64, f64),
-    ) -> Result<SceneOutcome> {
+    fn run_restitution(&self, mut hooks: RestitutionHooks, flight: Flight) -> Result<SceneOutcome> {
+        let Flight {
+            mut world,
+            dt,
+            centre,
+            launch,
+            normal_speed: vn,
+            tangential_speed: vt,
+            ..
+        } = flight;
         let (ball, target) = self.place_bodies(&mut hooks, &mut world, centre, launch)?;
         world.integration_parameters.dt = dt;
         world.integration_parameters.normalized_max_linear_velocity = f64::MAX;
@@ -245,20 +285,20 @@ impl ImpactScene {
     }
 
     /// Force mode with normal law `model`: step until the bodies have touched and separate.
-    fn run_force<N: NormalModel>(
-        &self,
-        model: N,
-        mut world: PhysicsWorld,
-        dt: f64,
-        centre: Vector,
-        launch: Vector,
-        (vn, vt): (f64, f64),
-    ) -> Result<SceneOutcome> {
+    fn run_force<N: NormalModel>(&self, model: N, flight: Flight) -> Result<SceneOutcome> {
+        let Flight {
+            mut world,
+            dt,
+            centre,
+            launch,
+            normal_speed: vn,
+            tangential_speed: vt,
+            max_steps,
+        } = flight;
         let model = ContactModel::new(model).with_tangential(Mindlin::new(self.friction)?);
         let mut stepper = ForceModeStepper::new(model);
         stepper.configure(&mut world.integration_parameters, dt, 0.2 * self.radius)?;
         let (ball, target) = self.place_bodies(&mut stepper, &mut world, centre, launch)?;
-        let max_steps = (200.0 * self.steps_per_contact) as u64 + 100;
         let mut steps = 0;
         let mut touched = false;
         // Whether the sphere moved away while in contact: turning back towards the target
@@ -278,10 +318,10 @@ impl ImpactScene {
                 }
                 receding = away;
             } else if touched && separating(&world, ball, target) {
-                break;
+                return Ok(self.outcome(&world, ball, target, vn, vt, steps, dt));
             }
         }
-        Ok(self.outcome(&world, ball, target, vn, vt, steps, dt))
+        Err(CouplingError::ContactDidNotEnd { steps: max_steps })
     }
 
     /// Insert the target (half-space or free sphere) and the launched ball through either
@@ -368,6 +408,18 @@ fn separating(
     target: Option<RigidBodyHandle>,
 ) -> bool {
     relative_velocity(world, ball, target).y > 0.0
+}
+
+/// A scene's launch: the world, the step, where and how fast the sphere starts, and the force
+/// mode's step budget.
+struct Flight {
+    world: PhysicsWorld,
+    dt: f64,
+    centre: Vector,
+    launch: Vector,
+    normal_speed: f64,
+    tangential_speed: f64,
+    max_steps: u64,
 }
 
 /// What [`ImpactScene::place_bodies`] needs from a coupling: both modes register bodies the same
