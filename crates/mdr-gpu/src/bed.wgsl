@@ -634,6 +634,45 @@ fn edge_fit(eps: f64) -> f64 {
     return sum;
 }
 
+// `edge_fit_wide` (docs/theory.md, eq. A12a): `y/ε` for `1/2 < ε ≤ 2`, the Chebyshev fit of
+// degree 17 in `ε − 5/4` (`EDGE_FIT_WIDE`, highest power first).
+fn edge_fit_wide(eps: f64) -> f64 {
+    let x = eps - 1.25lf;
+    var sum = 1.464374774178623e-10lf;
+    sum = sum * x + -3.0523683423078364e-10lf;
+    sum = sum * x + -5.975650824551518e-11lf;
+    sum = sum * x + 1.912955072760476e-09lf;
+    sum = sum * x + -9.590323676004934e-09lf;
+    sum = sum * x + 3.630877074746764e-08lf;
+    sum = sum * x + -1.1024783309362301e-07lf;
+    sum = sum * x + 2.627001756711316e-07lf;
+    sum = sum * x + -3.850603345854547e-07lf;
+    sum = sum * x + -5.039958625627242e-07lf;
+    sum = sum * x + 7.1441760035500145e-06lf;
+    sum = sum * x + -3.7625473417398904e-05lf;
+    sum = sum * x + 0.00015007887378059743lf;
+    sum = sum * x + -0.0004955711165628972lf;
+    sum = sum * x + 0.001293114127092354lf;
+    sum = sum * x + -0.0015229623379989438lf;
+    sum = sum * x + -0.016412805761664626lf;
+    sum = sum * x + 0.48623040072786733lf;
+    return sum;
+}
+
+// `AdhesiveMdrLaw::fitted_retreat`: `a_t ε (y/ε)` for `1/16 < ε ≤ 2` (`a_t³ ≥ (c/κ)²/4`);
+// a negative result beyond.
+fn fitted_retreat(k: f64, hold: f64, a_t: f64) -> f64 {
+    let cube = a_t * a_t * a_t;
+    let scale = k / sqrt(a_t);
+    if cube >= 4.0lf * hold {
+        return scale * edge_fit(scale / a_t);
+    }
+    if 4.0lf * cube >= hold {
+        return scale * edge_fit_wide(scale / a_t);
+    }
+    return -1.0lf;
+}
+
 // `AdhesiveMdrLaw::edge_on_spheres_branch`: where springs touch on the flattened branch but
 // the edge's root is not that branch's, the sphere's branch `h = x²/R` with its touching
 // radius `√(R d)` in (A12); a negative result where that does not place the edge beyond `b`.
@@ -642,15 +681,16 @@ fn edge_on_spheres_branch(law: Law, c: Crater, previous: f64, d: f64) -> f64 {
     let hold = k * k;
     let touching = sqrt(law.effective_radius * d);
     let cube = touching * touching * touching;
-    if cube < 4.0lf * hold {
-        return -1.0lf;
-    }
-    let scale = k / sqrt(touching);
     var root: f64;
     if cube >= 256.0lf * hold {
+        let scale = k / sqrt(touching);
         root = touching + scale * edge_series(scale / touching);
     } else {
-        root = touching + scale * edge_fit(scale / touching);
+        let retreat = fitted_retreat(k, hold, touching);
+        if retreat < 0.0lf {
+            return -1.0lf;
+        }
+        root = touching + retreat;
     }
     if root * root < c.plastic_radius_sq {
         return -1.0lf;
@@ -731,9 +771,9 @@ fn adhesive_mdr_law(law: Law, state: ptr<function, vec3<f64>>, d: f64) -> Normal
     }
     if a_t > 0.0lf {
         // `AdhesiveMdrLaw::unload_on_branch`: `ε = (c/κ) a_t^{−3/2}`; `ε ≤ 1/16` where
-        // `a_t³ ≥ 256 (c/κ)²`, `ε ≤ 1/2` where `a_t³ ≥ 4 (c/κ)²` (the bands of
-        // `Branch::series_radius`, `Branch::fitted_radius`, up to the rounding of their cube
-        // roots).
+        // `a_t³ ≥ 256 (c/κ)²`, `ε ≤ 1/2` where `a_t³ ≥ 4 (c/κ)²`, `ε ≤ 2` where
+        // `4 a_t³ ≥ (c/κ)²` (the bands of `Branch::series_radius`, `fitted_radius`,
+        // `wide_radius`, up to the rounding of their cube roots).
         let k = law.detach_coefficient / kappa;
         let hold = k * k;
         let plastic_radius_sq = law.effective_radius * s;
@@ -758,10 +798,9 @@ fn adhesive_mdr_law(law: Law, state: ptr<function, vec3<f64>>, d: f64) -> Normal
                 out.stiffness = two_modulus * previous;
                 return out;
             }
-            if cube >= 4.0lf * hold {
-                // `fitted_retreat`.
-                let scale = k / sqrt(a_t);
-                root = a_t + scale * edge_fit(scale / a_t);
+            let retreat = fitted_retreat(k, hold, a_t);
+            if retreat >= 0.0lf {
+                root = a_t + retreat;
                 placed = true;
             }
         }

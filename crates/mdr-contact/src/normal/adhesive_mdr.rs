@@ -116,6 +116,9 @@ struct Branch {
     /// `(hold_coefficient / FITTED_EDGE_LIMIT²)^{1/3}`: `ε ≤ FITTED_EDGE_LIMIT` where `a_t` is
     /// at least this.
     fitted_radius: f64,
+    /// `(hold_coefficient / WIDE_EDGE_LIMIT²)^{1/3}`: `ε ≤ WIDE_EDGE_LIMIT` where `a_t` is at
+    /// least this.
+    wide_radius: f64,
     /// `2E*κ/3`: the annulus `a_t < x < a` pulls `(2E*κ/3)(a − a_t)²(a + 2a_t)` (A13).
     pull_coefficient: f64,
 }
@@ -132,6 +135,8 @@ impl Branch {
             fitted_radius: (eps_coefficient * eps_coefficient
                 / (FITTED_EDGE_LIMIT * FITTED_EDGE_LIMIT))
                 .cbrt(),
+            wide_radius: (eps_coefficient * eps_coefficient / (WIDE_EDGE_LIMIT * WIDE_EDGE_LIMIT))
+                .cbrt(),
             pull_coefficient: 2.0 / 3.0 * effective_modulus * kappa,
         }
     }
@@ -139,9 +144,11 @@ impl Branch {
 
 /// Below this `ε` the series (A12) to `ε⁸` is the edge to round-off.
 const SERIES_EDGE_LIMIT: f64 = 1.0 / 16.0;
-/// Up to this `ε` the fit of [`edge_fit`] is the edge to round-off; beyond it the iteration of
-/// [`AdhesiveMdrLaw::retreat_by_halley`].
+/// Up to this `ε` the fit of [`edge_fit`] is the edge to round-off.
 const FITTED_EDGE_LIMIT: f64 = 0.5;
+/// Up to this `ε` the fit of [`edge_fit_wide`] is the edge to round-off; beyond it the
+/// iteration of [`AdhesiveMdrLaw::retreat_by_halley`].
+const WIDE_EDGE_LIMIT: f64 = 2.0;
 
 /// `y/ε` with `y = u² − 1` of the largest root `u` of `u⁴ − εu − 1 = 0`, from its series
 /// (docs/theory.md, eq. A12) to `ε⁸`: `y/ε = 1/2 − ε²/64 + ε³/128 − 9ε⁴/4096 + 55ε⁶/131072
@@ -177,13 +184,52 @@ const EDGE_FIT: [f64; 13] = [
 /// `y/ε` of the largest root of `u⁴ − εu − 1 = 0` (as [`edge_series`]) for
 /// `1/16 < ε ≤ 1/2`, where the series converges too slowly: the polynomial of degree 12 in
 /// `ε − 9/32` nearest to it in the maximum norm on the band (a Chebyshev fit to the root found
-/// at 50 digits; docs/theory.md, eq. A12a). The fit is within `2·10⁻¹⁸` of `y/ε ≈ 1/2`, and its
+/// at 50 digits; docs/theory.md, eq. A12a). The fit is within `6·10⁻¹⁹` of `y/ε ≈ 1/2`, and its
 /// evaluation in double precision within `10⁻¹⁶` of it: the root to round-off.
 #[inline]
 fn edge_fit(eps: f64) -> f64 {
     let x = eps - EDGE_FIT_CENTRE;
     let mut sum = EDGE_FIT[0];
     for &c in &EDGE_FIT[1..] {
+        sum = sum * x + c;
+    }
+    sum
+}
+
+/// The middle of the wide fitted band `1/2 < ε ≤ 2`.
+const EDGE_FIT_WIDE_CENTRE: f64 = 1.25;
+
+/// Coefficients of [`edge_fit_wide`], of `(ε − 5/4)¹⁷` down to `(ε − 5/4)⁰`.
+const EDGE_FIT_WIDE: [f64; 18] = [
+    1.464374774178623e-10,
+    -3.0523683423078364e-10,
+    -5.975650824551518e-11,
+    1.912955072760476e-09,
+    -9.590323676004934e-09,
+    3.630877074746764e-08,
+    -1.1024783309362301e-07,
+    2.627001756711316e-07,
+    -3.850603345854547e-07,
+    -5.039958625627242e-07,
+    7.1441760035500145e-06,
+    -3.7625473417398904e-05,
+    0.00015007887378059743,
+    -0.0004955711165628972,
+    0.001293114127092354,
+    -0.0015229623379989438,
+    -0.016412805761664626,
+    0.48623040072786733,
+];
+
+/// `y/ε` of the largest root of `u⁴ − εu − 1 = 0` for `1/2 < ε ≤ 2` (edges near letting go,
+/// micro contacts): the polynomial of degree 17 in `ε − 5/4` nearest to it in the maximum norm
+/// on that band (docs/theory.md, eq. A12a), within `3·10⁻¹⁸` of it; evaluated in double
+/// precision within `8·10⁻¹⁷` relative.
+#[inline]
+fn edge_fit_wide(eps: f64) -> f64 {
+    let x = eps - EDGE_FIT_WIDE_CENTRE;
+    let mut sum = EDGE_FIT_WIDE[0];
+    for &c in &EDGE_FIT_WIDE[1..] {
         sum = sum * x + c;
     }
     sum
@@ -345,16 +391,14 @@ impl AdhesiveMdrLaw {
     }
 
     /// The retreat `a_r − a_t` of the edge by the `ε` band the law takes it in
-    /// ([`Self::series_retreat`], [`Self::fitted_retreat`]; `None` past the series' reach,
-    /// `ε > 1/2`).
+    /// ([`Self::series_retreat`], [`Self::fitted_retreat`]; `None` past the fits' reach,
+    /// `ε > 2`).
     #[cfg(test)]
     fn retreated_edge(&self, branch: &Branch, touching: f64) -> Option<f64> {
         if touching >= branch.series_radius {
             Some(Self::series_retreat(branch, touching))
-        } else if touching >= branch.fitted_radius {
-            Some(Self::fitted_retreat(branch, touching))
         } else {
-            None
+            Self::fitted_retreat(branch, touching)
         }
     }
 
@@ -372,16 +416,24 @@ impl AdhesiveMdrLaw {
         scale * edge_series(scale / touching)
     }
 
-    /// The retreat for `1/16 < ε ≤ 1/2`: `a_t ε (y/ε)` with `y/ε` from [`edge_fit`].
+    /// The retreat for `1/16 < ε ≤ 2`: `a_t ε (y/ε)` with `y/ε` from [`edge_fit`] up to
+    /// `ε = 1/2`, from [`edge_fit_wide`] above; `None` for `ε > 2`.
     #[inline]
-    fn fitted_retreat(branch: &Branch, touching: f64) -> f64 {
+    fn fitted_retreat(branch: &Branch, touching: f64) -> Option<f64> {
         let scale = branch.eps_coefficient / touching.sqrt();
-        scale * edge_fit(scale / touching)
+        let eps = scale / touching;
+        if touching >= branch.fitted_radius {
+            Some(scale * edge_fit(eps))
+        } else if touching >= branch.wide_radius {
+            Some(scale * edge_fit_wide(eps))
+        } else {
+            None
+        }
     }
 
     /// Unloading with stretched springs at the edge in every case [`Self::unload_on_branch`] and
     /// [`Self::held_edge`] do not cover (the edge spring past its limit where the series does
-    /// not apply: no spring touching, a root on the other branch, `ε > 1/2`): the edge holds or retreats by
+    /// not apply: no spring touching, a root on the other branch, `ε > 2`): the edge holds or retreats by
     /// [`Self::retreat_by_halley`], the force from (A3); where that finds no root of (A5) on the
     /// attached disc, `d` is below the smallest `δ` over it (A7) and the contact lets go. With
     /// the work the springs that let go held (eq. A6).
@@ -419,21 +471,19 @@ impl AdhesiveMdrLaw {
     }
 
     /// The edge where springs touch on the flattened branch (`0 < a_t`, `d < s`) but the root of
-    /// (A5) is not that branch's (it lies beyond the plastic radius `b`, or `ε > 1/2` there):
+    /// (A5) is not that branch's (it lies beyond the plastic radius `b`, or `ε > 2` there):
     /// the sphere's branch `h = x²/R` has the root of the same quartic with its own touching
     /// radius `√(R d)` in (A12). Where that root `a_r` lies beyond `b` it is the largest root of
     /// (A5) on the crater (`h` is the sphere's there), and as `δ` is convex in `√a` and below
     /// `d` at `a_t`, `δ ≤ d` on `(a_t, a_r]`: the edge is `min(a_r, a₀)`. `None` where
-    /// `ε > 1/2` on the sphere's branch or its root lies inside `b`.
+    /// `ε > 2` on the sphere's branch or its root lies inside `b`.
     fn edge_on_spheres_branch(&self, crater: &Crater, previous: f64, d: f64) -> Option<f64> {
         let branch = &self.outer;
         let touching = (crater.radius * d).sqrt();
         let retreat = if touching >= branch.series_radius {
             Self::series_retreat(branch, touching)
-        } else if touching >= branch.fitted_radius {
-            Self::fitted_retreat(branch, touching)
         } else {
-            return None;
+            Self::fitted_retreat(branch, touching)?
         };
         let root = touching + retreat;
         if root * root < crater.plastic_radius_sq {
@@ -546,7 +596,7 @@ impl AdhesiveMdrLaw {
     }
 
     /// The edge at `previous` on unloading where [`Self::unload_on_branch`] does not apply (no
-    /// spring touching, `a_t = 0`: the neck held by adhesion alone; `ε > 1/2`; a root on the
+    /// spring touching, `a_t = 0`: the neck held by adhesion alone; `ε > 2`; a root on the
     /// other branch): it holds while its spring's elongation `h(a) − d` is within
     /// `Δl_max(a) = c√a` (A5), and the force is (A3) on the attached disc; `None` when the
     /// edge's spring is past its limit (the edge retreats or the contact lets go). The edge
@@ -601,10 +651,8 @@ impl AdhesiveMdrLaw {
             && !beyond_plastic_radius(previous)
         {
             return Some(self.stretched_response(branch, touching, previous));
-        } else if a_t >= branch.fitted_radius {
-            a_t + Self::fitted_retreat(branch, a_t)
         } else {
-            return None;
+            a_t + Self::fitted_retreat(branch, a_t)?
         };
         if beyond_plastic_radius(root) {
             return None;
@@ -811,10 +859,10 @@ mod tests {
             assert!(retreats >= 3, "{params:?}: {retreats} retreating steps");
         }
     }
-    /// The series edge (eq. A12 to `ε⁸`; above `ε = 1/16` the fit of eq. A12a) is the root of
-    /// (A5) to round-off for `ε` from 10⁻⁵ to the fit's limit 1/2 (48 values, log-spaced, and
-    /// both limits), on the sphere's branch and on the crater's flattened branch; past the limit
-    /// it defers to the iteration. The root is checked through (A5) itself,
+    /// The series edge (eq. A12 to `ε⁸`; above `ε = 1/16` the fits of eq. A12a) is the root of
+    /// (A5) to round-off for `ε` from 10⁻⁵ to the fits' limit 2 (64 values, log-spaced, and
+    /// the bands' limits), on the sphere's branch and on the crater's flattened branch; past
+    /// the limit it defers to the iteration. The root is checked through (A5) itself,
     /// `h(a) − d = Δl_max(a)`, with `h` evaluated on the crater; a wrong series or fit
     /// coefficient (one fit coefficient changed by `10⁻¹²`) leaves more than the round-off. Through
     /// [`NormalLaw::update`], an edge outside the root retreats to it and one inside holds.
@@ -832,10 +880,15 @@ mod tests {
         // to the residual depth that the retreated edge stays on the flattened branch.
         let outer = 0.95 * max_overlap;
         let inner = depth + 0.05 * (s - depth);
-        let mut epsilons: Vec<f64> = (0..48)
-            .map(|k| 1e-5 * (0.49e5_f64).powf(k as f64 / 47.0))
+        let mut epsilons: Vec<f64> = (0..64)
+            .map(|k| 1e-5 * (1.99e5_f64).powf(k as f64 / 63.0))
             .collect();
-        epsilons.extend([SERIES_EDGE_LIMIT, 0.6]);
+        epsilons.extend([
+            SERIES_EDGE_LIMIT,
+            FITTED_EDGE_LIMIT,
+            WIDE_EDGE_LIMIT * (1.0 - 1e-12),
+            2.5,
+        ]);
         for (d, excess, on_inner) in [(outer, outer, false), (inner, inner - depth, true)] {
             // The touching radius as the law takes it: the non-adhesive law's.
             let touching = plain
@@ -854,10 +907,10 @@ mod tests {
                 let (branch, inner_branch) = law.branch(max_overlap, d);
                 assert_eq!(inner_branch, on_inner);
                 let Some(retreat) = law.retreated_edge(branch, touching) else {
-                    assert!(eps > 0.5, "ε = {eps}: no series edge");
+                    assert!(eps > WIDE_EDGE_LIMIT, "ε = {eps}: no series edge");
                     continue;
                 };
-                assert!(eps <= 0.5, "ε = {eps}: past the series' limit");
+                assert!(eps <= WIDE_EDGE_LIMIT, "ε = {eps}: past the fits' limit");
                 let a = touching + retreat;
                 assert!(a > touching);
                 assert!(a * a < crater.plastic_radius_sq || !on_inner);
@@ -893,7 +946,7 @@ mod tests {
     /// `s` (the touching radius just inside `b`), the edge lies beyond `b` and satisfies (A5)
     /// on the crater's profile (written out anew here), for `ε = 0.1` on the flattened branch
     /// (its root about `1.05 b`; `ε ≈ 0.04` on the sphere's branch, the series) and `ε = 0.8`
-    /// (past the flattened branch's series; `ε ≈ 0.3` on the sphere's branch, the fit), with the
+    /// (`ε ≈ 0.3` on the sphere's branch, the fit), with the
     /// adhesive work `π Δγ (a₀² − a²)`; an edge inside that root holds. Taking the flattened
     /// branch's root there leaves a gap of 5 % of the overlap, and the sphere's branch with its
     /// touching radius `√(R d)` off by `5·10⁻⁷` more than `10⁻¹²` of the limit.
@@ -950,7 +1003,8 @@ mod tests {
 
     /// With springs touching out to `a_t > 0` and `ε > 1/16` (the held-edge test of
     /// `unload_on_branch`, before any root), on the sphere's and on the flattened branch, in
-    /// the fitted band (`ε = 0.3`) and beyond it (`ε = 0.8`): an edge just inside the
+    /// the two fitted bands (`ε = 0.3`, `0.8`) and beyond them (`ε = 3`, Halley's iteration):
+    /// an edge just inside the
     /// root of (A5), found here by bisection on the crater's profile, holds, with the force of
     /// (A3) against Simpson's rule on that profile, `2E* a` and no adhesive work; an edge just
     /// outside it retreats to the root and books the work `π Δγ (a_prev² − a²)`. Kills a hold
@@ -976,7 +1030,7 @@ mod tests {
             let touching = plain
                 .update(&mut MdrState { max_overlap }, d)
                 .contact_radius;
-            for eps in [0.3, 0.8] {
+            for eps in [0.3, 0.8, 3.0] {
                 let c = eps * excess / touching.sqrt();
                 let gamma = c * c * e / (2.0 * PI);
                 let law = AdhesiveMdr::new(params, gamma)
