@@ -997,7 +997,10 @@ mod tests {
                 adhesive_work: 0.0,
             };
             law.update(&mut held, d);
-            assert_eq!(held.contact_radius, inside, "ε = {eps}: an edge inside its root");
+            assert_eq!(
+                held.contact_radius, inside,
+                "ε = {eps}: an edge inside its root"
+            );
         }
     }
 
