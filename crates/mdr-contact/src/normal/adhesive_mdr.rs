@@ -420,15 +420,21 @@ impl AdhesiveMdrLaw {
     /// `ε = 1/2`, from [`edge_fit_wide`] above; `None` for `ε > 2`.
     #[inline]
     fn fitted_retreat(branch: &Branch, touching: f64) -> Option<f64> {
-        let scale = branch.eps_coefficient / touching.sqrt();
-        let eps = scale / touching;
         if touching >= branch.fitted_radius {
-            Some(scale * edge_fit(eps))
+            let scale = branch.eps_coefficient / touching.sqrt();
+            Some(scale * edge_fit(scale / touching))
         } else if touching >= branch.wide_radius {
-            Some(scale * edge_fit_wide(eps))
+            Some(Self::wide_retreat(branch, touching))
         } else {
             None
         }
+    }
+
+    /// The retreat for `1/2 < ε ≤ 2` by [`edge_fit_wide`].
+    #[inline]
+    fn wide_retreat(branch: &Branch, touching: f64) -> f64 {
+        let scale = branch.eps_coefficient / touching.sqrt();
+        scale * edge_fit_wide(scale / touching)
     }
 
     /// Unloading with stretched springs at the edge in every case [`Self::unload_on_branch`] and
@@ -629,7 +635,9 @@ impl AdhesiveMdrLaw {
     /// root ([`Self::fitted_retreat`]; δ is convex in √a and below d at the touching radius).
     /// `None` where the root lies on the other branch, where the series does not reach, and
     /// for an edge beyond the plastic radius that the flattened branch's root does not place.
-    #[inline]
+    /// Always inlined: out of line in a pair loop, its call and spills cost more than the held
+    /// edge it settles.
+    #[inline(always)]
     fn unload_on_branch(
         &self,
         state: &mut AdhesiveMdrState,
