@@ -674,19 +674,88 @@ fn edge_series(eps: f64) -> f64 {
     return 0.5lf + e2 * (-1.0lf / 64.0lf + eps * (1.0lf / 128.0lf + eps * (-9.0lf / 4096.0lf + e2 * high)));
 }
 
-// `edge_series_tail`: the series' terms `ε¹⁰`–`ε¹²`.
-fn edge_series_tail(eps: f64) -> f64 {
-    let e2 = eps * eps;
-    let e4 = e2 * e2;
-    return e4 * e4 * e2
-        * (-11799.0lf / 536870912.0lf + eps * (65.0lf / 4194304.0lf + eps * (-189805.0lf / 34359738368.0lf)));
+// `edge_fit` (docs/theory.md, eq. A12a): `y/ε` for `1/16 < ε ≤ 1/2`, the Chebyshev fit of
+// degree 12 in `ε − 9/32` (`EDGE_FIT`, highest power first).
+fn edge_fit(eps: f64) -> f64 {
+    let x = eps - 0.28125lf;
+    var sum = -1.992404867428227e-6lf;
+    sum = sum * x + 2.3642759635774487e-6lf;
+    sum = sum * x + 2.0106728254983943e-6lf;
+    sum = sum * x + -1.838655713757549e-5lf;
+    sum = sum * x + 5.514066179338563e-5lf;
+    sum = sum * x + -1.010916017429161e-4lf;
+    sum = sum * x + 6.442672025061706e-5lf;
+    sum = sum * x + 3.599489725888206e-4lf;
+    sum = sum * x + -1.8745341744308029e-3lf;
+    sum = sum * x + 5.475940719746653e-3lf;
+    sum = sum * x + -1.0045565279632239e-2lf;
+    sum = sum * x + -7.127072868476349e-3lf;
+    sum = sum * x + 0.49892426982073995lf;
+    return sum;
 }
 
-// `edge_newton_step`: one Newton step on the quartic in `y`.
-fn edge_newton_step(y: f64, eps: f64) -> f64 {
-    let r = sqrt(1.0lf + y);
-    let f = y * (2.0lf + y) - eps * r;
-    return y - 2.0lf * r * f / (4.0lf * r * (1.0lf + y) - eps);
+// `edge_fit_wide` (docs/theory.md, eq. A12a): `y/ε` for `1/2 < ε ≤ 2`, the Chebyshev fit of
+// degree 17 in `ε − 5/4` (`EDGE_FIT_WIDE`, highest power first).
+fn edge_fit_wide(eps: f64) -> f64 {
+    let x = eps - 1.25lf;
+    var sum = 1.464374774178623e-10lf;
+    sum = sum * x + -3.0523683423078364e-10lf;
+    sum = sum * x + -5.975650824551518e-11lf;
+    sum = sum * x + 1.912955072760476e-09lf;
+    sum = sum * x + -9.590323676004934e-09lf;
+    sum = sum * x + 3.630877074746764e-08lf;
+    sum = sum * x + -1.1024783309362301e-07lf;
+    sum = sum * x + 2.627001756711316e-07lf;
+    sum = sum * x + -3.850603345854547e-07lf;
+    sum = sum * x + -5.039958625627242e-07lf;
+    sum = sum * x + 7.1441760035500145e-06lf;
+    sum = sum * x + -3.7625473417398904e-05lf;
+    sum = sum * x + 0.00015007887378059743lf;
+    sum = sum * x + -0.0004955711165628972lf;
+    sum = sum * x + 0.001293114127092354lf;
+    sum = sum * x + -0.0015229623379989438lf;
+    sum = sum * x + -0.016412805761664626lf;
+    sum = sum * x + 0.48623040072786733lf;
+    return sum;
+}
+
+// `AdhesiveMdrLaw::fitted_retreat`: `a_t ε (y/ε)` for `1/16 < ε ≤ 2` (`a_t³ ≥ (c/κ)²/4`);
+// a negative result beyond.
+fn fitted_retreat(k: f64, hold: f64, a_t: f64) -> f64 {
+    let cube = a_t * a_t * a_t;
+    let scale = k / sqrt(a_t);
+    if cube >= 4.0lf * hold {
+        return scale * edge_fit(scale / a_t);
+    }
+    if 4.0lf * cube >= hold {
+        return scale * edge_fit_wide(scale / a_t);
+    }
+    return -1.0lf;
+}
+
+// `AdhesiveMdrLaw::edge_on_spheres_branch`: where springs touch on the flattened branch but
+// the edge's root is not that branch's, the sphere's branch `h = x²/R` with its touching
+// radius `√(R d)` in (A12); a negative result where that does not place the edge beyond `b`.
+fn edge_on_spheres_branch(law: Law, c: Crater, previous: f64, d: f64) -> f64 {
+    let k = law.detach_coefficient * law.effective_radius;
+    let hold = k * k;
+    let touching = sqrt(law.effective_radius * d);
+    let cube = touching * touching * touching;
+    var root: f64;
+    if cube >= 256.0lf * hold {
+        let scale = k / sqrt(touching);
+        root = touching + scale * edge_series(scale / touching);
+    } else {
+        let retreat = fitted_retreat(k, hold, touching);
+        if retreat < 0.0lf {
+            return -1.0lf;
+        }
+        root = touching + retreat;
+    }
+    if root * root < c.plastic_radius_sq {
+        return -1.0lf;
+    }
+    return min(root, previous);
 }
 
 // `AdhesiveMdrLaw::retreat_by_halley`: Halley's method from the right, for the cases the
@@ -762,8 +831,9 @@ fn adhesive_mdr_law(law: Law, state: ptr<function, vec3<f64>>, d: f64) -> Normal
     }
     if a_t > 0.0lf {
         // `AdhesiveMdrLaw::unload_on_branch`: `ε = (c/κ) a_t^{−3/2}`; `ε ≤ 1/16` where
-        // `a_t³ ≥ 256 (c/κ)²`, `ε ≤ 1/2` where `a_t³ ≥ 4 (c/κ)²` (`Branch::series_cube`,
-        // `Branch::newton_cube`).
+        // `a_t³ ≥ 256 (c/κ)²`, `ε ≤ 1/2` where `a_t³ ≥ 4 (c/κ)²`, `ε ≤ 2` where
+        // `4 a_t³ ≥ (c/κ)²` (the bands of `Branch::series_radius`, `fitted_radius`,
+        // `wide_radius`, up to the rounding of their cube roots).
         let k = law.detach_coefficient / kappa;
         let hold = k * k;
         let plastic_radius_sq = law.effective_radius * s;
@@ -788,11 +858,9 @@ fn adhesive_mdr_law(law: Law, state: ptr<function, vec3<f64>>, d: f64) -> Normal
                 out.stiffness = two_modulus * previous;
                 return out;
             }
-            if cube >= 4.0lf * hold {
-                // `newton_retreat`.
-                let eps = k / (a_t * sqrt(a_t));
-                let y = eps * (edge_series(eps) + edge_series_tail(eps));
-                root = a_t + a_t * edge_newton_step(y, eps);
+            let retreat = fitted_retreat(k, hold, a_t);
+            if retreat >= 0.0lf {
+                root = a_t + retreat;
                 placed = true;
             }
         }
@@ -819,7 +887,14 @@ fn adhesive_mdr_law(law: Law, state: ptr<function, vec3<f64>>, d: f64) -> Normal
         out.stiffness = two_modulus * previous;
         return out;
     }
-    let a = retreat_by_halley(law, c, previous, d, a_t);
+    // `AdhesiveMdrLaw::unload_by_iteration`.
+    var a = -1.0lf;
+    if a_t > 0.0lf && d < c.plastic_overlap {
+        a = edge_on_spheres_branch(law, c, previous, d);
+    }
+    if a < 0.0lf {
+        a = retreat_by_halley(law, c, previous, d, a_t);
+    }
     (*state).y = a;
     if a == 0.0lf {
         return out;

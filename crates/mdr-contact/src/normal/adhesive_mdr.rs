@@ -110,12 +110,15 @@ struct Branch {
     /// `2πΔγ/(E*κ²)`, the square of `eps_coefficient`: the edge `a` on the branch holds while
     /// `(a² − a_t²)² ≤ this · a` (A5 squared, divided by `κ²`).
     hold_coefficient: f64,
-    /// `hold_coefficient / SERIES_EDGE_LIMIT²`: `ε ≤ SERIES_EDGE_LIMIT` where `a_t³` is at
-    /// least this (a product by a power of two: the shader's test has the same bits).
-    series_cube: f64,
-    /// `hold_coefficient / NEWTON_EDGE_LIMIT²`: `ε ≤ NEWTON_EDGE_LIMIT` where `a_t³` is at
+    /// `(hold_coefficient / SERIES_EDGE_LIMIT²)^{1/3}`: `ε ≤ SERIES_EDGE_LIMIT` where `a_t` is
+    /// at least this (the band of `a_t³ ≥ 256 (c/κ)²`, up to the rounding of the cube root).
+    series_radius: f64,
+    /// `(hold_coefficient / FITTED_EDGE_LIMIT²)^{1/3}`: `ε ≤ FITTED_EDGE_LIMIT` where `a_t` is
+    /// at least this.
+    fitted_radius: f64,
+    /// `(hold_coefficient / WIDE_EDGE_LIMIT²)^{1/3}`: `ε ≤ WIDE_EDGE_LIMIT` where `a_t` is at
     /// least this.
-    newton_cube: f64,
+    wide_radius: f64,
     /// `2E*κ/3`: the annulus `a_t < x < a` pulls `(2E*κ/3)(a − a_t)²(a + 2a_t)` (A13).
     pull_coefficient: f64,
 }
@@ -126,10 +129,14 @@ impl Branch {
         Self {
             eps_coefficient,
             hold_coefficient: eps_coefficient * eps_coefficient,
-            series_cube: eps_coefficient * eps_coefficient
-                / (SERIES_EDGE_LIMIT * SERIES_EDGE_LIMIT),
-            newton_cube: eps_coefficient * eps_coefficient
-                / (NEWTON_EDGE_LIMIT * NEWTON_EDGE_LIMIT),
+            series_radius: (eps_coefficient * eps_coefficient
+                / (SERIES_EDGE_LIMIT * SERIES_EDGE_LIMIT))
+                .cbrt(),
+            fitted_radius: (eps_coefficient * eps_coefficient
+                / (FITTED_EDGE_LIMIT * FITTED_EDGE_LIMIT))
+                .cbrt(),
+            wide_radius: (eps_coefficient * eps_coefficient / (WIDE_EDGE_LIMIT * WIDE_EDGE_LIMIT))
+                .cbrt(),
             pull_coefficient: 2.0 / 3.0 * effective_modulus * kappa,
         }
     }
@@ -137,9 +144,11 @@ impl Branch {
 
 /// Below this `ε` the series (A12) to `ε⁸` is the edge to round-off.
 const SERIES_EDGE_LIMIT: f64 = 1.0 / 16.0;
-/// Up to this `ε` the series to `ε¹²` and one Newton step are the edge to round-off; beyond it
-/// the iteration of [`AdhesiveMdrLaw::retreat_by_halley`].
-const NEWTON_EDGE_LIMIT: f64 = 0.5;
+/// Up to this `ε` the fit of [`edge_fit`] is the edge to round-off.
+const FITTED_EDGE_LIMIT: f64 = 0.5;
+/// Up to this `ε` the fit of [`edge_fit_wide`] is the edge to round-off; beyond it the
+/// iteration of [`AdhesiveMdrLaw::retreat_by_halley`].
+const WIDE_EDGE_LIMIT: f64 = 2.0;
 
 /// `y/ε` with `y = u² − 1` of the largest root `u` of `u⁴ − εu − 1 = 0`, from its series
 /// (docs/theory.md, eq. A12) to `ε⁸`: `y/ε = 1/2 − ε²/64 + ε³/128 − 9ε⁴/4096 + 55ε⁶/131072
@@ -152,26 +161,78 @@ fn edge_series(eps: f64) -> f64 {
     0.5 + e2 * (-1.0 / 64.0 + eps * (1.0 / 128.0 + eps * (-9.0 / 4096.0 + e2 * high)))
 }
 
-/// The series' next terms, `−11799ε¹⁰/536870912 + 65ε¹¹/4194304 − 189805ε¹²/34359738368`:
-/// with them the first term left out is below `2·10⁻¹⁰` of the sum for `ε ≤ 1/2`.
+/// The middle of the fitted band `1/16 < ε ≤ 1/2`.
+const EDGE_FIT_CENTRE: f64 = 9.0 / 32.0;
+
+/// Coefficients of [`edge_fit`], of `(ε − 9/32)¹²` down to `(ε − 9/32)⁰`.
+const EDGE_FIT: [f64; 13] = [
+    -1.992404867428227e-6,
+    2.3642759635774487e-6,
+    2.0106728254983943e-6,
+    -1.838655713757549e-5,
+    5.514066179338563e-5,
+    -1.010916017429161e-4,
+    6.442672025061706e-5,
+    3.599489725888206e-4,
+    -1.8745341744308029e-3,
+    5.475940719746653e-3,
+    -1.0045565279632239e-2,
+    -7.127072868476349e-3,
+    0.49892426982073995,
+];
+
+/// `y/ε` of the largest root of `u⁴ − εu − 1 = 0` (as [`edge_series`]) for
+/// `1/16 < ε ≤ 1/2`, where the series converges too slowly: the polynomial of degree 12 in
+/// `ε − 9/32` nearest to it in the maximum norm on the band (a Chebyshev fit to the root found
+/// at 50 digits; docs/theory.md, eq. A12a). The fit is within `6·10⁻¹⁹` of `y/ε ≈ 1/2`, and its
+/// evaluation in double precision within `10⁻¹⁶` of it: the root to round-off.
 #[inline]
-fn edge_series_tail(eps: f64) -> f64 {
-    let e2 = eps * eps;
-    let e4 = e2 * e2;
-    e4 * e4
-        * e2
-        * (-11799.0 / 536870912.0 + eps * (65.0 / 4194304.0 + eps * (-189805.0 / 34359738368.0)))
+fn edge_fit(eps: f64) -> f64 {
+    let x = eps - EDGE_FIT_CENTRE;
+    let mut sum = EDGE_FIT[0];
+    for &c in &EDGE_FIT[1..] {
+        sum = sum * x + c;
+    }
+    sum
 }
 
-/// One Newton step on the quartic in `y = u² − 1`: with `r = u = √(1 + y)`,
-/// `F = u⁴ − 1 − εu = y(2 + y) − εr`, `F' = 2(1 + y) − ε/(2r)`, so
-/// `y − F/F' = y − 2rF/(4r(1 + y) − ε)`; quadratic convergence takes the series' `2·10⁻¹⁰`
-/// to round-off.
+/// The middle of the wide fitted band `1/2 < ε ≤ 2`.
+const EDGE_FIT_WIDE_CENTRE: f64 = 1.25;
+
+/// Coefficients of [`edge_fit_wide`], of `(ε − 5/4)¹⁷` down to `(ε − 5/4)⁰`.
+const EDGE_FIT_WIDE: [f64; 18] = [
+    1.464374774178623e-10,
+    -3.0523683423078364e-10,
+    -5.975650824551518e-11,
+    1.912955072760476e-09,
+    -9.590323676004934e-09,
+    3.630877074746764e-08,
+    -1.1024783309362301e-07,
+    2.627001756711316e-07,
+    -3.850603345854547e-07,
+    -5.039958625627242e-07,
+    7.1441760035500145e-06,
+    -3.7625473417398904e-05,
+    0.00015007887378059743,
+    -0.0004955711165628972,
+    0.001293114127092354,
+    -0.0015229623379989438,
+    -0.016412805761664626,
+    0.48623040072786733,
+];
+
+/// `y/ε` of the largest root of `u⁴ − εu − 1 = 0` for `1/2 < ε ≤ 2` (edges near letting go,
+/// micro contacts): the polynomial of degree 17 in `ε − 5/4` nearest to it in the maximum norm
+/// on that band (docs/theory.md, eq. A12a), within `3·10⁻¹⁸` of it; evaluated in double
+/// precision within `8·10⁻¹⁷` relative.
 #[inline]
-fn edge_newton_step(y: f64, eps: f64) -> f64 {
-    let r = (1.0 + y).sqrt();
-    let f = y * (2.0 + y) - eps * r;
-    y - 2.0 * r * f / (4.0 * r * (1.0 + y) - eps)
+fn edge_fit_wide(eps: f64) -> f64 {
+    let x = eps - EDGE_FIT_WIDE_CENTRE;
+    let mut sum = EDGE_FIT_WIDE[0];
+    for &c in &EDGE_FIT_WIDE[1..] {
+        sum = sum * x + c;
+    }
+    sum
 }
 
 /// The crater's profile `h(x) = g(x) + u_pl(x)` of one history (docs/theory.md, eq. A1):
@@ -330,17 +391,14 @@ impl AdhesiveMdrLaw {
     }
 
     /// The retreat `a_r − a_t` of the edge by the `ε` band the law takes it in
-    /// ([`Self::series_retreat`], [`Self::newton_retreat`]; `None` past the series' reach,
-    /// `ε > 1/2`).
+    /// ([`Self::series_retreat`], [`Self::fitted_retreat`]; `None` past the fits' reach,
+    /// `ε > 2`).
     #[cfg(test)]
     fn retreated_edge(&self, branch: &Branch, touching: f64) -> Option<f64> {
-        let cube = touching * touching * touching;
-        if cube >= branch.series_cube {
+        if touching >= branch.series_radius {
             Some(Self::series_retreat(branch, touching))
-        } else if cube >= branch.newton_cube {
-            Some(Self::newton_retreat(branch, touching))
         } else {
-            None
+            Self::fitted_retreat(branch, touching)
         }
     }
 
@@ -358,17 +416,30 @@ impl AdhesiveMdrLaw {
         scale * edge_series(scale / touching)
     }
 
-    /// The retreat for `1/16 < ε ≤ 1/2`: the series to `ε¹²` and one Newton step.
+    /// The retreat for `1/16 < ε ≤ 2`: `a_t ε (y/ε)` with `y/ε` from [`edge_fit`] up to
+    /// `ε = 1/2`, from [`edge_fit_wide`] above; `None` for `ε > 2`.
     #[inline]
-    fn newton_retreat(branch: &Branch, touching: f64) -> f64 {
-        let eps = branch.eps_coefficient / (touching * touching.sqrt());
-        let y = eps * (edge_series(eps) + edge_series_tail(eps));
-        touching * edge_newton_step(y, eps)
+    fn fitted_retreat(branch: &Branch, touching: f64) -> Option<f64> {
+        if touching >= branch.fitted_radius {
+            let scale = branch.eps_coefficient / touching.sqrt();
+            Some(scale * edge_fit(scale / touching))
+        } else if touching >= branch.wide_radius {
+            Some(Self::wide_retreat(branch, touching))
+        } else {
+            None
+        }
+    }
+
+    /// The retreat for `1/2 < ε ≤ 2` by [`edge_fit_wide`].
+    #[inline]
+    fn wide_retreat(branch: &Branch, touching: f64) -> f64 {
+        let scale = branch.eps_coefficient / touching.sqrt();
+        scale * edge_fit_wide(scale / touching)
     }
 
     /// Unloading with stretched springs at the edge in every case [`Self::unload_on_branch`] and
     /// [`Self::held_edge`] do not cover (the edge spring past its limit where the series does
-    /// not apply: no spring touching, a root on the other branch, `ε > 1/2`): the edge holds or retreats by
+    /// not apply: no spring touching, a root on the other branch, `ε > 2`): the edge holds or retreats by
     /// [`Self::retreat_by_halley`], the force from (A3); where that finds no root of (A5) on the
     /// attached disc, `d` is below the smallest `δ` over it (A7) and the contact lets go. With
     /// the work the springs that let go held (eq. A6).
@@ -381,7 +452,15 @@ impl AdhesiveMdrLaw {
         touching: f64,
     ) -> (NormalResponse, f64) {
         let crater = self.crater(max_overlap);
-        let a = self.retreat_by_halley(&crater, previous, d, touching);
+        let on_spheres_branch = if touching > 0.0 && d < crater.plastic_overlap {
+            self.edge_on_spheres_branch(&crater, previous, d)
+        } else {
+            None
+        };
+        let a = match on_spheres_branch {
+            Some(a) => a,
+            None => self.retreat_by_halley(&crater, previous, d, touching),
+        };
         if a == 0.0 {
             return (
                 NormalResponse::default(),
@@ -397,8 +476,30 @@ impl AdhesiveMdrLaw {
         (response, self.annulus_work(previous, a))
     }
 
+    /// The edge where springs touch on the flattened branch (`0 < a_t`, `d < s`) but the root of
+    /// (A5) is not that branch's (it lies beyond the plastic radius `b`, or `ε > 2` there):
+    /// the sphere's branch `h = x²/R` has the root of the same quartic with its own touching
+    /// radius `√(R d)` in (A12). Where that root `a_r` lies beyond `b` it is the largest root of
+    /// (A5) on the crater (`h` is the sphere's there), and as `δ` is convex in `√a` and below
+    /// `d` at `a_t`, `δ ≤ d` on `(a_t, a_r]`: the edge is `min(a_r, a₀)`. `None` where
+    /// `ε > 2` on the sphere's branch or its root lies inside `b`.
+    fn edge_on_spheres_branch(&self, crater: &Crater, previous: f64, d: f64) -> Option<f64> {
+        let branch = &self.outer;
+        let touching = (crater.radius * d).sqrt();
+        let retreat = if touching >= branch.series_radius {
+            Self::series_retreat(branch, touching)
+        } else {
+            Self::fitted_retreat(branch, touching)?
+        };
+        let root = touching + retreat;
+        if root * root < crater.plastic_radius_sq {
+            return None;
+        }
+        Some(if root < previous { root } else { previous })
+    }
+
     /// The retreating edge by Halley's method from the previous edge, for every case the series
-    /// of [`Self::series_retreat`] and [`Self::newton_retreat`] do not cover (no spring in
+    /// of [`Self::series_retreat`] and [`Self::fitted_retreat`] do not cover (no spring in
     /// compression, a root on the other branch, a large perturbation); zero when the contact
     /// lets go.
     fn retreat_by_halley(&self, crater: &Crater, previous: f64, d: f64, touching: f64) -> f64 {
@@ -501,7 +602,7 @@ impl AdhesiveMdrLaw {
     }
 
     /// The edge at `previous` on unloading where [`Self::unload_on_branch`] does not apply (no
-    /// spring touching, `a_t = 0`: the neck held by adhesion alone; `ε > 1/2`; a root on the
+    /// spring touching, `a_t = 0`: the neck held by adhesion alone; `ε > 2`; a root on the
     /// other branch): it holds while its spring's elongation `h(a) − d` is within
     /// `Δl_max(a) = c√a` (A5), and the force is (A3) on the attached disc; `None` when the
     /// edge's spring is past its limit (the edge retreats or the contact lets go). The edge
@@ -524,17 +625,19 @@ impl AdhesiveMdrLaw {
 
     /// Unloading with springs touching out to `a_t = touching.contact_radius` (> 0) and
     /// stretched springs beyond it, on the touching radius's branch `h = κa² + h₀` of the
-    /// crater. For `ε = (c/κ) a_t^{−3/2} ≤ 1/16` (tested as `a_t³ ≥ 256 (c/κ)²`, without a
+    /// crater. For `ε = (c/κ) a_t^{−3/2} ≤ 1/16` (tested as `a_t ≥ (256 (c/κ)²)^{1/3}`, without a
     /// root) the edge is the series root of (A5) on the branch (A12) where
     /// that lies inside the previous edge, and holds otherwise: on unloading such an edge
     /// mostly retreats. For larger `ε`, where edges mostly hold, the edge at `previous` on the
     /// same branch is tested first: its spring's elongation is `h(a) − d = κ(a² − a_t²)` (as
     /// `κa_t² = d − h₀`), so it holds while `κ²(a² − a_t²)² ≤ c²a` (A5 squared; both sides
     /// positive), a test without a square root or a division; otherwise it retreats to the
-    /// root ([`Self::newton_retreat`]; δ is convex in √a and below d at the touching radius).
+    /// root ([`Self::fitted_retreat`]; δ is convex in √a and below d at the touching radius).
     /// `None` where the root lies on the other branch, where the series does not reach, and
     /// for an edge beyond the plastic radius that the flattened branch's root does not place.
-    #[inline]
+    /// Always inlined: out of line in a pair loop, its call and spills cost more than the held
+    /// edge it settles.
+    #[inline(always)]
     fn unload_on_branch(
         &self,
         state: &mut AdhesiveMdrState,
@@ -549,18 +652,15 @@ impl AdhesiveMdrLaw {
         let beyond_plastic_radius = |a: f64| {
             inner && a * a >= self.mdr.effective_radius() * (max_overlap - self.mdr.yield_overlap())
         };
-        let cube = a_t * a_t * a_t;
         let square_gap = (previous - a_t) * (previous + a_t);
-        let root = if cube >= branch.series_cube {
+        let root = if a_t >= branch.series_radius {
             a_t + Self::series_retreat(branch, a_t)
         } else if square_gap * square_gap <= branch.hold_coefficient * previous
             && !beyond_plastic_radius(previous)
         {
             return Some(self.stretched_response(branch, touching, previous));
-        } else if cube >= branch.newton_cube {
-            a_t + Self::newton_retreat(branch, a_t)
         } else {
-            return None;
+            a_t + Self::fitted_retreat(branch, a_t)?
         };
         if beyond_plastic_radius(root) {
             return None;
@@ -767,14 +867,13 @@ mod tests {
             assert!(retreats >= 3, "{params:?}: {retreats} retreating steps");
         }
     }
-    /// The series edge (eq. A12, to `ε¹²` with one Newton step above `ε = 1/16`) is the root of (A5) to
-    /// round-off for `ε` from 10⁻⁵ to the series' limit 1/2 (48 values, log-spaced, and both
-    /// limits), on the sphere's branch and on the crater's flattened branch; past the limit it
-    /// defers to the iteration. The root is checked through (A5) itself,
-    /// `h(a) − d = Δl_max(a)`, with `h` evaluated on the crater; without the Newton step the
-    /// series misses it by a relative `10⁻¹³` at `ε = 0.3`, and a wrong series coefficient leaves
-    /// more than the round-off. Through [`NormalLaw::update`], an edge outside the root retreats
-    /// to it and one inside holds.
+    /// The series edge (eq. A12 to `ε⁸`; above `ε = 1/16` the fits of eq. A12a) is the root of
+    /// (A5) to round-off for `ε` from 10⁻⁵ to the fits' limit 2 (64 values, log-spaced, and
+    /// the bands' limits), on the sphere's branch and on the crater's flattened branch; past
+    /// the limit it defers to the iteration. The root is checked through (A5) itself,
+    /// `h(a) − d = Δl_max(a)`, with `h` evaluated on the crater; a wrong series or fit
+    /// coefficient (one fit coefficient changed by `10⁻¹²`) leaves more than the round-off. Through
+    /// [`NormalLaw::update`], an edge outside the root retreats to it and one inside holds.
     #[test]
     fn series_edge_is_the_root_on_both_branches() {
         let pair = ContactPair::paper_fig2();
@@ -789,10 +888,15 @@ mod tests {
         // to the residual depth that the retreated edge stays on the flattened branch.
         let outer = 0.95 * max_overlap;
         let inner = depth + 0.05 * (s - depth);
-        let mut epsilons: Vec<f64> = (0..48)
-            .map(|k| 1e-5 * (0.49e5_f64).powf(k as f64 / 47.0))
+        let mut epsilons: Vec<f64> = (0..64)
+            .map(|k| 1e-5 * (1.99e5_f64).powf(k as f64 / 63.0))
             .collect();
-        epsilons.extend([SERIES_EDGE_LIMIT, 0.6]);
+        epsilons.extend([
+            SERIES_EDGE_LIMIT,
+            FITTED_EDGE_LIMIT,
+            WIDE_EDGE_LIMIT * (1.0 - 1e-12),
+            2.5,
+        ]);
         for (d, excess, on_inner) in [(outer, outer, false), (inner, inner - depth, true)] {
             // The touching radius as the law takes it: the non-adhesive law's.
             let touching = plain
@@ -811,10 +915,10 @@ mod tests {
                 let (branch, inner_branch) = law.branch(max_overlap, d);
                 assert_eq!(inner_branch, on_inner);
                 let Some(retreat) = law.retreated_edge(branch, touching) else {
-                    assert!(eps > 0.5, "ε = {eps}: no series edge");
+                    assert!(eps > WIDE_EDGE_LIMIT, "ε = {eps}: no series edge");
                     continue;
                 };
-                assert!(eps <= 0.5, "ε = {eps}: past the series' limit");
+                assert!(eps <= WIDE_EDGE_LIMIT, "ε = {eps}: past the fits' limit");
                 let a = touching + retreat;
                 assert!(a > touching);
                 assert!(a * a < crater.plastic_radius_sq || !on_inner);
@@ -846,43 +950,72 @@ mod tests {
     }
 
     /// Where the root of (A5) on the flattened branch would lie beyond the plastic radius `b`,
-    /// the edge is found on the sphere's branch: after one step from the maximum to just below
-    /// `s` (the touching radius just inside `b`, `ε = 0.1`, so the flattened branch's root is
-    /// about `1.05 b`), the edge lies beyond `b` and satisfies (A5) on the crater's profile.
-    /// Taking the flattened branch's root there leaves a gap of 5 % of the overlap.
+    /// the edge is found on the sphere's branch: after one step from the maximum (`2 u_c`) to just below
+    /// `s` (the touching radius just inside `b`), the edge lies beyond `b` and satisfies (A5)
+    /// on the crater's profile (written out anew here), for `ε = 0.1` on the flattened branch
+    /// (its root about `1.05 b`; `ε ≈ 0.04` on the sphere's branch, the series) and `ε = 0.8`
+    /// (`ε ≈ 0.3` on the sphere's branch, the fit), with the
+    /// adhesive work `π Δγ (a₀² − a²)`; an edge inside that root holds. Taking the flattened
+    /// branch's root there leaves a gap of 5 % of the overlap, and the sphere's branch with its
+    /// touching radius `√(R d)` off by `5·10⁻⁷` more than `10⁻¹²` of the limit.
     #[test]
     fn edge_beyond_the_plastic_radius_is_on_the_spheres_branch() {
         let pair = ContactPair::paper_fig2();
         let params = MdrElastoPlastic::paper();
+        let (r, e) = (pair.effective_radius(), pair.effective_modulus());
         let plain = params.bind(&pair).unwrap();
-        let max_overlap = 12.0 * plain.yield_overlap();
+        // Loaded to 2 u_c: the loaded edge √(R d_max) is √2 b, beyond the root at ε = 0.8.
+        let max_overlap = 2.0 * plain.yield_overlap();
         let s = max_overlap - plain.yield_overlap();
+        let theta = plain.hardening_ratio();
+        let depth = (1.0 - theta) * s;
+        let b = (r * s).sqrt();
+        let crater = IndependentCrater { r, theta, depth, b };
         let d = s * (1.0 - 1e-3);
         let touching = plain
             .update(&mut MdrState { max_overlap }, d)
             .contact_radius;
-        let excess = d - (1.0 - plain.hardening_ratio()) * s;
-        let c = 0.1 * excess / touching.sqrt();
-        let gamma = c * c * pair.effective_modulus() / (2.0 * PI);
-        let law = AdhesiveMdr::new(params, gamma)
-            .unwrap()
-            .bind(&pair)
-            .unwrap();
-        let mut state = AdhesiveMdrState::default();
-        law.update(&mut state, max_overlap);
-        law.update(&mut state, d);
-        let crater = law.crater(max_overlap);
-        let a = state.contact_radius;
-        assert!(touching * touching < crater.plastic_radius_sq);
-        assert!(a * a > crater.plastic_radius_sq, "edge {a} inside b");
-        let limit = law.critical_elongation(a);
-        let gap = crater.height(a) - d - limit;
-        assert!(gap.abs() <= 1e-12 * limit, "{gap:e}");
+        assert!(touching < b);
+        for eps in [0.1, 0.8] {
+            let c = eps * (d - depth) / touching.sqrt();
+            let gamma = c * c * e / (2.0 * PI);
+            let law = AdhesiveMdr::new(params, gamma)
+                .unwrap()
+                .bind(&pair)
+                .unwrap();
+            let mut state = AdhesiveMdrState::default();
+            law.update(&mut state, max_overlap);
+            let previous = state.contact_radius;
+            law.update(&mut state, d);
+            let a = state.contact_radius;
+            assert!(a > b && a < previous, "ε = {eps}: edge {a}, b = {b}");
+            let limit = c * a.sqrt();
+            let gap = crater.profile(a) - d - limit;
+            assert!(gap.abs() <= 1e-12 * limit, "ε = {eps}: {gap:e}");
+            let work = PI * gamma * (previous * previous - a * a);
+            assert!(
+                (state.adhesive_work - work).abs() <= 1e-9 * work,
+                "ε = {eps}: work {} vs {work}",
+                state.adhesive_work
+            );
+            let inside = a * (1.0 - 1e-6);
+            let mut held = AdhesiveMdrState {
+                max_overlap,
+                contact_radius: inside,
+                adhesive_work: 0.0,
+            };
+            law.update(&mut held, d);
+            assert_eq!(
+                held.contact_radius, inside,
+                "ε = {eps}: an edge inside its root"
+            );
+        }
     }
 
     /// With springs touching out to `a_t > 0` and `ε > 1/16` (the held-edge test of
     /// `unload_on_branch`, before any root), on the sphere's and on the flattened branch, in
-    /// the Newton band (`ε = 0.3`) and beyond the series (`ε = 0.8`): an edge just inside the
+    /// the two fitted bands (`ε = 0.3`, `0.8`) and beyond them (`ε = 3`, Halley's iteration):
+    /// an edge just inside the
     /// root of (A5), found here by bisection on the crater's profile, holds, with the force of
     /// (A3) against Simpson's rule on that profile, `2E* a` and no adhesive work; an edge just
     /// outside it retreats to the root and books the work `π Δγ (a_prev² − a²)`. Kills a hold
@@ -908,7 +1041,7 @@ mod tests {
             let touching = plain
                 .update(&mut MdrState { max_overlap }, d)
                 .contact_radius;
-            for eps in [0.3, 0.8] {
+            for eps in [0.3, 0.8, 3.0] {
                 let c = eps * excess / touching.sqrt();
                 let gamma = c * c * e / (2.0 * PI);
                 let law = AdhesiveMdr::new(params, gamma)
