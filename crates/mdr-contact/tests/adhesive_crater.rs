@@ -21,36 +21,46 @@ fn gamma_for(c: f64) -> f64 {
 }
 
 fn law(c: f64) -> AdhesiveMdrLaw {
+    scaled_law(c, 1.0)
+}
+
+/// The law with every length times `scale`: `R`, `u_c`, and `c = √(2πΔγ/E*)` (m^{1/2}) times
+/// `√scale`, so that every overlap and radius of the unit law scales alike.
+fn scaled_law(c: f64, scale: f64) -> AdhesiveMdrLaw {
     AdhesiveMdrLaw::new(
-        MdrLaw::from_parts(MODULUS, RADIUS, YIELD, THETA),
-        gamma_for(c),
+        MdrLaw::from_parts(MODULUS, RADIUS * scale, YIELD * scale, THETA),
+        gamma_for(c * scale.sqrt()),
     )
 }
 
 /// The crater of the history `d_max` (eq. A1), written out.
 #[derive(Clone, Copy)]
 struct Crater {
+    /// `R`.
+    radius: f64,
     /// `s = (d_max − u_c)₊`.
     s: f64,
 }
 
 impl Crater {
-    fn of(max_overlap: f64) -> Self {
+    /// The crater of the law with every length times `scale` (`R`, `u_c`; `c` by `√scale`).
+    fn scaled(max_overlap: f64, scale: f64) -> Self {
         Self {
-            s: (max_overlap - YIELD).max(0.0),
+            radius: RADIUS * scale,
+            s: (max_overlap - YIELD * scale).max(0.0),
         }
     }
 
     /// `b = √(R s)`.
     fn plastic_radius(&self) -> f64 {
-        (RADIUS * self.s).sqrt()
+        (self.radius * self.s).sqrt()
     }
 
     fn h(&self, x: f64) -> f64 {
         if x < self.plastic_radius() {
-            THETA * x * x / RADIUS + (1.0 - THETA) * self.s
+            THETA * x * x / self.radius + (1.0 - THETA) * self.s
         } else {
-            x * x / RADIUS
+            x * x / self.radius
         }
     }
 
@@ -131,6 +141,19 @@ impl Crater {
 /// the springs held, and the books of the work done. Returns how many steps had a stretched
 /// edge, a retreated edge, and how many let-gos.
 fn walk(law: &AdhesiveMdrLaw, c: f64, turns: &[f64], step: f64) -> (usize, usize, usize) {
+    walk_scaled(law, c, 1.0, turns, step)
+}
+
+/// [`walk`] for the law with every length times `scale` ([`scaled_law`]): `c` is the unit
+/// law's, `turns` and `step` are in the scaled law's metres.
+fn walk_scaled(
+    law: &AdhesiveMdrLaw,
+    c: f64,
+    scale: f64,
+    turns: &[f64],
+    step: f64,
+) -> (usize, usize, usize) {
+    let c = c * scale.sqrt();
     let mut state = AdhesiveMdrState::default();
     let (mut d, mut force, mut work) = (0.0_f64, 0.0_f64, 0.0_f64);
     let mut previous_overlap;
@@ -147,12 +170,12 @@ fn walk(law: &AdhesiveMdrLaw, c: f64, turns: &[f64], step: f64) -> (usize, usize
             let previous_force = force;
             force = response.force;
             d = next;
-            let crater = Crater::of(state.max_overlap);
+            let crater = Crater::scaled(state.max_overlap, scale);
             assert_eq!(state.max_overlap, before.max_overlap.max(d));
             let a = state.contact_radius;
             assert_eq!(response.contact_radius, a);
             // Scales: the force and energy of the attached disc at the deepest overlap.
-            let force_scale = 2.0 * MODULUS * a.max(1e-6) * state.max_overlap;
+            let force_scale = 2.0 * MODULUS * a.max(1e-6 * scale) * state.max_overlap;
             let energy_scale = force_scale * state.max_overlap;
             if a > 0.0 {
                 let expected = crater.force(d, a);
@@ -181,8 +204,7 @@ fn walk(law: &AdhesiveMdrLaw, c: f64, turns: &[f64], step: f64) -> (usize, usize
                         (elongation - limit).abs() < 1e-11 * state.max_overlap,
                         "d={d} a={a}: retreated to {elongation}, limit {limit}"
                     );
-                    let released =
-                        PI * law.work_of_adhesion() * (before.contact_radius.powi(2) - a * a);
+                    let released = PI * gamma_for(c) * (before.contact_radius.powi(2) - a * a);
                     let booked = state.adhesive_work - before.adhesive_work;
                     // The sum booked so far carries its own rounding.
                     assert!(
@@ -202,9 +224,7 @@ fn walk(law: &AdhesiveMdrLaw, c: f64, turns: &[f64], step: f64) -> (usize, usize
                 let (weakest, weakest_overlap) = crater.weakest_edge(c, before.contact_radius);
                 assert!(d < weakest_overlap + 1e-12 * state.max_overlap, "d={d}");
                 assert!(previous_overlap >= weakest_overlap - 1e-12 * state.max_overlap);
-                let held = PI
-                    * law.work_of_adhesion()
-                    * (before.contact_radius.powi(2) - weakest * weakest)
+                let held = PI * gamma_for(c) * (before.contact_radius.powi(2) - weakest * weakest)
                     + crater.energy(weakest_overlap, weakest);
                 let booked = state.adhesive_work - before.adhesive_work;
                 assert!(
@@ -216,13 +236,24 @@ fn walk(law: &AdhesiveMdrLaw, c: f64, turns: &[f64], step: f64) -> (usize, usize
                 let_go += 1;
             }
             work += step_work;
+            // The let-go overlap (A7) of the disc as it stands: at every turn and every 1009th
+            // step.
+            if state.contact_radius > 0.0 && (i == n || i % 1009 == 0) {
+                let expected = crater.weakest_edge(c, state.contact_radius).1;
+                let got = law.detachment_overlap(&state);
+                assert!(
+                    (got - expected).abs() < 1e-13 * state.max_overlap,
+                    "d={d} a={}: δ_off {got}, (A7) {expected}",
+                    state.contact_radius
+                );
+            }
         }
     }
     // The books: work done (the trapezoid rule, and at a let-go the force up to the weakest
     // edge's overlap) = stored + plastic + adhesive.
     let stored = law.elastic_energy(&state, d);
     let dissipated = law.dissipated_work(&state);
-    let plain = MdrLaw::from_parts(MODULUS, RADIUS, YIELD, THETA);
+    let plain = MdrLaw::from_parts(MODULUS, RADIUS * scale, YIELD * scale, THETA);
     let plastic = plain.dissipated_work(&MdrState {
         max_overlap: state.max_overlap,
     });
@@ -281,6 +312,22 @@ fn large_plastic_contact_follows_the_crater_written_out() {
 }
 
 #[test]
+fn the_walks_hold_in_other_units() {
+    // The plastic walk with every length 10³ and 10⁻³ times as large (R ≠ 1: no factor of R
+    // may go missing).
+    for scale in [1e3, 1e-3] {
+        let turns = [1.9e-3, 1.2e-3, 1.6e-3, 5e-4, 1.0e-3, -0.01].map(|d| d * scale);
+        let law = scaled_law(0.004, scale);
+        let (stretched, retreated, let_go) = walk_scaled(&law, 0.004, scale, &turns, 1e-6 * scale);
+        assert!(
+            stretched > 100 && retreated > 100,
+            "{stretched} {retreated}"
+        );
+        assert_eq!(let_go, 1);
+    }
+}
+
+#[test]
 fn strong_adhesion_on_a_small_crater_follows_the_crater_written_out() {
     // c = 0.04: the weakest edge (cR/4)^{2/3} = 46 mm lies outside the plastic radius 20 mm.
     let c = 0.04;
@@ -293,20 +340,59 @@ fn strong_adhesion_on_a_small_crater_follows_the_crater_written_out() {
     assert_eq!(let_go, 1);
 }
 
+#[test]
+fn a_small_disc_re_touching_inside_the_plastic_radius_lets_go_at_its_edge() {
+    // After a let-go the contact re-touches just above the residual depth (1 − θ)s: a small
+    // disc on the flattened branch, inside its stationary point, whose weakest edge is its own
+    // edge, not the plastic radius b or the stationary point beyond the disc. s = 0.4 mm:
+    // b = 20 mm inside the stationary point (25.2 mm), δ falls all the way out to b; re-touch
+    // at 0.32 mm (residual depth 0.3 mm), a disc of 8.9 mm. s = 0.9 mm: b = 30 mm beyond the
+    // stationary point; re-touch at 0.7 mm (residual depth 0.675 mm), a disc of 10 mm.
+    let c = 0.004;
+    for (s, retouch) in [(4e-4, 3.2e-4), (9e-4, 7e-4)] {
+        let turns = [YIELD + s, -0.01, retouch, -0.01];
+        let (stretched, retreated, let_go) = walk(&law(c), c, &turns, 1e-7);
+        assert!(
+            stretched > 1000 && retreated > 100,
+            "{stretched} {retreated}"
+        );
+        assert_eq!(let_go, 2);
+        let law = law(c);
+        let mut state = AdhesiveMdrState::default();
+        for d in [YIELD + s, -0.01, retouch] {
+            law.update(&mut state, d);
+        }
+        let residual = (1.0 - THETA) * s;
+        let a = state.contact_radius;
+        assert!(
+            (a - ((retouch - residual) / THETA).sqrt()).abs() < 1e-12,
+            "{a}"
+        );
+        let expected = THETA * a * a + residual - c * a.sqrt();
+        assert!((law.detachment_overlap(&state) - expected).abs() < 1e-16);
+    }
+}
+
 /// The let-go overlap of the disc attached on loading to `d_max`, against the search, and
 /// where its weakest edge lies.
 fn detachment_after_loading(c: f64, max_overlap: f64) -> f64 {
-    let law = law(c);
+    detachment_after_loading_scaled(c, max_overlap, 1.0)
+}
+
+/// The same for the law with every length times `scale` ([`scaled_law`]); lengths in and out
+/// are those of the unit law.
+fn detachment_after_loading_scaled(c: f64, max_overlap: f64, scale: f64) -> f64 {
+    let law = scaled_law(c, scale);
     let mut state = AdhesiveMdrState::default();
-    law.update(&mut state, max_overlap);
-    let crater = Crater::of(max_overlap);
-    let (weakest, expected) = crater.weakest_edge(c, state.contact_radius);
+    law.update(&mut state, max_overlap * scale);
+    let crater = Crater::scaled(max_overlap * scale, scale);
+    let (weakest, expected) = crater.weakest_edge(c * scale.sqrt(), state.contact_radius);
     let got = law.detachment_overlap(&state);
     assert!(
-        (got - expected).abs() < 1e-13 * max_overlap,
-        "d_max={max_overlap}: {got} (A7) {expected}"
+        (got - expected).abs() < 1e-13 * max_overlap * scale,
+        "d_max={max_overlap} scale={scale}: {got} (A7) {expected}"
     );
-    weakest
+    weakest / scale
 }
 
 #[test]
@@ -330,6 +416,18 @@ fn detachment_overlap_is_the_weakest_edge_on_every_branch() {
     // edge at 50 mm; the flattened branch's stationary point (117 mm) lies beyond b.
     let a = detachment_after_loading(0.04, YIELD + 1.5e-3);
     assert!((a - 0.01f64.powf(2.0 / 3.0)).abs() < 1e-6, "{a}");
+    // The same contacts with every length 10⁴ and 10⁻⁴ times as large: which branch holds the
+    // weakest edge does not depend on the unit (b² against a or a², here above and below 1).
+    for scale in [1e4, 1e-4] {
+        for (c, d_max, weakest) in [
+            (0.04, YIELD + 1.5e-3, 0.01f64.powf(2.0 / 3.0)),
+            (c, YIELD + 9e-4, 0.004f64.powf(2.0 / 3.0)),
+            (c, YIELD + 4e-4, 0.02),
+        ] {
+            let a = detachment_after_loading_scaled(c, d_max, scale);
+            assert!((a - weakest).abs() < 1e-6, "scale {scale}: {a} {weakest}");
+        }
+    }
     // A contact that does not hold lets go at its residual overlap (1 − θ)s.
     let law = law(c);
     let state = AdhesiveMdrState {
