@@ -68,7 +68,7 @@ fn only_a_positive_work_of_adhesion_asks_for_the_adhesive_law() {
     let text = hertz(&with_spare_material("2.5"));
     let problems = parse_scene(Path::new("scene.toml"), &text)
         .err()
-        .expect("refused");
+        .unwrap_or_else(|| panic!("Δγ = 2.5 with normal = \"hertz\" was taken"));
     let errors: Vec<_> = problems.errors().collect();
     assert_eq!(errors.len(), 1, "{problems}");
     assert_eq!(errors[0].key, "material[1].work_of_adhesion_j_per_m2");
