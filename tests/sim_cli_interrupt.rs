@@ -288,8 +288,8 @@ fn guards_and_refused_input_have_their_exit_statuses() {
 /// A state that stops being finite (one sphere under a gravity of 10³⁰⁷ m/s², whose height
 /// `z_0 − g dt² k(k+1)/2` passes the largest double at step 5996 of 1 ms) ends the command with
 /// the guard's status 3 and a message naming the particle, the step and `dt_s`; the frames of
-/// the samples before it (steps 0 to 5500, every 500) and the energy rows up to the last of
-/// them stay in the output folder.
+/// the samples before it (steps 0 to 5500, every 500) and every energy row up to the stop
+/// (every 100 steps, the last at step 6000) stay in the output folder.
 #[test]
 fn a_non_finite_state_exits_with_the_guard_status_and_keeps_what_was_written() {
     let dir_guard = tempfile::tempdir().unwrap();
@@ -354,6 +354,6 @@ file = "one.csv"
         .unwrap()
         .parse()
         .unwrap();
-    assert_eq!(csv.lines().count(), 1 + 56, "{csv}");
-    assert!((last_time - 5.5).abs() < 1e-9, "{csv}");
+    assert_eq!(csv.lines().count(), 1 + 61, "{csv}");
+    assert!((last_time - 6.0).abs() < 1e-9, "{csv}");
 }
