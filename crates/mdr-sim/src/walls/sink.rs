@@ -175,7 +175,8 @@ impl Sink {
 pub const REMOVED_WALL_DROP_M: f64 = 1.0e6;
 
 /// Remove every wall due at `time` (s) that is still in place: its body is moved
-/// [`REMOVED_WALL_DROP_M`] against `up` and its colliders follow at once. Idempotent (a wall
+/// [`REMOVED_WALL_DROP_M`] against `up` (a plane wall: against its own outward normal) and its
+/// colliders follow at once. Idempotent (a wall
 /// already moved stays where it is), so a run resumed from a checkpoint removes it again at its
 /// first step. Returns whether a wall was removed now.
 pub fn remove_due_walls(
@@ -191,7 +192,13 @@ pub fn remove_due_walls(
         if time < at {
             continue;
         }
-        let target = wall.origin - up * REMOVED_WALL_DROP_M;
+        // A lone half-space is moved along its own normal: moved along `up`, a side wall
+        // (normal across `up`) would stay where it is and go on acting.
+        let away = match wall.pieces.as_slice() {
+            [super::WallPiece::HalfSpace { normal, .. }] => *normal,
+            _ => *up,
+        };
+        let target = wall.origin - away * REMOVED_WALL_DROP_M;
         let Some(body) = world.bodies.get_mut(*handle) else {
             continue;
         };
