@@ -7,8 +7,7 @@
 //! other parts the GPU path lacks (its laws: `gpu_scene_laws.rs`). The device tests need a Vulkan (or Metal/DX12) device with
 //! 64-bit floats (on Linux without a GPU, Mesa's lavapipe).
 
-use mdr_gpu::{gpu_scene_support, GpuContext, GpuOptions, GpuScene, GpuState};
-use mdr_sim::run::SceneSteps;
+use mdr_gpu::{gpu_scene_support, GpuContext, GpuState};
 use mdr_sim::scene::load_scene;
 use mdr_sim::Scene;
 use nalgebra::Vector3;
@@ -124,65 +123,20 @@ open_top = false
     load_scene(&path).unwrap_or_else(|p| panic!("{p}"))
 }
 
-/// The CPU neighbour-list path's state after `STEPS` steps: positions, velocities, angular
-/// velocities, touching sphere pairs and wall contacts.
-struct CpuEnd {
-    position: Vec<Vector3<f64>>,
-    linvel: Vec<Vector3<f64>>,
-    angvel: Vec<Vector3<f64>>,
-    sphere_contacts: usize,
-    wall_contacts: usize,
-}
+#[path = "common/scene_end.rs"]
+mod scene_end;
+use scene_end::{CpuEnd, Differences};
 
 fn cpu_run(scene: &Scene) -> CpuEnd {
-    let mut steps = SceneSteps::new(scene).unwrap();
-    for _ in 0..STEPS {
-        steps.step().unwrap();
-    }
-    let contacts = steps.contacts();
-    let p = steps.neighbour_list_particles().unwrap();
-    CpuEnd {
-        position: p.position.clone(),
-        linvel: p.linvel.clone(),
-        angvel: p.angvel.clone(),
-        sphere_contacts: contacts.sphere,
-        wall_contacts: contacts.wall,
-    }
+    scene_end::cpu_run(scene, STEPS)
 }
 
 fn gpu_run(ctx: &GpuContext, scene: &Scene) -> GpuState {
-    let mut gpu = GpuScene::new(ctx, scene, &GpuOptions::default()).unwrap();
-    gpu.step(STEPS).unwrap();
-    gpu.state().unwrap()
+    scene_end::gpu_run(ctx, scene, STEPS)
 }
 
-/// The largest differences: positions over the smallest diameter, velocities over the largest
-/// speed, angular velocities over the largest angular speed.
-#[derive(Debug)]
-struct SceneDifferences {
-    position_diameters: f64,
-    velocity_relative: f64,
-    angular_velocity_relative: f64,
-}
-
-fn max_norm(v: &[Vector3<f64>]) -> f64 {
-    v.iter().map(|x| x.norm()).fold(0.0, f64::max)
-}
-
-fn max_difference(a: &[Vector3<f64>], b: &[Vector3<f64>]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).norm())
-        .fold(0.0, f64::max)
-}
-
-fn scene_differences(gpu: &GpuState, cpu: &CpuEnd) -> SceneDifferences {
-    SceneDifferences {
-        position_diameters: max_difference(&gpu.position, &cpu.position) / 0.004,
-        velocity_relative: max_difference(&gpu.linvel, &cpu.linvel) / max_norm(&cpu.linvel),
-        angular_velocity_relative: max_difference(&gpu.angvel, &cpu.angvel) / max_norm(&cpu.angvel),
-    }
+fn scene_differences(gpu: &GpuState, cpu: &CpuEnd) -> Differences {
+    scene_end::differences(gpu, cpu, 0.004)
 }
 
 /// Measured on lavapipe after 300 steps: positions 1.7e-15 diameters, velocities 2.0e-15 and
@@ -193,12 +147,12 @@ const POSITION_DIAMETERS: f64 = 1e-14;
 const VELOCITY_RELATIVE: f64 = 1e-14;
 const ANGULAR_VELOCITY_RELATIVE: f64 = 1e-14;
 
-fn within(d: &SceneDifferences) -> bool {
+fn within(d: &Differences) -> bool {
     within_tolerances(d, 1.0)
 }
 
 /// Within the tolerances times `factor`.
-fn within_tolerances(d: &SceneDifferences, factor: f64) -> bool {
+fn within_tolerances(d: &Differences, factor: f64) -> bool {
     d.position_diameters < factor * POSITION_DIAMETERS
         && d.velocity_relative < factor * VELOCITY_RELATIVE
         && d.angular_velocity_relative < factor * ANGULAR_VELOCITY_RELATIVE

@@ -9,7 +9,6 @@
 //! with 64-bit floats (on Linux without a GPU, Mesa's lavapipe).
 
 use mdr_gpu::{gpu_scene_support, GpuContext, GpuOptions, GpuScene, GpuState};
-use mdr_sim::run::SceneSteps;
 use mdr_sim::scene::load_scene;
 use mdr_sim::Scene;
 use nalgebra::Vector3;
@@ -220,64 +219,20 @@ removed_at_s = {GATE_REMOVED_AT:?}
     )
 }
 
-/// The CPU neighbour-list path's state after `STEPS` steps.
-struct CpuEnd {
-    position: Vec<Vector3<f64>>,
-    linvel: Vec<Vector3<f64>>,
-    angvel: Vec<Vector3<f64>>,
-    sphere_contacts: usize,
-    wall_contacts: usize,
-}
+#[path = "common/scene_end.rs"]
+mod scene_end;
+use scene_end::{CpuEnd, Differences};
 
 fn cpu_run(scene: &Scene) -> CpuEnd {
-    let mut steps = SceneSteps::new(scene).unwrap();
-    for _ in 0..STEPS {
-        steps.step().unwrap();
-    }
-    let contacts = steps.contacts();
-    let p = steps.neighbour_list_particles().unwrap();
-    CpuEnd {
-        position: p.position.clone(),
-        linvel: p.linvel.clone(),
-        angvel: p.angvel.clone(),
-        sphere_contacts: contacts.sphere,
-        wall_contacts: contacts.wall,
-    }
+    scene_end::cpu_run(scene, STEPS)
 }
 
 fn gpu_run(ctx: &GpuContext, scene: &Scene) -> GpuState {
-    let mut gpu = GpuScene::new(ctx, scene, &GpuOptions::default()).unwrap();
-    gpu.step(STEPS).unwrap();
-    gpu.state().unwrap()
-}
-
-/// The largest differences: positions over the diameter, velocities over the largest speed,
-/// angular velocities over the largest angular speed.
-#[derive(Debug)]
-struct Differences {
-    position_diameters: f64,
-    velocity_relative: f64,
-    angular_velocity_relative: f64,
-}
-
-fn max_norm(v: &[Vector3<f64>]) -> f64 {
-    v.iter().map(|x| x.norm()).fold(0.0, f64::max)
-}
-
-fn max_difference(a: &[Vector3<f64>], b: &[Vector3<f64>]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).norm())
-        .fold(0.0, f64::max)
+    scene_end::gpu_run(ctx, scene, STEPS)
 }
 
 fn differences(gpu: &GpuState, cpu: &CpuEnd) -> Differences {
-    Differences {
-        position_diameters: max_difference(&gpu.position, &cpu.position) / (2.0 * RADIUS),
-        velocity_relative: max_difference(&gpu.linvel, &cpu.linvel) / max_norm(&cpu.linvel),
-        angular_velocity_relative: max_difference(&gpu.angvel, &cpu.angvel) / max_norm(&cpu.angvel),
-    }
+    scene_end::differences(gpu, cpu, 2.0 * RADIUS)
 }
 
 /// Tolerances of a comparison: positions over the diameter, velocities and angular velocities
