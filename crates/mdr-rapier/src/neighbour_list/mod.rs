@@ -32,7 +32,7 @@ pub use stepper::{
     ContactPartner, EndedContact, NeighbourListHistory, NeighbourListState,
     NeighbourListStepReport, NeighbourListStepper, StepTimings,
 };
-pub use workers::with_workers_awake;
+pub use workers::{run_awake, with_workers_awake};
 
 /// Former names of the neighbour-list path's types, which named a speed rather than the method.
 #[allow(deprecated)]

@@ -18,6 +18,13 @@
 //! (`PhysicsPipeline::join_deferred_bvh_optimize` waits on a channel): with as many runs as
 //! threads, every thread could block in that wait with the optimisations queued behind them, and
 //! the runs would never finish. One thread always left free of runs takes them.
+//!
+//! A run started from outside the pool ([`run_awake`]: a test, a Python thread, the command
+//! line) takes its place on the calling thread, before it enters the pool. Entered first, it
+//! could be taken up by a pool thread that is waiting, deep in its stack, for a piece of another
+//! run's parallel work (rayon's waiting threads take queued work, injected runs included): that
+//! thread would then wait for a place which the other run gives back only when this thread
+//! returns, and both runs would stop for good.
 
 use std::cell::Cell;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -91,6 +98,48 @@ fn wait_for_place(pool: usize) -> bool {
 /// running the pool's other work, so that one thread is always free for what a run's step hands
 /// off and then waits for (rapier's tree optimisation; the module documentation says why).
 pub fn with_workers_awake<R>(f: impl FnOnce() -> R) -> R {
+    awake(f, Place::Wait)
+}
+
+/// Run `f` as a run of the current rayon pool (the global pool outside one) with the pool's
+/// other threads kept awake ([`with_workers_awake`]), the whole of it on one of the pool's
+/// threads (a parallel pass started from a thread outside the pool hands its work over and
+/// sleeps until it is done; from a pool thread it starts in place).
+///
+/// From outside the pool, the calling thread first waits (asleep: it is not one of the pool's)
+/// for a place among the `n − 1` threads of a pool of `n` that may hold runs, and only then
+/// hands the run to the pool, so that no pool thread ever waits for a place (the module
+/// documentation says why that matters). From inside the pool, as
+/// `rayon::scope(|_| with_workers_awake(f))`.
+pub fn run_awake<R: Send>(f: impl FnOnce() -> R + Send) -> R {
+    let pool = rayon::current_num_threads();
+    if rayon::current_thread_index().is_some() || pool < 2 {
+        return rayon::scope(|_| with_workers_awake(f));
+    }
+    while !try_take_place(pool) {
+        std::thread::sleep(Duration::from_micros(200));
+    }
+    /// Gives back the place when the run returns or unwinds.
+    struct GiveBack(usize);
+    impl Drop for GiveBack {
+        fn drop(&mut self) {
+            give_back_place(self.0);
+        }
+    }
+    let _give_back = GiveBack(pool);
+    rayon::scope(|_| awake(f, Place::Held))
+}
+
+/// Whether a run still has to wait for its place among the pool's threads that hold runs, or
+/// holds one taken for it before it entered the pool ([`run_awake`]).
+#[derive(Clone, Copy, PartialEq)]
+enum Place {
+    Wait,
+    Held,
+}
+
+/// [`with_workers_awake`], with the run's place taken here (`Place::Wait`) or by the caller.
+fn awake<R>(f: impl FnOnce() -> R, place: Place) -> R {
     let Some(me) = rayon::current_thread_index() else {
         return f();
     };
@@ -98,7 +147,7 @@ pub fn with_workers_awake<R>(f: impl FnOnce() -> R) -> R {
     if pool < 2 {
         return f();
     }
-    let took_place = wait_for_place(pool);
+    let took_place = place == Place::Wait && wait_for_place(pool);
     let stop = Arc::new(AtomicBool::new(false));
     let flag = Arc::clone(&stop);
     // One copy per thread of the pool; the caller's own copy returns at once (it runs when the

@@ -155,23 +155,21 @@ fn human_duration(seconds: f64) -> String {
 /// of which builds the neighbour lists and is not timed): an estimate of the whole run's wall
 /// time on the current rayon pool, as a sentence (`sim run --check`).
 pub fn estimate_run_time(scene: &Scene, budget: Duration) -> Result<String, SimError> {
-    rayon::scope(|_| {
-        mdr_rapier::neighbour_list::with_workers_awake(|| {
-            let total = scene.total_steps();
-            let mut steps = SceneSteps::new(scene)?;
+    mdr_rapier::neighbour_list::run_awake(|| {
+        let total = scene.total_steps();
+        let mut steps = SceneSteps::new(scene)?;
+        steps.step()?;
+        let started = Instant::now();
+        let mut done = 0;
+        while done < total.saturating_sub(1) && (done < 1 || started.elapsed() < budget) {
             steps.step()?;
-            let started = Instant::now();
-            let mut done = 0;
-            while done < total.saturating_sub(1) && (done < 1 || started.elapsed() < budget) {
-                steps.step()?;
-                done += 1;
-            }
-            Ok(estimate_text(
-                done.max(1),
-                started.elapsed().as_secs_f64(),
-                total,
-            ))
-        })
+            done += 1;
+        }
+        Ok(estimate_text(
+            done.max(1),
+            started.elapsed().as_secs_f64(),
+            total,
+        ))
     })
 }
 
@@ -272,17 +270,15 @@ pub fn run_scene(scene: &Scene, options: &RunOptions) -> Result<RunSummary, SimE
     // The whole run goes onto one of the pool's threads: a step makes several parallel passes,
     // and each one started from a thread outside the pool hands its work over and sleeps until
     // it is done (two context switches a pass, a fifth of a 2,000-sphere step on one thread).
-    // From a pool thread a pass starts in place. `scope` stays on the current thread when that
-    // is already one of the pool's. The pool's other threads wait for each pass awake
-    // (`with_workers_awake`: waking a sleeping one costs a pass tens of microseconds).
-    rayon::scope(|_| {
-        mdr_rapier::neighbour_list::with_workers_awake(|| {
-            let mut sim = match &options.resume {
-                Some(path) => Sim::resume(scene, path)?,
-                None => Sim::new(scene)?,
-            };
-            sim.run(options)
-        })
+    // From a pool thread a pass starts in place. The pool's other threads wait for each pass
+    // awake (waking a sleeping one costs a pass tens of microseconds), and a run from outside
+    // the pool waits outside it for its turn (`run_awake`).
+    mdr_rapier::neighbour_list::run_awake(|| {
+        let mut sim = match &options.resume {
+            Some(path) => Sim::resume(scene, path)?,
+            None => Sim::new(scene)?,
+        };
+        sim.run(options)
     })
 }
 
