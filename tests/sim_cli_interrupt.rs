@@ -298,34 +298,7 @@ fn a_non_finite_state_exits_with_the_guard_status_and_keeps_what_was_written() {
         &dir.join("one.csv"),
         "x_m,y_m,z_m,radius_m\n0,0,0.0025,0.002\n",
     );
-    let text = r#"
-[run]
-name = "blowup"
-duration_s = 6.5
-dt_s = 1.0e-3
-max_speed_m_per_s = 1.0e-9
-output_interval_s = 0.5
-energy_interval_s = 0.1
-
-[gravity]
-acceleration_m_per_s2 = [0.0, 0.0, -1.0e307]
-
-[[material]]
-name = "grain"
-youngs_pa = 5.0e7
-poisson_ratio = 0.25
-density_kg_per_m3 = 2500.0
-
-[contact]
-normal = "mdr"
-critical_line_load_n_per_m = 100.0
-hardening_ratio = 0.37
-
-[[particles]]
-material = "grain"
-placement = "csv"
-file = "one.csv"
-"#;
+    let text = include_str!("../crates/mdr-sim/tests/data/blowup.toml");
     let scene = write(&dir.join("blowup.toml"), text);
     let out = dir.join("out");
     let output = Command::new(env!("CARGO_BIN_EXE_mdr-dem"))

@@ -341,34 +341,7 @@ fn misspelt_duplicate_and_missing_keys_are_named() {
 }
 
 /// One sphere in free fall under a gravity of 10³⁰⁷ m/s², 1 ms steps, a frame every 500 steps.
-const NON_FINITE_SCENE: &str = r#"
-[run]
-name = "blowup"
-duration_s = 6.5
-dt_s = 1.0e-3
-max_speed_m_per_s = 1.0e-9
-output_interval_s = 0.5
-energy_interval_s = 0.1
-
-[gravity]
-acceleration_m_per_s2 = [0.0, 0.0, -1.0e307]
-
-[[material]]
-name = "grain"
-youngs_pa = 5.0e7
-poisson_ratio = 0.25
-density_kg_per_m3 = 2500.0
-
-[contact]
-normal = "mdr"
-critical_line_load_n_per_m = 100.0
-hardening_ratio = 0.37
-
-[[particles]]
-material = "grain"
-placement = "csv"
-file = "one.csv"
-"#;
+const NON_FINITE_SCENE: &str = include_str!("data/blowup.toml");
 
 /// One sphere falling freely under a gravity of 10³⁰⁷ m/s² (finite, so the scene is accepted;
 /// no contact, so no stability check applies). Symplectic Euler puts it at
