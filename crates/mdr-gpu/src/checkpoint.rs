@@ -296,9 +296,10 @@ pub(crate) fn state_of_checkpoint(
 
 /// The device's books of a checkpoint: its totals (`CheckpointData::books`: the contacts that
 /// ended) and its live histories' own books, as the CPU run's energy row adds them; per
-/// particle, the checkpoint's plastic work per particle, and what the totals hold beyond it in
-/// the first particle's words. The device keeps the adhesive work apart from the plastic work,
-/// and the live histories it loads carry none: their adhesive work so far joins the totals.
+/// particle, the checkpoint's plastic work per particle with the live contacts' adhesive work
+/// added back, and what the totals hold beyond it (round-off) in the first particle's words.
+/// The device keeps the adhesive work apart from the plastic work, and the live histories it
+/// loads carry none: their adhesive work so far joins the totals.
 fn device_books(
     law: &str,
     data: &CheckpointData,
@@ -333,6 +334,29 @@ fn device_books(
     }
     for (book, &plastic) in books.iter_mut().zip(&b.particle_plastic) {
         book.plastic = plastic;
+    }
+    if law == AdhesiveMdr::DECLARATION.name {
+        // The checkpoint's plastic work per particle has every contact's adhesive work so far
+        // taken out, the live contacts' included; the histories loaded carry none, so it goes
+        // back to their spheres (half of a pair's to each), where the CPU run's frame adds it.
+        let mut add = |i: u32, work: f64| {
+            if let Some(book) = books.get_mut(i as usize) {
+                book.plastic += work;
+            }
+        };
+        let adhesive_work = |r: &ContactRecord| r.contact.normal.adhesive_mdr.adhesive_work;
+        let at = |key: u64| usize::try_from(key).unwrap_or(usize::MAX);
+        for r in &lists.pair_histories {
+            if let Some(&(i, j, _)) = lists.pairs.get(at(r.key)) {
+                add(i, 0.5 * adhesive_work(r));
+                add(j, 0.5 * adhesive_work(r));
+            }
+        }
+        for r in &lists.surface_histories {
+            if let Some(&(i, _)) = lists.surface_pairs.get(at(r.key)) {
+                add(i, adhesive_work(r));
+            }
+        }
     }
     let per_particle: f64 = books.iter().map(|book| book.plastic).sum();
     books[0] = GpuBooks {

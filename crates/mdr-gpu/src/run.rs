@@ -1,6 +1,6 @@
 //! `sim run` on the GPU ([`run_gpu_scene`]): a force-mode scene stepped on the device
 //! ([`GpuScene`]) with the outputs of the CPU run that the device's state gives: the VTK frames
-//! and their ParaView collection (every field but `plastic_work_j`), the energy books with the
+//! and their ParaView collection (every field of the CPU run's frames), the energy books with the
 //! CPU run's columns ([`GPU_ENERGY_COLUMNS`]) and its energy guard (`max_energy_drift`), the
 //! headline with its series, CSV, plots and TOML report, and a progress bar.
 //!
@@ -10,14 +10,18 @@
 //!
 //! The elastic energies stored in the contacts, and the plastic work of the live contacts, are
 //! evaluated from the histories read back at each energy sample, by the law crate
-//! ([`GpuScene`]'s bound laws). The dissipated works (friction, damping, rolling, the
-//! springs' stiffness energy, the adhesive work, and the plastic work of the contacts that
-//! ended) are booked on the device at every step, per particle, in f64 ([`GpuBooks`]), and
-//! summed in particle order at a sample; the balance then closes as the CPU run's does, and
-//! the energy guard stops a run whose balance drifts beyond `max_energy_drift` at the sample
-//! where the CPU run would stop (the same message). The turning walls' work is booked on the
-//! device like the other works; the GPU has no sinks, so the removed energy is zero. A scene that asks for a contact network is
-//! refused with the key named ([`gpu_run_support`]).
+//! ([`GpuScene`]'s bound laws). A frame's `plastic_work_j` is each sphere's plastic work as the
+//! CPU run's frames give it: the contacts that ended, booked per sphere on the device, and the
+//! live contacts' from the histories read back for the frame (half of a pair's to each sphere,
+//! a wall contact's to its sphere); the steps between samples compute nothing for it. The
+//! dissipated works (friction, damping, rolling, the springs' stiffness energy, the adhesive
+//! work, and the plastic work of the contacts that ended) are booked on the device at every
+//! step, per particle, in f64 ([`GpuBooks`]), and summed in particle order at a sample; the
+//! balance then closes as the CPU run's does, and the energy guard stops a run whose balance
+//! drifts beyond `max_energy_drift` at the sample where the CPU run would stop (the same
+//! message). The turning walls' work is booked on the device like the other works; the GPU has
+//! no sinks, so the removed energy is zero. A scene that asks for a contact network is refused
+//! with the key named ([`gpu_run_support`]).
 //!
 //! Checkpoints are the CPU run's ([`mdr_sim::run::CheckpointData`], written where the CPU run
 //! writes them: every `checkpoint_interval_s`, at an interrupt and at the end), taken before
@@ -665,8 +669,7 @@ impl GpuRun<'_> {
             velocity: s.linvel.iter().map(|&v| v.into()).collect(),
             angular_velocity: s.angvel.iter().map(|&w| w.into()).collect(),
             contacts: sample.contacts.clone(),
-            // The device keeps no plastic work: the frame leaves the field out.
-            plastic_work: Vec::new(),
+            plastic_work: self.gpu.particle_plastic_work(s),
             id: (0..s.position.len() as u32).collect(),
         };
         let path = self.out.join(&name);

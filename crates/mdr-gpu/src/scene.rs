@@ -570,16 +570,46 @@ impl GpuScene {
 
     /// The elastic energies stored in the contacts of `state` (read back at a sample, where
     /// the force pass set each contact's state), `[normal, tangential, rolling]` (J), and the
-    /// plastic work of those live contacts so far: each touching contact's history at its
-    /// overlap now, by its pair's laws, the wall contacts first, as the CPU run's energy books
-    /// sum them.
+    /// plastic work of those live contacts so far, summed as the CPU run's energy books sum
+    /// them ([`GpuScene::visit_live_contacts`]).
     pub(crate) fn contact_energies(&self, state: &GpuState) -> [f64; 4] {
         let mut total = [0.0; 4];
-        let mut add = |e: [f64; 4]| {
+        self.visit_live_contacts(state, |_, _, e| {
             for (t, e) in total.iter_mut().zip(e) {
                 *t += e;
             }
-        };
+        });
+        total
+    }
+
+    /// Each particle's plastic work so far (J), as the CPU run's frames give it
+    /// (`plastic_work_j`, `Books::particle_plastic` with the live contacts added): the contacts
+    /// that ended, booked on the device (half of a pair's to each sphere), and each live
+    /// contact's from its history now, half of a pair's to each sphere and a wall contact's to
+    /// its sphere. The adhesive work is left out, as the CPU run leaves it out.
+    pub(crate) fn particle_plastic_work(&self, state: &GpuState) -> Vec<f64> {
+        let mut plastic = vec![0.0; state.position.len()];
+        for (p, b) in plastic.iter_mut().zip(&state.books) {
+            *p = b.plastic;
+        }
+        self.visit_live_contacts(state, |i, other, [.., work]| match other {
+            Some(j) => {
+                plastic[i] += 0.5 * work;
+                plastic[j] += 0.5 * work;
+            }
+            None => plastic[i] += work,
+        });
+        plastic
+    }
+
+    /// `visit(particle, other sphere (None: a wall), energies)` for each live contact of
+    /// `state` with its energies by its pair's laws ([`ElasticEnergies`]: its history at its
+    /// overlap now), the wall contacts first, then the pairs in the state's order.
+    fn visit_live_contacts(
+        &self,
+        state: &GpuState,
+        mut visit: impl FnMut(usize, Option<usize>, [f64; 4]),
+    ) {
         let walls = self.walls.len();
         for slot in 0..state.floor.len() {
             if let Some(h) = DeviceHistory::of_wall(state, slot) {
@@ -591,7 +621,7 @@ impl GpuScene {
                     continue;
                 };
                 let law = self.species[i] as usize * walls + k;
-                add((self.wall_energies[law])(&h, overlap));
+                visit(i, None, (self.wall_energies[law])(&h, overlap));
             }
         }
         for pair in state.pairs.iter().filter(|p| p.active) {
@@ -605,12 +635,12 @@ impl GpuScene {
             let d = state.position[i] - (state.position[j] + shift);
             let overlap = self.radius[i] + self.radius[j] - d.norm();
             let law = self.species[i] as usize * self.species_count + self.species[j] as usize;
-            add((self.sphere_energies[law])(
-                &DeviceHistory::of_pair(pair),
-                overlap,
-            ));
+            visit(
+                i,
+                Some(j),
+                (self.sphere_energies[law])(&DeviceHistory::of_pair(pair), overlap),
+            );
         }
-        total
     }
 
     system_accessors!();

@@ -92,7 +92,7 @@ pub fn write_particles(path: &Path, frame: &ParticleFrame) -> std::io::Result<()
                         .with_data(flat(&frame.angular_velocity)),
                 ),
                 Some(Attribute::scalars("contacts", 1).with_data(frame.contacts.clone())),
-                // A run that keeps no plastic work (the GPU path's) leaves the field out.
+                // A frame without plastic work per particle (an empty field) leaves it out.
                 (frame.plastic_work.len() == frame.position.len()).then(|| {
                     Attribute::scalars("plastic_work_j", 1).with_data(frame.plastic_work.clone())
                 }),
