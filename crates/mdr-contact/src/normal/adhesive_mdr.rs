@@ -707,8 +707,6 @@ impl AdhesiveMdrLaw {
 struct AttachedEdge<'a> {
     law: &'a AdhesiveMdrLaw,
     state: &'a mut AdhesiveMdrState,
-    /// `d_max` after this update.
-    max_overlap: f64,
     d: f64,
 }
 
@@ -716,16 +714,12 @@ impl AfterTouching for AttachedEdge<'_> {
     type Output = NormalResponse;
 
     /// The update after the MDR law's `touching` response at overlap `d` (`part`: the part of
-    /// the crater it touches on): the edge of the attached disc by (A5) and its force. Always
-    /// inlined, into each of the MDR law's branches with its constant `part`.
+    /// the crater it touches on; `max_overlap`: `d_max` after the update): the edge of the
+    /// attached disc by (A5) and its force. Always inlined, into each of the MDR law's branches
+    /// with its constant `part`.
     #[inline(always)]
-    fn after(self, touching: NormalResponse, part: Touching) -> NormalResponse {
-        let Self {
-            law,
-            state,
-            max_overlap,
-            d,
-        } = self;
+    fn after(self, touching: NormalResponse, part: Touching, max_overlap: f64) -> NormalResponse {
+        let Self { law, state, d } = self;
         state.max_overlap = max_overlap;
         let previous = state.contact_radius;
         let a_t = touching.contact_radius;
@@ -774,14 +768,12 @@ impl NormalLaw for AdhesiveMdrLaw {
         let mut plain = MdrState {
             max_overlap: state.max_overlap,
         };
-        let max_overlap = plain.max_overlap.max(d);
         self.mdr.touching(
             &mut plain,
             d,
             AttachedEdge {
                 law: self,
                 state,
-                max_overlap,
                 d,
             },
         )

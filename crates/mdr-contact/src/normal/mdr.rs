@@ -180,9 +180,10 @@ pub(crate) enum Touching {
 /// What a law built on the MDR law does with its response ([`MdrLaw::touching`]).
 pub(crate) trait AfterTouching {
     type Output;
-    /// Called in each branch of the MDR law with that branch's `part`; implementations are
-    /// always inlined, so that their code for each part is laid out in its branch.
-    fn after(self, response: NormalResponse, part: Touching) -> Self::Output;
+    /// Called in each branch of the MDR law with that branch's `part` and `d_max` after the
+    /// update; implementations are always inlined, so that their code for each part is laid
+    /// out in its branch.
+    fn after(self, response: NormalResponse, part: Touching, max_overlap: f64) -> Self::Output;
 }
 
 /// The MDR law's own response.
@@ -191,7 +192,7 @@ struct TouchingResponse;
 impl AfterTouching for TouchingResponse {
     type Output = NormalResponse;
     #[inline(always)]
-    fn after(self, response: NormalResponse, _: Touching) -> NormalResponse {
+    fn after(self, response: NormalResponse, _: Touching, _: f64) -> NormalResponse {
         response
     }
 }
@@ -427,10 +428,11 @@ impl MdrLaw {
 
     /// [`NormalLaw::update`], handing its response and the part of the crater that touches to
     /// `then` (for the laws built on this one: each branch calls it with its own constant
-    /// part, so the caller's code for each part is laid out in that branch). Loading (`d = d_max`) and unloading with `d ≥ s`
-    /// share one formula, `F = F_H(d) − (1 − θ) F_H(s₊)` with `s = d_max − u_c` (docs/theory.md §4),
-    /// so the common case is one branch and two square roots (`√d`, `√s`); the contact radius
-    /// reuses `√d` through the precomputed `√R`.
+    /// part, so the caller's code for each part is laid out in that branch). Loading
+    /// (`d = d_max`) and unloading with `d ≥ s` share one formula,
+    /// `F = F_H(d) − (1 − θ) F_H(s₊)` with `s = d_max − u_c` (docs/theory.md §4), so the common
+    /// case is one branch and two square roots (`√d`, `√s`); the contact radius reuses `√d`
+    /// through the precomputed `√R`.
     #[inline(always)]
     pub(crate) fn touching<R>(
         &self,
@@ -439,7 +441,11 @@ impl MdrLaw {
         then: impl AfterTouching<Output = R>,
     ) -> R {
         if d <= 0.0 {
-            return then.after(NormalResponse::default(), Touching::Nothing);
+            return then.after(
+                NormalResponse::default(),
+                Touching::Nothing,
+                state.max_overlap,
+            );
         }
         let loading = d >= state.max_overlap;
         // Stored unconditionally: in a vibrating bed loading and unloading alternate at random,
@@ -467,12 +473,17 @@ impl MdrLaw {
                     stiffness: self.stiffness_coefficient * (sqrt_d - softening),
                 },
                 Touching::Sphere,
+                state.max_overlap,
             );
         }
         let excess = d - self.plastic_fraction * s;
         if excess <= 0.0 {
             // Inside the residual crater: no contact.
-            return then.after(NormalResponse::default(), Touching::Nothing);
+            return then.after(
+                NormalResponse::default(),
+                Touching::Nothing,
+                state.max_overlap,
+            );
         }
         // Only the flattened plastic zone touches: Hertz with radius R/θ about the residual depth.
         let sqrt_excess = excess.sqrt();
@@ -484,6 +495,7 @@ impl MdrLaw {
                 stiffness: 2.0 * self.effective_modulus * a,
             },
             Touching::Flattened,
+            state.max_overlap,
         )
     }
 
