@@ -9,7 +9,10 @@
 //! `h(x) = g(x) + u_pl(x)`, so the whole state is `d_max`, the attached radius `a` and the
 //! adhesive work booked so far.
 
-use super::{MdrElastoPlastic, MdrLaw, MdrState, NormalLaw, NormalModel, NormalResponse};
+use super::{
+    AfterTouching, MdrElastoPlastic, MdrLaw, MdrState, NormalLaw, NormalModel, NormalResponse,
+    Touching,
+};
 use crate::error::{non_negative, Result};
 use crate::material::ContactPair;
 use std::f64::consts::PI;
@@ -381,7 +384,7 @@ impl AdhesiveMdrLaw {
     /// The branch of the crater the touching radius lies on at overlap `d` after loading to
     /// `max_overlap`, and whether it is the flattened one: `d < s = d_max − u_c`, the test
     /// [`MdrLaw`] takes its touching radius by.
-    #[inline]
+    #[cfg(test)]
     fn branch(&self, max_overlap: f64, d: f64) -> (&Branch, bool) {
         if d < max_overlap - self.mdr.yield_overlap() {
             (&self.inner, true)
@@ -417,8 +420,9 @@ impl AdhesiveMdrLaw {
     }
 
     /// The retreat for `1/16 < ε ≤ 2`: `a_t ε (y/ε)` with `y/ε` from [`edge_fit`] up to
-    /// `ε = 1/2`, from [`edge_fit_wide`] above; `None` for `ε > 2`.
-    #[inline]
+    /// `ε = 1/2`, from [`edge_fit_wide`] above; `None` for `ε > 2`. Always inlined: out of
+    /// line, its call spills the pair loop's registers.
+    #[inline(always)]
     fn fitted_retreat(branch: &Branch, touching: f64) -> Option<f64> {
         if touching >= branch.fitted_radius {
             let scale = branch.eps_coefficient / touching.sqrt();
@@ -430,8 +434,9 @@ impl AdhesiveMdrLaw {
         }
     }
 
-    /// The retreat for `1/2 < ε ≤ 2` by [`edge_fit_wide`].
-    #[inline]
+    /// The retreat for `1/2 < ε ≤ 2` by [`edge_fit_wide`]: edges near letting go, out of line.
+    #[cold]
+    #[inline(never)]
     fn wide_retreat(branch: &Branch, touching: f64) -> f64 {
         let scale = branch.eps_coefficient / touching.sqrt();
         scale * edge_fit_wide(scale / touching)
@@ -643,11 +648,11 @@ impl AdhesiveMdrLaw {
         state: &mut AdhesiveMdrState,
         touching: &NormalResponse,
         max_overlap: f64,
-        d: f64,
+        inner: bool,
     ) -> Option<NormalResponse> {
         let a_t = touching.contact_radius;
         let previous = state.contact_radius;
-        let (branch, inner) = self.branch(max_overlap, d);
+        let branch = if inner { &self.inner } else { &self.outer };
         // On the flattened branch the edge must lie inside the plastic radius, b² = R s.
         let beyond_plastic_radius = |a: f64| {
             inner && a * a >= self.mdr.effective_radius() * (max_overlap - self.mdr.yield_overlap())
@@ -697,6 +702,51 @@ impl AdhesiveMdrLaw {
     }
 }
 
+/// The attached disc's update after the MDR law's response at the touching radius
+/// ([`MdrLaw::touching`]).
+struct AttachedEdge<'a> {
+    law: &'a AdhesiveMdrLaw,
+    state: &'a mut AdhesiveMdrState,
+    d: f64,
+}
+
+impl AfterTouching for AttachedEdge<'_> {
+    type Output = NormalResponse;
+
+    /// The update after the MDR law's `touching` response at overlap `d` (`part`: the part of
+    /// the crater it touches on; `max_overlap`: `d_max` after the update): the edge of the
+    /// attached disc by (A5) and its force. Always inlined, into each of the MDR law's branches
+    /// with its constant `part`.
+    #[inline(always)]
+    fn after(self, touching: NormalResponse, part: Touching, max_overlap: f64) -> NormalResponse {
+        let Self { law, state, d } = self;
+        state.max_overlap = max_overlap;
+        let previous = state.contact_radius;
+        let a_t = touching.contact_radius;
+        if a_t >= previous {
+            state.contact_radius = a_t;
+            return touching;
+        }
+        // Unloading with stretched springs at the edge (a new maximum always touches wider),
+        // on the branch of the crater the MDR law found the touching radius on.
+        let on_branch = match part {
+            Touching::Sphere => law.unload_on_branch(state, &touching, max_overlap, false),
+            Touching::Flattened => law.unload_on_branch(state, &touching, max_overlap, true),
+            Touching::Nothing => None,
+        };
+        if let Some(response) = on_branch {
+            return response;
+        }
+        if let Some(response) = law.held_edge(max_overlap, previous, d) {
+            return response;
+        }
+        let (response, work) = law.unload_by_iteration(max_overlap, previous, d, a_t);
+        state.adhesive_work += work;
+        state.contact_radius = response.contact_radius;
+        response
+    }
+}
+
 impl NormalLaw for AdhesiveMdrLaw {
     type State = AdhesiveMdrState;
 
@@ -718,28 +768,15 @@ impl NormalLaw for AdhesiveMdrLaw {
         let mut plain = MdrState {
             max_overlap: state.max_overlap,
         };
-        let touching = self.mdr.update(&mut plain, d);
-        let max_overlap = plain.max_overlap;
-        state.max_overlap = max_overlap;
-        let previous = state.contact_radius;
-        let a_t = touching.contact_radius;
-        if a_t >= previous {
-            state.contact_radius = a_t;
-            return touching;
-        }
-        // Unloading with stretched springs at the edge (a new maximum always touches wider).
-        if a_t > 0.0 {
-            if let Some(response) = self.unload_on_branch(state, &touching, max_overlap, d) {
-                return response;
-            }
-        }
-        if let Some(response) = self.held_edge(max_overlap, previous, d) {
-            return response;
-        }
-        let (response, work) = self.unload_by_iteration(max_overlap, previous, d, a_t);
-        state.adhesive_work += work;
-        state.contact_radius = response.contact_radius;
-        response
+        self.mdr.touching(
+            &mut plain,
+            d,
+            AttachedEdge {
+                law: self,
+                state,
+                d,
+            },
+        )
     }
 
     fn max_overlap(&self, state: &AdhesiveMdrState) -> f64 {

@@ -164,6 +164,39 @@ pub struct MdrState {
     pub max_overlap: f64,
 }
 
+/// The part of the crater that touches at the present overlap (the branches of
+/// [`MdrLaw::update`], docs/theory.md §4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Touching {
+    /// `d ≥ s = d_max − u_c`: the sphere's profile out to `√(R d)` (loading, or unloading
+    /// above `s`).
+    Sphere,
+    /// `(1 − θ)s < d < s`: only the flattened plastic zone, out to `√(R (d − (1 − θ)s)/θ)`.
+    Flattened,
+    /// No spring: apart (`d ≤ 0`) or inside the residual crater.
+    Nothing,
+}
+
+/// What a law built on the MDR law does with its response ([`MdrLaw::touching`]).
+pub(crate) trait AfterTouching {
+    type Output;
+    /// Called in each branch of the MDR law with that branch's `part` and `d_max` after the
+    /// update; implementations are always inlined, so that their code for each part is laid
+    /// out in its branch.
+    fn after(self, response: NormalResponse, part: Touching, max_overlap: f64) -> Self::Output;
+}
+
+/// The MDR law's own response.
+struct TouchingResponse;
+
+impl AfterTouching for TouchingResponse {
+    type Output = NormalResponse;
+    #[inline(always)]
+    fn after(self, response: NormalResponse, _: Touching, _: f64) -> NormalResponse {
+        response
+    }
+}
+
 /// Outcome of one impact evaluated with the time-free energy route (docs/theory.md §4).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EnergyRouteImpact {
@@ -393,29 +426,26 @@ impl MdrLaw {
         d
     }
 
-    /// Force on the loading branch, `d = d_max` (docs/theory.md §4).
-    #[inline]
-    fn loading_force(&self, d: f64) -> f64 {
-        let s = d - self.yield_displacement;
-        if s <= 0.0 {
-            self.force_coefficient * pow3_2(d)
-        } else {
-            self.force_coefficient * (pow3_2(d) - self.plastic_fraction * pow3_2(s))
-        }
-    }
-}
-
-impl NormalLaw for MdrLaw {
-    type State = MdrState;
-
-    /// The hot path of many-particle runs. Loading (`d = d_max`) and unloading with `d ≥ s`
-    /// share one formula, `F = F_H(d) − (1 − θ) F_H(s₊)` with `s = d_max − u_c` (docs/theory.md §4),
-    /// so the common case is one branch and two square roots (`√d`, `√s`); the contact radius
-    /// reuses `√d` through the precomputed `√R`.
-    #[inline]
-    fn update(&self, state: &mut MdrState, d: f64) -> NormalResponse {
+    /// [`NormalLaw::update`], handing its response and the part of the crater that touches to
+    /// `then` (for the laws built on this one: each branch calls it with its own constant
+    /// part, so the caller's code for each part is laid out in that branch). Loading
+    /// (`d = d_max`) and unloading with `d ≥ s` share one formula,
+    /// `F = F_H(d) − (1 − θ) F_H(s₊)` with `s = d_max − u_c` (docs/theory.md §4), so the common
+    /// case is one branch and two square roots (`√d`, `√s`); the contact radius reuses `√d`
+    /// through the precomputed `√R`.
+    #[inline(always)]
+    pub(crate) fn touching<R>(
+        &self,
+        state: &mut MdrState,
+        d: f64,
+        then: impl AfterTouching<Output = R>,
+    ) -> R {
         if d <= 0.0 {
-            return NormalResponse::default();
+            return then.after(
+                NormalResponse::default(),
+                Touching::Nothing,
+                state.max_overlap,
+            );
         }
         let loading = d >= state.max_overlap;
         // Stored unconditionally: in a vibrating bed loading and unloading alternate at random,
@@ -435,25 +465,59 @@ impl NormalLaw for MdrLaw {
             } else {
                 0.0
             };
-            return NormalResponse {
-                force: self.force_coefficient * (d * sqrt_d - self.plastic_fraction * s * sqrt_s),
-                contact_radius: a,
-                stiffness: self.stiffness_coefficient * (sqrt_d - softening),
-            };
+            return then.after(
+                NormalResponse {
+                    force: self.force_coefficient
+                        * (d * sqrt_d - self.plastic_fraction * s * sqrt_s),
+                    contact_radius: a,
+                    stiffness: self.stiffness_coefficient * (sqrt_d - softening),
+                },
+                Touching::Sphere,
+                state.max_overlap,
+            );
         }
         let excess = d - self.plastic_fraction * s;
         if excess <= 0.0 {
             // Inside the residual crater: no contact.
-            return NormalResponse::default();
+            return then.after(
+                NormalResponse::default(),
+                Touching::Nothing,
+                state.max_overlap,
+            );
         }
         // Only the flattened plastic zone touches: Hertz with radius R/θ about the residual depth.
         let sqrt_excess = excess.sqrt();
         let a = self.flat_radius_sqrt * sqrt_excess;
-        NormalResponse {
-            force: self.flat_force_coefficient * excess * sqrt_excess,
-            contact_radius: a,
-            stiffness: 2.0 * self.effective_modulus * a,
+        then.after(
+            NormalResponse {
+                force: self.flat_force_coefficient * excess * sqrt_excess,
+                contact_radius: a,
+                stiffness: 2.0 * self.effective_modulus * a,
+            },
+            Touching::Flattened,
+            state.max_overlap,
+        )
+    }
+
+    /// Force on the loading branch, `d = d_max` (docs/theory.md §4).
+    #[inline]
+    fn loading_force(&self, d: f64) -> f64 {
+        let s = d - self.yield_displacement;
+        if s <= 0.0 {
+            self.force_coefficient * pow3_2(d)
+        } else {
+            self.force_coefficient * (pow3_2(d) - self.plastic_fraction * pow3_2(s))
         }
+    }
+}
+
+impl NormalLaw for MdrLaw {
+    type State = MdrState;
+
+    /// The hot path of many-particle runs: [`MdrLaw::touching`].
+    #[inline]
+    fn update(&self, state: &mut MdrState, d: f64) -> NormalResponse {
+        self.touching(state, d, TouchingResponse)
     }
 
     fn max_overlap(&self, state: &MdrState) -> f64 {

@@ -21,6 +21,7 @@ pub use adhesive_spring_bed::{AdhesiveSpringBed, AdhesiveSpringBedState, SphereA
 pub use hertz::{Hertz, HertzLaw};
 #[cfg(feature = "demo-laws")]
 pub use linear_spring::{LinearSpring, LinearSpringLaw};
+pub(crate) use mdr::{AfterTouching, Touching};
 pub use mdr::{EnergyRouteImpact, Hardening, MdrElastoPlastic, MdrLaw, MdrState};
 pub use spring_bed::{SphereSpringBed, SpringBed, SpringBedState};
 pub use thornton::{
