@@ -139,15 +139,18 @@ const DRUM_START_S: f64 = 0.04;
 /// Steps of the shipped drum compared from there.
 const DRUM_STEPS: u64 = 300;
 
-/// The damping work the shipped drum's GPU run books over its steps, as a fraction of the CPU
-/// run's: MEASURED.
-const BOOK_TOLERANCE: f64 = 1e-12;
+/// The difference of the damping work the shipped drum's runs book over its steps, as a
+/// fraction of that work: measured on lavapipe 8.2e-15.
+const BOOK_TOLERANCE: f64 = 5e-14;
 
-/// The shipped drum's tolerances: MEASURED.
+/// The shipped drum's tolerances, a few times the differences measured on lavapipe: positions
+/// 3.7e-14 diameters, velocities 2.0e-13 and angular velocities 4.6e-13 of the largest (as the
+/// small turning drum of `gpu_surfaces.rs`: round-off in the CPU path's turning pose grown
+/// through the contacts). `η` 1 % larger on the GPU moves positions by 1.1e-2 diameters.
 const DRUM: Tolerances = Tolerances {
     position_diameters: 1e-13,
     velocity_relative: 1e-12,
-    angular_velocity_relative: 1e-12,
+    angular_velocity_relative: 2e-12,
 };
 
 /// The end checkpoint of a run of `scene` (`name`) into `out`, continued from `resume` to
@@ -211,8 +214,8 @@ fn checkpoint_differences(reference: &CheckpointData, other: &CheckpointData, di
 /// rolling resistance, the stiffness-viscous dashpot, the capped cylinder turning at
 /// 1.25 rad/s), runs on the GPU: from the CPU run's checkpoint at [`DRUM_START_S`], where its
 /// block has met the drum, [`DRUM_STEPS`] steps on the GPU agree with the CPU run's within
-/// [`DRUM`], and so does the damping work booked meanwhile. The CPU run with `η` 1 % larger
-/// misses the CPU run by far more than [`DRUM`]: the comparison sees the dashpot.
+/// [`DRUM`], and so does the damping work booked meanwhile. Negative control: `η` 1 % larger on
+/// the GPU only misses the CPU run by far more than [`DRUM`].
 #[test]
 fn the_shipped_drum_runs_on_the_gpu_as_on_the_cpu() {
     let ctx = context();
@@ -247,19 +250,17 @@ fn the_shipped_drum_runs_on_the_gpu_as_on_the_cpu() {
                 .sum::<f64>()
     };
     let (w_start, w_cpu, w_gpu) = (damping(&read(&at_start)), damping(&cpu), damping(&gpu));
+    let booked = (w_gpu - w_cpu).abs() / (w_cpu - w_start);
     eprintln!(
-        "drum.toml: damping work at the start {w_start:.6e} J, at the end CPU {w_cpu:.6e} J, \
-         GPU {w_gpu:.6e} J"
+        "drum.toml: damping work at the start {w_start:.6e} J, at the end CPU {w_cpu:.9e} J, \
+         GPU {w_gpu:.9e} J: they differ by {booked:.2e} of the work of these steps"
     );
     assert!(w_cpu > w_start);
-    assert!(
-        (w_gpu - w_cpu).abs() < BOOK_TOLERANCE * (w_cpu - w_start),
-        "{w_gpu:e} {w_cpu:e}"
-    );
+    assert!(booked < BOOK_TOLERANCE, "{booked:e}");
     let mut larger = scene.clone();
     larger.contact.sub_models.damping.values[0] *= 1.01;
-    let wrong = run_to(None, &larger, &dir.join("cpu_larger"), Some(at_start), end);
+    let wrong = run_to(Some(&ctx), &larger, &dir.join("gpu_larger"), Some(at_start), end);
     let d = checkpoint_differences(&cpu, &read(&wrong), diameter);
-    eprintln!("drum.toml, eta 1 % larger (CPU): {d:?}");
+    eprintln!("drum.toml, eta 1 % larger on the GPU: {d:?}");
     assert!(!within(&d, &DRUM), "{d:?}");
 }
