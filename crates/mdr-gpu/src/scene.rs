@@ -18,8 +18,8 @@ use crate::accessors::system_accessors;
 use crate::checkpoint::DeviceHistory;
 use crate::device::{GpuContext, GpuError};
 use crate::law::{
-    add_stiffness_damping, adhesive_constants, bound_constants, hertz_constants,
-    mdr_law_constants, thornton_constants, LawConstants,
+    add_stiffness_damping, adhesive_constants, bound_constants, hertz_constants, mdr_law_constants,
+    thornton_constants, LawConstants,
 };
 use crate::system::{GpuOptions, GpuState, System, SystemSpec};
 use crate::walls::{removal_stage, removal_steps, scene_walls, wall_support, DeviceWall, Plane};
@@ -113,7 +113,9 @@ impl DeviceSubModels {
                 0.0
             },
             stiffness_eta: match contact.damping() {
-                DampingSpec::StiffnessViscous(eta) if damping == StiffnessViscous::DECLARATION.name => {
+                DampingSpec::StiffnessViscous(eta)
+                    if damping == StiffnessViscous::DECLARATION.name =>
+                {
                     Some(eta)
                 }
                 _ => None,

@@ -461,11 +461,10 @@ fn the_drum_hopper_and_funnel_walls_are_accepted_and_the_rest_refused_by_name() 
     let mesh = edited_scene(
         "drum.toml",
         &[(
-                "[[walls]]\nkind = \"cylinder\"",
-                "[[walls]]\nkind = \"mesh\"\nmaterial = \"grain\"\nfile = \"tetrahedron.obj\"\n\n\
+            "[[walls]]\nkind = \"cylinder\"",
+            "[[walls]]\nkind = \"mesh\"\nmaterial = \"grain\"\nfile = \"tetrahedron.obj\"\n\n\
                  [[walls]]\nkind = \"cylinder\"",
-            ),
-        ],
+        )],
     );
     refused(&mesh, &["`kind = \"mesh\"`"]);
     let mut about_x = drum.clone();
