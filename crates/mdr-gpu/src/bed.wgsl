@@ -1,9 +1,9 @@
 // The step of the neighbour-list path in f64 (docs/gpu.md): list build by cell binning, pair
 // forces with histories (Hertz, MDR, Thornton or adhesive MDR normal law, Mindlin, Hertzian or
-// stiffness-viscous damping, optionally rolling resistance) bound per species pair, walls (half-spaces and
-// exact surfaces of revolution, fixed, turning about their own axis or removed at a stage set by
-// the host), open space or the x/y periodic box, gravity, and rapier's symplectic Euler
-// integration. The settled bed is the case of one species, one floor plane and the periodic box.
+// stiffness-viscous damping, optionally rolling resistance) bound per species pair, walls
+// (half-spaces and exact surfaces of revolution, fixed, turning about their own axis or removed
+// at a stage set by the host), open space or the x/y periodic box, gravity, and rapier's
+// symplectic Euler integration. The settled bed is the case of one species, one floor plane and the periodic box.
 // Every formula is the CPU path's,
 // written in the same order (mdr-contact and mdr-rapier's kernel): `normal_law` is
 // `HertzLaw::update` / `MdrLaw::update` / `ThorntonLaw::update` / `AdhesiveMdrLaw::update`,
