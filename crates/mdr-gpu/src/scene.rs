@@ -385,7 +385,7 @@ where
             )?);
         }
     }
-    for a in 0..ns {
+    for (a, species) in table.iter().enumerate() {
         for s in 0..nw {
             let bound = stepper.surface_pair_laws(a, s);
             wall_energies.push(energies(bound));
@@ -402,7 +402,7 @@ where
                     &constants,
                 )?,
                 &bound.0.damping,
-                table[a].mass,
+                species.mass,
             )?);
         }
     }
