@@ -3,9 +3,10 @@
 //! scene of 27 spheres with each normal law (Hertz, MDR, Thornton, adhesive MDR: loading,
 //! plastic loading, unloading, a neck held in tension and let go) and a tangential dashpot, a
 //! few hundred steps on both paths, sphere pairs and walls; negative controls (`η` 1 % larger on
-//! the GPU only; no dashpot on the GPU); and the shipped `scenes/drum.toml` as it is, its first
-//! steps on both paths. The damping work's book: `gpu_books.rs`. The device tests need a
-//! Vulkan (or Metal/DX12) device with 64-bit floats (on Linux without a GPU, Mesa's lavapipe).
+//! the GPU only; no dashpot on the GPU); and the shipped `scenes/drum.toml` as it is, 300 steps
+//! on both paths from the CPU run's checkpoint where its block has met the drum, with its
+//! damping work. The box's books: `gpu_books.rs`. The device tests need a Vulkan (or
+//! Metal/DX12) device with 64-bit floats (on Linux without a GPU, Mesa's lavapipe).
 
 #[path = "common/box_scene.rs"]
 mod box_scene;
