@@ -92,6 +92,8 @@ impl GpuBed {
                 law_code: laws.normal.code(),
                 normal_words: laws.normal.state_words(),
                 rolling: laws.rolling.is_some(),
+                // The reference system's Hertzian dashpot.
+                stiffness_damping: false,
                 orientation: settings.orientation,
                 // The benchmark keeps no books (the CPU bench's `NoBooks`).
                 books: false,

@@ -1,9 +1,9 @@
 // The step of the neighbour-list path in f64 (docs/gpu.md): list build by cell binning, pair
-// forces with histories (Hertz, MDR, Thornton or adhesive MDR normal law, Mindlin, Hertzian
-// viscous damping, optionally rolling resistance) bound per species pair, walls (half-spaces and
-// exact surfaces of revolution, fixed, turning about their own axis or removed at a stage set by
-// the host), open space or the x/y periodic box, gravity, and rapier's symplectic Euler
-// integration. The settled bed is the case of one species, one floor plane and the periodic box.
+// forces with histories (Hertz, MDR, Thornton or adhesive MDR normal law, Mindlin, Hertzian or
+// stiffness-viscous damping, optionally rolling resistance) bound per species pair, walls
+// (half-spaces and exact surfaces of revolution, fixed, turning about their own axis or removed
+// at a stage set by the host), open space or the x/y periodic box, gravity, and rapier's
+// symplectic Euler integration. The settled bed is the case of one species, one floor plane and the periodic box.
 // Every formula is the CPU path's,
 // written in the same order (mdr-contact and mdr-rapier's kernel): `normal_law` is
 // `HertzLaw::update` / `MdrLaw::update` / `ThorntonLaw::update` / `AdhesiveMdrLaw::update`,
@@ -12,8 +12,8 @@
 // step 4.
 //
 // `MAXN` (neighbour slots per particle), `CELLCAP` (particles per cell), `NN` (f64 words of the
-// normal law's state), `ROLLING` and `BOOKED` are written in by the host before the module is
-// compiled.
+// normal law's state), `ROLLING`, `STIFFNESS_DAMPING` and `BOOKED` are written in by the host
+// before the module is compiled.
 //
 // With `BOOKED`, the force pass books each contact's dissipated works as the CPU path's
 // `ContactLaw::update`, `MindlinLaw::update`, `EpsdRollingLaw::update` and
@@ -31,6 +31,9 @@ const MAXN: u32 = __MAXN__u;
 const CELLCAP: u32 = __CELLCAP__u;
 const NN: u32 = __NN__u;
 const ROLLING: bool = __ROLLING__;
+// The stiffness-viscous dashpot (`StiffnessViscousLaw`) in place of the Hertzian one: a
+// constant of the run, so the other laws' force pass has no branch for it.
+const STIFFNESS_DAMPING: bool = __STIFFNESS_DAMPING__;
 const BOOKED: bool = __BOOKED__;
 // Words per particle of `books` (`crate::system::GpuBooks`).
 const BOOK_WORDS: u32 = 8u;
@@ -113,6 +116,9 @@ struct Law {
     pull_off: f64,
     rolling_arm: f64,
     rolling_stiffness_ratio: f64,
+    // The stiffness-viscous dashpot's `η` and the pair's reduced mass `m`.
+    stiffness_eta: f64,
+    reduced_mass: f64,
 }
 
 struct Params {
@@ -1191,7 +1197,7 @@ struct ContactOut {
 }
 
 // `ContactLaw::update` with `MindlinLaw::update` (displacement form, rescaled on unloading) and
-// `HertzianViscousLaw`: the force on body 1.
+// `HertzianViscousLaw` or `StiffnessViscousLaw`: the force on body 1.
 fn contact_update(law: Law, h: ptr<function, History>, overlap: f64, n: vec3<f64>,
                   rv: vec3<f64>) -> ContactOut {
     let zero = vec3<f64>(0.0lf, 0.0lf, 0.0lf);
@@ -1208,8 +1214,13 @@ fn contact_update(law: Law, h: ptr<function, History>, overlap: f64, n: vec3<f64
     }
     let normal_speed = dot3(rv, n);
     let approach_rate = -normal_speed;
+    // `DampingLaw::normal_coefficient`: Tsuji's `η √(m k_n)` with the normal law's tangent
+    // stiffness of this step (at any overlap the law holds the contact at, a held neck's
+    // included), or the Hertzian `m γ_n √R √δ` (zero without damping).
     var dashpot = 0.0lf;
-    if overlap > 0.0lf {
+    if STIFFNESS_DAMPING {
+        dashpot = law.stiffness_eta * sqrt(law.reduced_mass * normal.stiffness);
+    } else if overlap > 0.0lf {
         dashpot = law.dashpot * sqrt(overlap);
     }
     let damping = dashpot * approach_rate;

@@ -136,6 +136,10 @@ pub(crate) struct LawConstants {
     rolling_arm: f64,
     /// `2.25 (μ_r R)²`: the rolling stiffness over the normal stiffness.
     rolling_stiffness_ratio: f64,
+    /// `η` of the stiffness-viscous dashpot (zero otherwise).
+    stiffness_eta: f64,
+    /// The pair's reduced mass `m` of the stiffness-viscous dashpot (zero otherwise).
+    reduced_mass: f64,
 }
 
 impl LawConstants {
@@ -337,6 +341,30 @@ fn add_rolling<R: RollingLaw>(
         || (sr > 0.0 && probe(1e-3 * sr / arm) != -sr * (arm * (1e-3 * sr / arm) / sr))
     {
         return Err(mismatch("rolling resistance law"));
+    }
+    Ok(c)
+}
+
+/// The stiffness-viscous dashpot's constants, `η` and the pair's reduced mass `m`
+/// (`StiffnessViscous::bind`, which keeps them private), checked against the bound law's
+/// coefficient `η √(m k_n)` (`StiffnessViscousLaw::normal_coefficient`, the product under one
+/// square root, as the device takes it) at normal stiffnesses over twelve decades, bit for bit.
+pub(crate) fn add_stiffness_damping<D: DampingLaw>(
+    mut c: LawConstants,
+    damping: &D,
+    eta: f64,
+    mass: f64,
+) -> Result<LawConstants, GpuError> {
+    c.stiffness_eta = eta;
+    c.reduced_mass = mass;
+    for stiffness in [1e-3, 1.0, 37.5, 2.9e4, 6.1e6, 8.3e9] {
+        let response = NormalResponse {
+            stiffness,
+            ..NormalResponse::default()
+        };
+        if damping.normal_coefficient(&response, 1.0) != eta * (mass * stiffness).sqrt() {
+            return Err(mismatch("stiffness-viscous damping law"));
+        }
     }
     Ok(c)
 }

@@ -4,9 +4,9 @@
 //! (cylinders, cones, orifice plates), fixed, turning about their own axis or removed at a time
 //! ([`GpuScene`]; others are refused by [`gpu_scene_support`]; `sim run --device gpu` is
 //! [`run_gpu_scene`]) with the CPU path's arithmetic: the same law formulas (Hertz, MDR,
-//! Thornton or adhesive MDR normal, Mindlin tangential, Hertzian viscous damping, optionally
-//! rolling resistance) bound per species pair, the same integrator order, the same list and
-//! history semantics ([`GpuLaws`]).
+//! Thornton or adhesive MDR normal, Mindlin tangential, Hertzian or stiffness-viscous damping,
+//! optionally rolling resistance) bound per species pair, the same integrator order, the same
+//! list and history semantics ([`GpuLaws`]).
 //! The design, its determinism and its cost are described in `docs/gpu.md`.
 //!
 //! ```no_run

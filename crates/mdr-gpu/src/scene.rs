@@ -18,12 +18,12 @@ use crate::accessors::system_accessors;
 use crate::checkpoint::DeviceHistory;
 use crate::device::{GpuContext, GpuError};
 use crate::law::{
-    adhesive_constants, bound_constants, hertz_constants, mdr_law_constants, thornton_constants,
-    LawConstants,
+    add_stiffness_damping, adhesive_constants, bound_constants, hertz_constants, mdr_law_constants,
+    thornton_constants, LawConstants,
 };
 use crate::system::{GpuOptions, GpuState, System, SystemSpec};
 use crate::walls::{removal_stage, removal_steps, scene_walls, wall_support, DeviceWall, Plane};
-use mdr_contact::damping::{HertzianViscous, NoDamping};
+use mdr_contact::damping::{HertzianViscous, NoDamping, StiffnessViscous};
 use mdr_contact::model::{ContactLaw, ContactModel};
 use mdr_contact::normal::{AdhesiveMdr, Hertz, MdrElastoPlastic, NormalLaw, Thornton};
 use mdr_contact::params::{Declared, LawKind};
@@ -35,7 +35,7 @@ use mdr_rapier::neighbour_list::{Boundary, NeighbourListStepper};
 use mdr_rapier::particles::SphereBuilder;
 use mdr_sim::laws::registry::{sub_model_kind, SceneParts};
 use mdr_sim::laws::{AnyDamping, AnyDampingLaw, SceneNormal, SceneRolling};
-use mdr_sim::scene::{ContactSpec, CouplingMode, ForcePath, SubModelSpec};
+use mdr_sim::scene::{ContactSpec, CouplingMode, DampingSpec, ForcePath, SubModelSpec};
 use mdr_sim::Scene;
 use nalgebra::Vector3;
 use rapier3d_f64::prelude::{ColliderBuilder, PhysicsWorld, SharedShape};
@@ -63,28 +63,33 @@ const DEVICE_LAWS: [(&str, u32, u32); 4] = [
 pub const DEVICE_TANGENTIAL: [&str; 2] =
     [Frictionless::DECLARATION.name, Mindlin::DECLARATION.name];
 
-/// The damping laws with a device kernel, by registered name: none, and the Hertzian viscous
-/// dashpot (its coefficient is bound per pair; the stiffness-viscous law's depends on the
-/// normal law's tangent stiffness at each step, which the kernel does not have).
-pub const DEVICE_DAMPING: [&str; 2] = [
+/// The damping laws with a device kernel, by registered name: none, the Hertzian viscous
+/// dashpot (its coefficient bound per pair) and the stiffness-viscous one (Tsuji's `η √(m k_n)`:
+/// `η` and the reduced mass bound per pair, `k_n` the device normal law's tangent stiffness at
+/// each step), each with its tangential dashpot.
+pub const DEVICE_DAMPING: [&str; 3] = [
     NoDamping::DECLARATION.name,
     HertzianViscous::DECLARATION.name,
+    StiffnessViscous::DECLARATION.name,
 ];
 
 /// The rolling-resistance laws with a device kernel, by registered name: none, and the
 /// elastic–plastic spring (off at `μ_r = 0`).
 pub const DEVICE_ROLLING: [&str; 2] = [NoRolling::DECLARATION.name, EpsdRolling::DECLARATION.name];
 
-/// What the device kernel runs for a scene's tangential and rolling laws, chosen by their
-/// registered names ([`DEVICE_TANGENTIAL`], [`DEVICE_ROLLING`]; the damping law by
-/// [`DEVICE_DAMPING`] is bound from the scene's law itself), each value read by its declared
-/// key.
+/// What the device kernel runs for a scene's tangential, damping and rolling laws, chosen by
+/// their registered names ([`DEVICE_TANGENTIAL`], [`DEVICE_DAMPING`], [`DEVICE_ROLLING`]; the
+/// damping coefficients are bound from the scene's law itself), each value read by its
+/// declared key.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DeviceSubModels {
     /// Mindlin's Coulomb coefficient `μ` (0 for the frictionless law).
     pub friction: f64,
     /// The elastic–plastic rolling spring's `μ_r`; 0: the kernel runs without rolling state.
     pub rolling_friction: f64,
+    /// The stiffness-viscous dashpot's `η`; `None`: the kernel runs the Hertzian dashpot (at a
+    /// zero coefficient without damping).
+    pub stiffness_eta: Option<f64>,
 }
 
 impl DeviceSubModels {
@@ -94,7 +99,7 @@ impl DeviceSubModels {
     pub fn of(contact: &ContactSpec) -> Result<Self, String> {
         let laws = &contact.sub_models;
         let tangential = device_law(LawKind::Tangential, &laws.tangential, &DEVICE_TANGENTIAL)?;
-        device_law(LawKind::Damping, &laws.damping, &DEVICE_DAMPING)?;
+        let damping = device_law(LawKind::Damping, &laws.damping, &DEVICE_DAMPING)?;
         let rolling = device_law(LawKind::Rolling, &laws.rolling, &DEVICE_ROLLING)?;
         Ok(Self {
             friction: if tangential == Mindlin::DECLARATION.name {
@@ -106,6 +111,14 @@ impl DeviceSubModels {
                 contact.rolling_friction()
             } else {
                 0.0
+            },
+            stiffness_eta: match contact.damping() {
+                DampingSpec::StiffnessViscous(eta)
+                    if damping == StiffnessViscous::DECLARATION.name =>
+                {
+                    Some(eta)
+                }
+                _ => None,
             },
         })
     }
@@ -339,6 +352,13 @@ where
     stepper.compute_forces(&world, false)?;
     let ns = first.len();
     let nw = planes.len();
+    let table = &stepper.particles().species_table;
+    // The stiffness-viscous dashpot's `η` and the pair's reduced mass, as the stepper binds
+    // it: `m₁m₂/(m₁ + m₂)` for two spheres, the sphere's mass against a fixed or turning wall.
+    let damping = |c: LawConstants, law: &AnyDampingLaw, mass: f64| match device.stiffness_eta {
+        Some(eta) => add_stiffness_damping(c, law, eta, mass),
+        None => Ok(c),
+    };
     let mut sphere = Vec::with_capacity(ns * ns);
     let mut walls = Vec::with_capacity(ns * nw);
     let mut sphere_energies = Vec::with_capacity(ns * ns);
@@ -351,16 +371,21 @@ where
                 Some(m) => m.0[a * ns + b],
                 None => (0.0, 0.0),
             };
-            sphere.push(bound_constants(
-                bound,
-                m,
-                device.friction,
-                device.rolling_friction,
-                &constants,
+            let (ma, mb) = (table[a].mass, table[b].mass);
+            sphere.push(damping(
+                bound_constants(
+                    bound,
+                    m,
+                    device.friction,
+                    device.rolling_friction,
+                    &constants,
+                )?,
+                &bound.0.damping,
+                ma * mb / (ma + mb),
             )?);
         }
     }
-    for a in 0..ns {
+    for (a, species) in table.iter().enumerate() {
         for s in 0..nw {
             let bound = stepper.surface_pair_laws(a, s);
             wall_energies.push(energies(bound));
@@ -368,12 +393,16 @@ where
                 Some(m) => m.1[a * nw + s],
                 None => (0.0, 0.0),
             };
-            walls.push(bound_constants(
-                bound,
-                m,
-                device.friction,
-                device.rolling_friction,
-                &constants,
+            walls.push(damping(
+                bound_constants(
+                    bound,
+                    m,
+                    device.friction,
+                    device.rolling_friction,
+                    &constants,
+                )?,
+                &bound.0.damping,
+                species.mass,
             )?);
         }
     }
@@ -492,6 +521,7 @@ impl GpuScene {
         let planes: Vec<(usize, Plane)> =
             walls.iter().map(|w| (w.wall, w.law_stand_in())).collect();
         let laws = scene_laws(scene, &planes)?;
+        let sub_models = DeviceSubModels::of(&scene.contact).map_err(GpuError::Unsupported)?;
         let &(_, law_code, normal_words) = DEVICE_LAWS
             .iter()
             .find(|l| l.0 == scene.contact.normal.law)
@@ -540,9 +570,8 @@ impl GpuScene {
                 neck_reach: laws.neck_reach,
                 law_code,
                 normal_words,
-                rolling: DeviceSubModels::of(&scene.contact)
-                    .map_err(GpuError::Unsupported)?
-                    .rolling(),
+                rolling: sub_models.rolling(),
+                stiffness_damping: sub_models.stiffness_eta.is_some(),
                 // Scenes integrate no orientations (no output reads them).
                 orientation: false,
                 // The energy books of `sim run`.

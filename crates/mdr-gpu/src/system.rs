@@ -121,6 +121,9 @@ pub(crate) struct SystemSpec<'a> {
     pub law_code: u32,
     pub normal_words: u32,
     pub rolling: bool,
+    /// Whether the dashpot is the stiffness-viscous one (`LawConstants`' `η` and reduced mass)
+    /// rather than the Hertzian one.
+    pub stiffness_damping: bool,
     pub orientation: bool,
     /// Whether the force pass books the contacts' works ([`GpuBooks`]).
     pub books: bool,
@@ -689,6 +692,14 @@ impl System {
             )
             .replace("__NN__", &normal_words.to_string())
             .replace("__ROLLING__", if spec.rolling { "true" } else { "false" })
+            .replace(
+                "__STIFFNESS_DAMPING__",
+                if spec.stiffness_damping {
+                    "true"
+                } else {
+                    "false"
+                },
+            )
             .replace("__BOOKED__", if spec.books { "true" } else { "false" })
             .replace("__WALLS__", &nwalls.to_string())
             .replace("__WALL_CONSTANTS__", &wall_constants(&spec.walls))

@@ -1,8 +1,8 @@
 //! The GPU path picks its kernel's tangential, damping and rolling laws by the scene's declared
 //! laws' registered names: every other law of each kind is refused by its own name, with the
 //! names the GPU has, before a device is needed; the shipped scenes' laws (Mindlin, Hertzian
-//! viscous damping, the elastic–plastic rolling spring, and each kind's `none`) are accepted,
-//! with the coefficients their declared keys give.
+//! and stiffness-viscous damping, the elastic–plastic rolling spring, and each kind's `none`)
+//! are accepted, with the coefficients their declared keys give.
 
 use mdr_contact::params::{LawDeclaration, LawKind, Param, Range};
 use mdr_gpu::{gpu_scene_support, DeviceSubModels};
@@ -50,29 +50,26 @@ fn unregistered(name: &'static str, kind: LawKind, params: &'static [Param]) -> 
 const BED_DAMPING: &str = "damping = \"hertzian_viscous\"\ndamping_gamma_n_per_m_s = 50.0\n\
                            damping_tangential_ratio = 0.5\n";
 
+/// The demo damping law: registered by one line, run by the CPU paths, not by the kernel.
 #[test]
 fn a_damping_law_without_a_kernel_is_refused_by_its_registered_name() {
-    let has = "(the GPU has `none` and `hertzian_viscous`)";
-    for (law, keys) in [
-        (
-            "stiffness_viscous",
-            "damping_eta = 0.3\ndamping_tangential_ratio = 0.5\n",
+    let scene = scene_edited(
+        "bed.toml",
+        BED_DAMPING,
+        "damping = \"linear_dashpot\"\ndamping_coefficient_n_s_per_m = 0.1\n",
+    );
+    assert_eq!(
+        scene.contact.sub_models.damping.declaration.name,
+        "linear_dashpot"
+    );
+    let err = refusal(&scene);
+    assert!(
+        err.contains(
+            "`damping = \"linear_dashpot\"` has no GPU kernel (the GPU has `none`, \
+             `hertzian_viscous` and `stiffness_viscous`)"
         ),
-        // The demo law: registered by one line, run by the CPU paths, not by the kernel.
-        ("linear_dashpot", "damping_coefficient_n_s_per_m = 0.1\n"),
-    ] {
-        let scene = scene_edited(
-            "bed.toml",
-            BED_DAMPING,
-            &format!("damping = \"{law}\"\n{keys}"),
-        );
-        assert_eq!(scene.contact.sub_models.damping.declaration.name, law);
-        let err = refusal(&scene);
-        assert!(
-            err.contains(&format!("`damping = \"{law}\"` has no GPU kernel {has}")),
-            "{err}"
-        );
-    }
+        "{err}"
+    );
 }
 
 /// A tangential law declaring Mindlin's `friction` key is still not Mindlin's: the GPU refuses
@@ -154,6 +151,19 @@ fn the_laws_the_kernel_has_are_accepted_with_their_declared_coefficients() {
         (bed.friction, bed.rolling_friction, bed.rolling()),
         (0.5, 0.0, false)
     );
+    assert_eq!(bed.stiffness_eta, None);
+    // The stiffness-viscous dashpot with its `η` (the drum), and with the tangential ratio.
+    let drum = of(&shipped("drum.toml"));
+    assert_eq!(
+        (drum.friction, drum.rolling_friction, drum.stiffness_eta),
+        (0.5, 0.1, Some(0.3))
+    );
+    let tangential = of(&scene_edited(
+        "bed.toml",
+        BED_DAMPING,
+        "damping = \"stiffness_viscous\"\ndamping_eta = 0.25\ndamping_tangential_ratio = 0.5\n",
+    ));
+    assert_eq!(tangential.stiffness_eta, Some(0.25));
     // Mindlin and the rolling spring with μ_r = 0.1.
     let column = of(&shipped("column.toml"));
     assert_eq!(
