@@ -378,6 +378,16 @@ fn radius_classes_round_down_to_n_classes() {
             "= 4 needs radius_max_m > radius_min_m (both are 0.0015 m: one radius): remove it"
         )
     );
+    // Inverted bounds are radius_law's one error, at radius_max_m.
+    let e = the_error(&distributed(
+        "uniform",
+        0.0,
+        0.0,
+        0.002,
+        0.001,
+        "radius_classes = 4",
+    ));
+    assert_eq!(e.key, "particles[0].radius_max_m");
     let e = the_error(&with_particles(&column_group("radius_classes = 4")));
     assert_eq!(
         (e.key.as_str(), e.message.as_str()),
