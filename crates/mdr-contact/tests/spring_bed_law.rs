@@ -432,3 +432,49 @@ fn bed_parameters_are_checked_at_their_limits() {
         "spacing"
     );
 }
+
+/// The bound of `with_spacing` at its edge, on the count alone (a bed of 10⁸ springs would take
+/// 1.2 GB): `L = 5·10⁷ m` and `Δx = 1 m` give exactly `2L/Δx = 10⁸` springs, which are allowed,
+/// and half a metre more gives `10⁸ + 1`, refused naming `spacing` and the limit. Both counts
+/// are exact in f64. A bound `n ≥ 10⁸` in place of `n > 10⁸` fails the first; `n == 10⁸` or
+/// `n < 10⁸` the second.
+#[test]
+fn the_spring_count_for_a_spacing_is_bounded_at_exactly_ten_to_the_eight() {
+    assert_eq!(SpringBed::MAX_SPRINGS, 100_000_000);
+    assert_eq!(
+        SpringBed::spring_count_for_spacing(5e7, 1.0).unwrap(),
+        100_000_000
+    );
+    let refused = SpringBed::spring_count_for_spacing(5e7 + 0.5, 1.0).unwrap_err();
+    assert!(matches!(
+        refused,
+        ContactError::OutOfRange {
+            name: "spacing",
+            value: 1.0,
+            range: "[2 half_width / 1e8, inf)",
+        }
+    ));
+    assert_eq!(
+        refused.to_string(),
+        "parameter `spacing` = 1 is outside the allowed range [2 half_width / 1e8, inf)"
+    );
+    // The count is ⌈2L/Δx⌉, the one `with_spacing` builds (4, 5 and 7 springs above).
+    assert_eq!(SpringBed::spring_count_for_spacing(1.0, 0.5).unwrap(), 4);
+    assert_eq!(SpringBed::spring_count_for_spacing(1.25, 0.5).unwrap(), 5);
+    assert_eq!(SpringBed::spring_count_for_spacing(1.0, 0.3).unwrap(), 7);
+    // Its own parameters are checked first.
+    assert!(matches!(
+        SpringBed::spring_count_for_spacing(0.0, 1.0),
+        Err(ContactError::OutOfRange {
+            name: "half_width",
+            ..
+        })
+    ));
+    assert!(matches!(
+        SpringBed::spring_count_for_spacing(1.0, -1.0),
+        Err(ContactError::OutOfRange {
+            name: "spacing",
+            ..
+        })
+    ));
+}

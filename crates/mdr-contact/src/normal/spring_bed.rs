@@ -81,6 +81,10 @@ pub struct SpringBed {
 }
 
 impl SpringBed {
+    /// The most springs [`SpringBed::with_spacing`] lays out: `10⁸`, whose stored springs'
+    /// positions, heights and weights take 1.2 GB.
+    pub const MAX_SPRINGS: usize = 100_000_000;
+
     /// A bed of `n_springs` springs over `[−half_width, half_width]` for `profile`.
     ///
     /// - `effective_modulus`: `E*` (Pa, > 0), eq. (3);
@@ -117,24 +121,31 @@ impl SpringBed {
         half_width: f64,
         spacing: f64,
     ) -> Result<Self> {
-        positive("half_width", half_width)?;
-        positive("spacing", spacing)?;
-        let count = (2.0 * half_width / spacing).ceil();
-        if count > 1e8 {
-            return Err(ContactError::OutOfRange {
-                name: "spacing",
-                value: spacing,
-                range: "[2 half_width / 1e8, inf)",
-            });
-        }
         Self::new(
             profile,
             effective_modulus,
             critical_line_load,
             hardening_ratio,
             half_width,
-            count as usize,
+            Self::spring_count_for_spacing(half_width, spacing)?,
         )
+    }
+
+    /// The spring count `n = ⌈2L/Δx⌉` that [`SpringBed::with_spacing`] uses for a half-width
+    /// `L` (m, > 0) and a spacing `Δx` (m, > 0), checked before anything is allocated: at most
+    /// [`SpringBed::MAX_SPRINGS`], else `spacing` is out of range.
+    pub fn spring_count_for_spacing(half_width: f64, spacing: f64) -> Result<usize> {
+        positive("half_width", half_width)?;
+        positive("spacing", spacing)?;
+        let count = (2.0 * half_width / spacing).ceil();
+        if count > Self::MAX_SPRINGS as f64 {
+            return Err(ContactError::OutOfRange {
+                name: "spacing",
+                value: spacing,
+                range: "[2 half_width / 1e8, inf)",
+            });
+        }
+        Ok(count as usize)
     }
 
     /// A sphere of the pair's effective radius (parabolic profile `g = x²/R`) with the MDR

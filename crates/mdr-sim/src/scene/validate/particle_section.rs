@@ -267,6 +267,18 @@ impl Checker<'_, '_> {
             (Some(lo), Some(hi)) if lo.is_finite() && hi.is_finite() && hi > lo => {
                 Some(Some((lo, (hi - lo) / n as f64)))
             }
+            // radius_law takes equal positive bounds (one radius), which have no classes; it
+            // reports the others.
+            (Some(lo), Some(hi)) if hi == lo && lo > 0.0 && lo.is_finite() => {
+                self.error(
+                    &key,
+                    format!(
+                        "= {n} needs radius_max_m > radius_min_m (both are {lo} m: one radius): \
+                         remove it"
+                    ),
+                );
+                None
+            }
             // radius_law reports the bounds' own problems.
             _ => None,
         }
