@@ -293,6 +293,17 @@ fn bad_flag_values_name_the_flag() {
             "--springs",
         ),
         (
+            &[
+                "impact",
+                "curve",
+                "--method",
+                "springs",
+                "--springs",
+                "100000001",
+            ],
+            "--springs",
+        ),
+        (
             &["impact", "curve", "--method", "springs", "--law", "hertz"],
             "--method",
         ),

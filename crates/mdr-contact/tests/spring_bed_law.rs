@@ -478,3 +478,26 @@ fn the_spring_count_for_a_spacing_is_bounded_at_exactly_ten_to_the_eight() {
         })
     ));
 }
+
+/// A spring count beyond [`SpringBed::MAX_SPRINGS`] is refused before anything is allocated,
+/// naming `n_springs` and its range: without the bound, `usize::MAX` springs abort the process
+/// on the allocation of their positions.
+#[test]
+fn a_spring_count_beyond_ten_to_the_eight_is_refused_before_allocation() {
+    for n in [SpringBed::MAX_SPRINGS + 1, usize::MAX] {
+        let refused = SpringBed::new(Sphere::new(1.0).unwrap(), E_STAR, Q_C, THETA, 1.0, n)
+            .err()
+            .expect("refused");
+        assert!(
+            matches!(
+                refused,
+                ContactError::OutOfRange {
+                    name: "n_springs",
+                    range: "[2, 1e8]",
+                    ..
+                }
+            ),
+            "{refused}"
+        );
+    }
+}

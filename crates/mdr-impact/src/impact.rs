@@ -265,12 +265,8 @@ impl Impact {
                     "the spring bed is the MDR law: use it with --law mdr",
                 ));
             }
-            if springs < 2 {
-                return Err(ImpactError::invalid(
-                    "springs",
-                    springs,
-                    "at least 2 springs",
-                ));
+            if !(2..=mdr_contact::normal::SpringBed::MAX_SPRINGS).contains(&springs) {
+                return Err(ImpactError::invalid("springs", springs, "2 to 1e8 springs"));
             }
         }
         if self.tangential == TangentialSpec::SpringBed

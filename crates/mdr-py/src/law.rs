@@ -652,8 +652,8 @@ impl MdrLaw {
 /// `method` ("closed" or "springs") and `springs` as the CLI's `--method`/`--springs`.
 pub fn parse_method(method: &str, springs: Option<usize>) -> PyResult<Option<Method>> {
     if let Some(n) = springs {
-        if n < 2 {
-            return Err(invalid("springs", format!("{n} (at least 2 springs)")));
+        if !(2..=mdr_contact::normal::SpringBed::MAX_SPRINGS).contains(&n) {
+            return Err(invalid("springs", format!("{n} (2 to 1e8 springs)")));
         }
     }
     match method {

@@ -438,9 +438,10 @@ impl Settings {
             ));
         }
         let springs = a.springs.unwrap_or(DEFAULT_SPRINGS);
-        if springs < 2 {
+        if !(2..=mdr_contact::normal::SpringBed::MAX_SPRINGS).contains(&springs) {
             return Err(anyhow!(
-                "invalid value for --springs: {springs} (at least 2 springs)"
+                "invalid value for --springs: {springs} (2 to {} springs)",
+                mdr_contact::normal::SpringBed::MAX_SPRINGS
             ));
         }
         if a.springs.is_some() && a.method == Some(MethodName::Closed) {

@@ -92,7 +92,8 @@ impl SpringBed {
     /// - `hardening_ratio`: `Θ/E*` in `[0, 1]`;
     /// - `half_width`: `L` (m, > 0, at most the profile's [`Profile::max_radius`]); springs cover
     ///   contact radii up to `L`;
-    /// - `n_springs` ≥ 2: the number of springs over the full width `2L`, so `Δx = 2L/n`.
+    /// - `n_springs` in `[2, MAX_SPRINGS]`: the number of springs over the full width `2L`, so
+    ///   `Δx = 2L/n`.
     pub fn new<P: Profile + 'static>(
         profile: P,
         effective_modulus: f64,
@@ -224,6 +225,14 @@ impl SpringBed {
                 name: "n_springs",
                 value: n_springs,
                 min: 2,
+            });
+        }
+        // Bounded before the springs are allocated (a count from the user, e.g. `--springs`).
+        if n_springs > Self::MAX_SPRINGS {
+            return Err(ContactError::OutOfRange {
+                name: "n_springs",
+                value: n_springs as f64,
+                range: "[2, 1e8]",
             });
         }
         let spacing = 2.0 * half_width / n_springs as f64;
