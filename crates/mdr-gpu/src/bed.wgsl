@@ -26,7 +26,7 @@
 // The plastic work of the live contacts is a function of their histories, read back at a
 // sample.
 //
-// With `SINK` (a scene's `[run] delete_below_m`, `__SINK_CONSTANTS__` written in by the host),
+// With `SINK` (a scene's `[run] delete_below_m`, its constants written in by the host),
 // the integration parks every sphere whose new centre lies below `SINK_HEIGHT` along `SINK_UP`
 // as the CPU run's `Sink::apply` does at the start of the next step: on its own spot (`tables`
 // after the species, three words per particle), at rest, booking the kinetic energy and the

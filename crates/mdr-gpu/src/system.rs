@@ -433,7 +433,10 @@ impl System {
         // over the particles' extent with a margin (particles beyond it are clamped into the
         // edge cells, which keeps neighbouring cells neighbours).
         // The sink's parking spots lie in the grid too: parked spheres fill no edge cell.
-        let spots = spec.sink.map(|sink| spot_words(sink, n)).unwrap_or_default();
+        let spots = spec
+            .sink
+            .map(|sink| spot_words(sink, n))
+            .unwrap_or_default();
         let extent = || {
             spec.position
                 .iter()
@@ -708,7 +711,10 @@ impl System {
             .replace("__NN__", &normal_words.to_string())
             .replace("__ROLLING__", if spec.rolling { "true" } else { "false" })
             .replace("__BOOKED__", if spec.books { "true" } else { "false" })
-            .replace("__SINK__", if spec.sink.is_some() { "true" } else { "false" })
+            .replace(
+                "__SINK__",
+                if spec.sink.is_some() { "true" } else { "false" },
+            )
             .replace("__SINK_CONSTANTS__", &sink_constants(spec.sink))
             .replace("__WALLS__", &nwalls.to_string())
             .replace("__WALL_CONSTANTS__", &wall_constants(&spec.walls))
