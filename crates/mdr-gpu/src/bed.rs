@@ -97,6 +97,7 @@ impl GpuBed {
                 orientation: settings.orientation,
                 // The benchmark keeps no books (the CPU bench's `NoBooks`).
                 books: false,
+                sink: None,
                 options: *options,
             },
         )?;

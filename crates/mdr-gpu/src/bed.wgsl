@@ -25,6 +25,13 @@
 // `dissipated_work` less its adhesive work, when the contact separates or a rebuild drops it).
 // The plastic work of the live contacts is a function of their histories, read back at a
 // sample.
+//
+// With `SINK` (a scene's `[run] delete_below_m`, its constants written in by the host),
+// the integration parks every sphere whose new centre lies below `SINK_HEIGHT` along `SINK_UP`
+// as the CPU run's `Sink::apply` does at the start of the next step: on its own spot (`tables`
+// after the species, three words per particle), at rest, booking the kinetic energy and the
+// gravitational energy above its spot into its `B_REMOVED` word, and requesting a rebuild when
+// it moved more than the sink's jump distance.
 
 
 const MAXN: u32 = __MAXN__u;
@@ -35,8 +42,11 @@ const ROLLING: bool = __ROLLING__;
 // constant of the run, so the other laws' force pass has no branch for it.
 const STIFFNESS_DAMPING: bool = __STIFFNESS_DAMPING__;
 const BOOKED: bool = __BOOKED__;
-// Words per particle of `books` (`crate::system::GpuBooks`).
-const BOOK_WORDS: u32 = 8u;
+const SINK: bool = __SINK__;
+// Words per particle of `books` (`crate::system::GpuBooks`); the force pass books the first
+// `CONTACT_BOOK_WORDS`, the integration the energy parked spheres take out of the run.
+const BOOK_WORDS: u32 = 9u;
+const CONTACT_BOOK_WORDS: u32 = 8u;
 const B_PLASTIC: u32 = 0u;
 const B_FRICTION: u32 = 1u;
 const B_DAMPING: u32 = 2u;
@@ -45,6 +55,8 @@ const B_TANGENTIAL_STIFFNESS: u32 = 4u;
 const B_ROLLING_STIFFNESS: u32 = 5u;
 const B_ADHESIVE: u32 = 6u;
 const B_WALL_WORK: u32 = 7u;
+const B_REMOVED: u32 = 8u;
+__SINK_CONSTANTS__
 // f64 words per slot of `h_state`: the normal law's state, then the rolling law's (torque,
 // stiffness).
 const NR: u32 = select(0u, 4u, ROLLING);
@@ -176,7 +188,7 @@ struct Params {
 
 // The works the current thread's contacts booked in this pass, and the share of the contact
 // being evaluated that is this particle's (1 for a wall contact, ½ for a sphere pair).
-var<private> booked: array<f64, BOOK_WORDS>;
+var<private> booked: array<f64, CONTACT_BOOK_WORDS>;
 var<private> book_share: f64;
 
 fn book(word: u32, work: f64) {
@@ -1095,7 +1107,7 @@ fn book_released_tangential_spring(law: Law, xi: vec3<f64>, radius: f64) {
 // Add this pass's works to particle `i`'s books.
 fn store_books(i: u32) {
     if BOOKED {
-        for (var w = 0u; w < BOOK_WORDS; w++) {
+        for (var w = 0u; w < CONTACT_BOOK_WORDS; w++) {
             books[BOOK_WORDS * i + w] += booked[w];
         }
     }
@@ -1478,7 +1490,7 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
     let ri = radius_of(si);
     var force = zero;
     var torque = zero;
-    for (var w = 0u; w < BOOK_WORDS; w++) {
+    for (var w = 0u; w < CONTACT_BOOK_WORDS; w++) {
         booked[w] = 0.0lf;
     }
     book_share = 1.0lf;
@@ -1610,7 +1622,33 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
 
 // ---------------------------------------------------------------------------------------------
 // Integration: the CPU stepper's step 4 (rapier's symplectic Euler with one solver iteration),
-// and the rebuild decision of the next step (a particle moved more than half the skin).
+// the sink of the next step (`SINK`), and the rebuild decision of the next step (a particle
+// moved more than half the skin, or a sphere jumped onto its parking spot).
+
+// `Sink::apply` and `Sink::lost_energy` (mdr-sim's walls/sink.rs) for sphere `i` (mass `m`,
+// radius `r`) at `x` moving with `v`, `w`, below the sink: it is held at rest on its spot, what
+// it takes out of the run (kinetic, `I = (2/5) m r²` as the CPU run counts it, and
+// gravitational above its spot) is booked, and a jump onto the spot requests a rebuild.
+// Returns the spot.
+fn park(i: u32, x: vec3<f64>, v: vec3<f64>, w: vec3<f64>, m: f64, r: f64) -> vec3<f64> {
+    let at = SPECIES_WORDS * p.species + 3u * i;
+    let spot = vec3<f64>(tables[at], tables[at + 1u], tables[at + 2u]);
+    let moment = 0.4lf * m * r * r;
+    let lost = 0.5lf * m * dot3(v, v) + 0.5lf * moment * dot3(w, w)
+        + m * SINK_GRAVITY * dot3(SINK_UP, x - spot);
+    if BOOKED {
+        books[BOOK_WORDS * i + B_REMOVED] += lost;
+    }
+    let jump = x - spot;
+    if dot3(jump, jump) > SINK_JUMP_DISTANCE * SINK_JUMP_DISTANCE {
+        atomicOr(&status[S_REBUILD], 1u);
+    }
+    let zero = vec3<f64>(0.0lf, 0.0lf, 0.0lf);
+    store_pos(i, spot);
+    store_vel(i, zero);
+    store_angvel(i, zero);
+    return spot;
+}
 
 @compute @workgroup_size(64)
 fn integrate(@builtin(global_invocation_id) gid: vec3<u32>) {
@@ -1652,8 +1690,12 @@ fn integrate(@builtin(global_invocation_id) gid: vec3<u32>) {
             rotation[4u * i + k] = r[k];
         }
     }
+    var moved = x;
+    if SINK && dot3(x, SINK_UP) < SINK_HEIGHT {
+        moved = park(i, x, v, w, mass, tables[t]);
+    }
     let b = load_built(i);
-    let e = x - b;
+    let e = moved - b;
     if sqrt(dot3(e, e)) > 0.5lf * p.skin {
         atomicOr(&status[S_REBUILD], 1u);
     }

@@ -316,6 +316,7 @@ fn device_books(
         rolling_stiffness: -b.stiffness_rolling,
         adhesive: b.adhesive,
         wall_work: b.wall_work,
+        removed: b.removed,
     };
     for r in lists.pair_histories.iter().chain(&lists.surface_histories) {
         let books = &r.contact.books;

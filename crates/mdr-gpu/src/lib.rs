@@ -31,6 +31,7 @@ mod device;
 mod law;
 mod run;
 mod scene;
+mod sink;
 mod system;
 mod walls;
 

@@ -19,9 +19,9 @@
 //! step, per particle, in f64 ([`GpuBooks`]), and summed in particle order at a sample; the
 //! balance then closes as the CPU run's does, and the energy guard stops a run whose balance
 //! drifts beyond `max_energy_drift` at the sample where the CPU run would stop (the same
-//! message). The turning walls' work is booked on the device like the other works; the GPU has
-//! no sinks, so the removed energy is zero. A scene that asks for a contact network is refused
-//! with the key named ([`gpu_run_support`]).
+//! message). The turning walls' work is booked on the device like the other works, and so is
+//! the energy the spheres the sink parks take out of the run. A scene that asks for a contact
+//! network is refused with the key named ([`gpu_run_support`]).
 //!
 //! Checkpoints are the CPU run's ([`mdr_sim::run::CheckpointData`], written where the CPU run
 //! writes them: every `checkpoint_interval_s`, at an interrupt and at the end), taken before
@@ -50,7 +50,7 @@ use std::time::{Duration, Instant};
 /// order (and `adhesive_j` after them when a row books adhesive work, as the CPU run writes
 /// it): the kinetic and gravitational energies from the state read back, the elastic energies
 /// the contacts' histories store, the works booked on the device, the balance, and the
-/// contacts alive. `removed_j` is zero (the GPU has no sinks).
+/// contacts alive. `removed_j` is the energy the sink's parked spheres took out of the run.
 pub const GPU_ENERGY_COLUMNS: [&str; 17] = [
     "time_s",
     "kinetic_translational_j",
@@ -131,6 +131,9 @@ pub struct GpuEnergyRow {
     pub adhesive_j: f64,
     /// Work the turning walls did on the particles since the start (J).
     pub wall_work_j: f64,
+    /// Energy the spheres the sink (`[run] delete_below_m`) parked took out of the run since
+    /// the start (J).
+    pub removed_j: f64,
     /// The sum of the books (`EnergyRow::with_balance`): constant in an exact integration.
     pub balance_j: f64,
 }
@@ -155,12 +158,12 @@ impl GpuEnergyRow {
             stiffness_rolling_j: row.stiffness_rolling_j,
             adhesive_j: row.adhesive_j,
             wall_work_j: row.wall_work_j,
+            removed_j: row.removed_j,
             balance_j: row.balance_j,
         }
     }
 
-    /// The row in the CPU run's type (for its CSV writer and for a checkpoint); the removed
-    /// spheres' energy is zero (the GPU has no sinks).
+    /// The row in the CPU run's type (for its CSV writer and for a checkpoint).
     fn as_energy_row(&self) -> EnergyRow {
         EnergyRow {
             time_s: self.time_s,
@@ -180,7 +183,7 @@ impl GpuEnergyRow {
             adhesive_j: self.adhesive_j,
             balance_j: self.balance_j,
             wall_work_j: self.wall_work_j,
-            removed_j: 0.0,
+            removed_j: self.removed_j,
         }
     }
 }
@@ -648,6 +651,7 @@ impl GpuRun<'_> {
         row.plastic_j = booked.plastic + live_plastic;
         row.adhesive_j = booked.adhesive;
         row.wall_work_j = booked.wall_work;
+        row.removed_j = booked.removed;
         row.friction_j = booked.friction;
         row.damping_j = booked.damping;
         row.rolling_j = booked.rolling;
@@ -735,6 +739,7 @@ fn cpu_books(state: &GpuState) -> Books {
     books.stiffness_tangential = -total.tangential_stiffness;
     books.stiffness_rolling = -total.rolling_stiffness;
     books.wall_work = total.wall_work;
+    books.removed = total.removed;
     for (p, b) in books.particle_plastic.iter_mut().zip(&state.books) {
         *p = b.plastic;
     }

@@ -1,7 +1,8 @@
 //! Scenes on the GPU ([`GpuScene`]): force-mode scenes whose walls the device has (planes,
 //! boxes, and cylinders, cones and orifice plates as exact surfaces of revolution; fixed,
 //! turning about their own axis, or removed at a time: `crate::walls`), with the laws the CPU
-//! neighbour-list path binds for them, species pair by species pair.
+//! neighbour-list path binds for them, species pair by species pair, and with or without a
+//! sink (`[run] delete_below_m`: the CPU run's parking, `crate::sink`).
 //!
 //! The kernel's laws are chosen by the scene's declared laws' registered names
 //! ([`DeviceSubModels`]): the normal law by [`DEVICE_LAWS`], the tangential, damping and rolling
@@ -10,7 +11,7 @@
 //!
 //! A scene the device does not have every part of is refused ([`gpu_scene_support`]) with the
 //! part named: a mesh wall, a cylinder, cone or orifice plate of flat pieces, a turning box or a
-//! surface turning about another axis than its own, a sink, restitution mode, the rapier
+//! surface turning about another axis than its own, restitution mode, the rapier
 //! pipeline path, Thornton's LIGGGHTS unloading branch, or a normal, tangential, damping or
 //! rolling law without a device kernel (by its registered name, with the names the device has).
 
@@ -21,6 +22,7 @@ use crate::law::{
     add_stiffness_damping, adhesive_constants, bound_constants, hertz_constants, mdr_law_constants,
     thornton_constants, LawConstants,
 };
+use crate::sink::park_state;
 use crate::system::{GpuOptions, GpuState, System, SystemSpec};
 use crate::walls::{removal_stage, removal_steps, scene_walls, wall_support, DeviceWall, Plane};
 use mdr_contact::damping::{HertzianViscous, NoDamping, StiffnessViscous};
@@ -36,6 +38,7 @@ use mdr_rapier::particles::SphereBuilder;
 use mdr_sim::laws::registry::{sub_model_kind, SceneParts};
 use mdr_sim::laws::{AnyDamping, AnyDampingLaw, SceneNormal, SceneRolling};
 use mdr_sim::scene::{ContactSpec, CouplingMode, DampingSpec, ForcePath, SubModelSpec};
+use mdr_sim::walls::Sink;
 use mdr_sim::Scene;
 use nalgebra::Vector3;
 use rapier3d_f64::prelude::{ColliderBuilder, PhysicsWorld, SharedShape};
@@ -189,9 +192,6 @@ pub fn gpu_scene_support(scene: &Scene) -> Result<(), GpuError> {
     }
     if let Err(refusal) = DeviceSubModels::of(&scene.contact) {
         return refuse(refusal);
-    }
-    if scene.source.run.delete_below_m.is_some() {
-        return refuse("the sink `[run] delete_below_m` runs on the CPU only".into());
     }
     Ok(())
 }
@@ -498,6 +498,8 @@ pub struct GpuScene {
     /// wall`.
     sphere_energies: Vec<ElasticEnergies>,
     wall_energies: Vec<ElasticEnergies>,
+    /// The scene's sink (`[run] delete_below_m`): the CPU run's, spots and all.
+    sink: Option<Sink>,
 }
 
 impl std::fmt::Debug for GpuScene {
@@ -552,6 +554,7 @@ impl GpuScene {
         let position: Vec<_> = scene.particles.iter().map(|p| p.position).collect();
         let linvel: Vec<_> = scene.particles.iter().map(|p| p.velocity).collect();
         let angvel = vec![Vector3::zeros(); position.len()];
+        let sink = mdr_sim::run::scene_sink(scene);
         let system = System::new(
             ctx,
             &SystemSpec {
@@ -576,13 +579,14 @@ impl GpuScene {
                 orientation: false,
                 // The energy books of `sim run`.
                 books: true,
+                sink: sink.as_ref(),
                 options: GpuOptions {
                     laws: None,
                     ..*options
                 },
             },
         )?;
-        Ok(Self {
+        let mut gpu = Self {
             system,
             wall_of_plane: walls.iter().map(|w| w.wall).collect(),
             removal_steps: removal_steps(&walls),
@@ -594,7 +598,17 @@ impl GpuScene {
             box_len,
             sphere_energies: laws.sphere_energies,
             wall_energies: laws.wall_energies,
-        })
+            sink,
+        };
+        // The CPU run's first step parks the spheres that start below the sink before its
+        // force pass (the device parks at the end of each step): the set-up loads them parked.
+        if let Some(sink) = &gpu.sink {
+            if position.iter().any(|x| sink.is_removed(x)) {
+                let state = gpu.system.state()?;
+                gpu.load(&state, 0)?;
+            }
+        }
+        Ok(gpu)
     }
 
     /// The elastic energies stored in the contacts of `state` (read back at a sample, where
@@ -756,9 +770,24 @@ impl GpuScene {
     }
 
     /// Put `state` on the device as the state after `steps` steps, before the force pass of
-    /// the next one (a checkpoint's: [`GpuScene::state`] read there gives it back). A particle
-    /// with more listed neighbours than the slots is refused ([`GpuError::NeighbourOverflow`]).
+    /// the next one (a checkpoint's: [`GpuScene::state`] read there gives it back). Spheres
+    /// below the sink are parked first, as the CPU run parks them at the start of the step
+    /// (a CPU checkpoint is written before that; the device's states are parked already). A
+    /// particle with more listed neighbours than the slots is refused
+    /// ([`GpuError::NeighbourOverflow`]).
     pub fn load(&mut self, state: &GpuState, steps: u64) -> Result<(), GpuError> {
-        self.system.load(state, steps)
+        match &self.sink {
+            Some(sink) => {
+                let mut state = state.clone();
+                park_state(sink, &mut state, &self.mass, &self.radius);
+                self.system.load(&state, steps)
+            }
+            None => self.system.load(state, steps),
+        }
+    }
+
+    /// The scene's sink (`[run] delete_below_m`), if it has one.
+    pub fn sink(&self) -> Option<&Sink> {
+        self.sink.as_ref()
     }
 }

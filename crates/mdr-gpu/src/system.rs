@@ -5,8 +5,10 @@
 
 use crate::device::{GpuContext, GpuError};
 use crate::law::LawConstants;
+use crate::sink::{sink_constants, spot_words};
 use crate::walls::{wall_constants, DeviceWall};
 use mdr_rapier::neighbour_list::particles::Species;
+use mdr_sim::walls::Sink;
 use nalgebra::Vector3;
 use wgpu::util::DeviceExt;
 
@@ -127,12 +129,15 @@ pub(crate) struct SystemSpec<'a> {
     pub orientation: bool,
     /// Whether the force pass books the contacts' works ([`GpuBooks`]).
     pub books: bool,
+    /// The scene's sink (`[run] delete_below_m`), whose spheres the integration parks.
+    pub sink: Option<&'a Sink>,
     pub options: GpuOptions,
 }
 
 /// The works one particle's contacts booked on the device since the start (J), summed over
 /// its steps in the force pass (`bed.wgsl`, `BOOKED`); a sphere pair books half of each work
-/// into each of its spheres. The field order is the shader's (`B_*`).
+/// into each of its spheres. The energy the particle took out of the run when the sink parked
+/// it is booked by the integration. The field order is the shader's (`B_*`).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct GpuBooks {
@@ -155,6 +160,9 @@ pub struct GpuBooks {
     /// Work the turning walls did on the particle (their force times the wall's velocity at
     /// the contact point, per step).
     pub wall_work: f64,
+    /// Kinetic and gravitational energy the particle took out of the run when the sink
+    /// (`[run] delete_below_m`) parked it, less what it has on its spot.
+    pub removed: f64,
 }
 
 impl GpuBooks {
@@ -171,6 +179,7 @@ impl GpuBooks {
         self.rolling_stiffness += other.rolling_stiffness;
         self.adhesive += other.adhesive;
         self.wall_work += other.wall_work;
+        self.removed += other.removed;
     }
 
     /// The sum over `books`, in their order.
@@ -426,10 +435,21 @@ impl System {
         // The binning grid: cells of side ≥ cutoff; periodic x/y cells over the box, or cells
         // over the particles' extent with a margin (particles beyond it are clamped into the
         // edge cells, which keeps neighbouring cells neighbours).
+        // The sink's parking spots lie in the grid too: parked spheres fill no edge cell.
+        let spots = spec
+            .sink
+            .map(|sink| spot_words(sink, n))
+            .unwrap_or_default();
+        let extent = || {
+            spec.position
+                .iter()
+                .copied()
+                .chain(spots.chunks_exact(3).map(Vector3::from_column_slice))
+        };
         let (xr, yr, zr) = (
-            range_of(spec.position.iter().map(|p| p.x)),
-            range_of(spec.position.iter().map(|p| p.y)),
-            range_of(spec.position.iter().map(|p| p.z)),
+            range_of(extent().map(|p| p.x)),
+            range_of(extent().map(|p| p.y)),
+            range_of(extent().map(|p| p.z)),
         );
         let open_axis = |(lo, hi): (f64, f64)| {
             let margin = 0.5 * (hi - lo) + cutoff;
@@ -494,7 +514,7 @@ impl System {
             ("cell counts", bytes_of(&[ncells, 4])),
             ("cell items", bytes_of(&[ncells, cap, 4])),
             ("species", bytes_of(&[n64, 4])),
-            ("tables", bytes_of(&[4 * ns64, 8])),
+            ("tables", bytes_of(&[4 * ns64 + spots.len() as u64, 8])),
             (
                 "laws",
                 bytes_of(&[ns64, ns64 + nwalls as u64, 8 * LAW_WORDS]),
@@ -583,6 +603,7 @@ impl System {
             .species_table
             .iter()
             .flat_map(|s| [s.radius, s.mass, s.inv_mass, s.inv_inertia])
+            .chain(spots.iter().copied())
             .collect();
         let laws: Vec<LawConstants> = spec
             .sphere_laws
@@ -701,6 +722,11 @@ impl System {
                 },
             )
             .replace("__BOOKED__", if spec.books { "true" } else { "false" })
+            .replace(
+                "__SINK__",
+                if spec.sink.is_some() { "true" } else { "false" },
+            )
+            .replace("__SINK_CONSTANTS__", &sink_constants(spec.sink))
             .replace("__WALLS__", &nwalls.to_string())
             .replace("__WALL_CONSTANTS__", &wall_constants(&spec.walls))
             .replace(

@@ -364,7 +364,7 @@ fn wgsl_list(values: Vec<String>, empty: &str) -> String {
 
 /// A WGSL `vec3<f64>`. Rust's `{:?}` writes the shortest decimal that reads back as the same
 /// double, so the device gets the exact values.
-fn wgsl_vector(v: &Vector3<f64>) -> String {
+pub(crate) fn wgsl_vector(v: &Vector3<f64>) -> String {
     format!("vec3<f64>({:?}lf, {:?}lf, {:?}lf)", v.x, v.y, v.z)
 }
 

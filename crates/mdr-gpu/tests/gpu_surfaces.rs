@@ -377,40 +377,18 @@ fn a_hopper_whose_gate_is_removed_matches_the_cpu_path() {
     }
 }
 
+#[path = "common/scenes.rs"]
+mod scenes;
+
 fn scene_file(name: &str) -> Scene {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../scenes")
-        .join(name);
-    load_scene(&path).unwrap_or_else(|p| panic!("{p}"))
+    scenes::scene_file(name)
 }
 
-/// The built-in scene `name` with `replace` applied to its text, written under the test's
-/// scratch directory.
 fn edited_scene(name: &str, replace: &[(&str, &str)]) -> Scene {
-    let from = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../scenes")
-        .join(name);
-    let mut text = std::fs::read_to_string(&from).unwrap();
-    for (old, new) in replace {
-        assert!(text.contains(old), "{name}: {old}");
-        text = text.replace(old, new);
-    }
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu_surfaces_scenes");
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    load_scene(&path).unwrap_or_else(|p| panic!("{p}"))
+    scenes::edited_scene("gpu_surfaces_scenes", name, replace)
 }
 
-/// The built-in hopper's damping swapped for the Hertzian dashpot of the scenes above (the
-/// drum is taken as shipped).
-const HERTZIAN_DAMPING: [(&str, &str); 2] = [
-    (
-        "damping = \"stiffness_viscous\"",
-        "damping = \"hertzian_viscous\"\ndamping_gamma_n_per_m_s = 1.0e4\n#",
-    ),
-    ("damping_eta = 0.3", ""),
-];
+use scenes::HERTZIAN_DAMPING;
 
 /// The built-in drum (a turning capped cylinder, as shipped), hopper (a cylinder on an orifice plate) and
 /// funnel (a cone over a cylindrical spout closed by a plug removed at a time) have walls the
@@ -421,16 +399,9 @@ const HERTZIAN_DAMPING: [(&str, &str); 2] = [
 fn the_drum_hopper_and_funnel_walls_are_accepted_and_the_rest_refused_by_name() {
     let drum = scene_file("drum.toml");
     gpu_scene_support(&drum).unwrap_or_else(|e| panic!("drum: {e}"));
-    let hopper = edited_scene(
-        "hopper.toml",
-        &[
-            HERTZIAN_DAMPING[0],
-            HERTZIAN_DAMPING[1],
-            ("delete_below_m = -0.03", ""),
-        ],
-    );
+    let hopper = edited_scene("hopper.toml", &HERTZIAN_DAMPING);
     gpu_scene_support(&hopper).unwrap_or_else(|e| panic!("hopper: {e}"));
-    let funnel = edited_scene("funnel.toml", &[("delete_below_m = -20.0", "")]);
+    let funnel = scene_file("funnel.toml");
     assert!(funnel.walls[2].removed_at.is_some());
     gpu_scene_support(&funnel).unwrap_or_else(|e| panic!("funnel: {e}"));
     // What the unedited scenes are still refused for is not a wall.

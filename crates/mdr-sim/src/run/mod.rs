@@ -870,8 +870,9 @@ pub fn one_diameter_lift_j(scene: &Scene) -> f64 {
         .sum()
 }
 
-/// The scene's sink (`[run] delete_below_m`), if it has one.
-fn scene_sink(scene: &Scene) -> Option<crate::walls::Sink> {
+/// The scene's sink (`[run] delete_below_m`), if it has one (the GPU path parks its spheres
+/// on the same spots).
+pub fn scene_sink(scene: &Scene) -> Option<crate::walls::Sink> {
     let height = scene.source.run.delete_below_m?;
     let g = scene.gravity.norm();
     let up = if g > 0.0 {

@@ -88,6 +88,12 @@ impl Sink {
         self.spots[i]
     }
 
+    /// How far (m) a sphere moved onto its spot for [`Parking::jumped`]: a quarter of the
+    /// largest radius.
+    pub fn jump_distance(&self) -> f64 {
+        0.25 * self.r_max
+    }
+
     /// Hold every sphere below the height at rest on its spot; `inertia(i)` gives sphere `i`'s
     /// mass and moment of inertia.
     pub fn apply(
@@ -108,7 +114,7 @@ impl Sink {
                 let (m, moment) = inertia(i);
                 parking.energy += self.lost_energy(i, m, moment, x, v, w);
                 let spot = self.spots[i];
-                parking.jumped |= (*x - spot).norm_squared() > (0.25 * self.r_max).powi(2);
+                parking.jumped |= (*x - spot).norm_squared() > self.jump_distance().powi(2);
                 *x = spot;
                 *v = Vector3::zeros();
                 *w = Vector3::zeros();
@@ -138,7 +144,7 @@ impl Sink {
                 parking.energy += self.lost_energy(i, m, 0.4 * m * r * r, &x, &v, &w);
                 let spot = self.spots[i];
                 if x != spot {
-                    parking.jumped |= (x - spot).norm_squared() > (0.25 * self.r_max).powi(2);
+                    parking.jumped |= (x - spot).norm_squared() > self.jump_distance().powi(2);
                     body.set_translation(to_glam(&spot), true);
                 }
                 body.set_linvel(to_glam(&Vector3::zeros()), true);
