@@ -479,7 +479,8 @@ fn scene_laws(scene: &Scene, planes: &[(usize, Plane)]) -> Result<SceneLaws, Gpu
 /// A force-mode scene stepped on the device: the steps of the CPU neighbour-list path
 /// (`mdr_sim::run::SceneSteps`) for a scene whose walls the device has ([`gpu_scene_support`]:
 /// planes, boxes, exact cylinders, cones and orifice plates, fixed or turning about their own
-/// axis, removed at a time or not), without the energy books and the headline tracker.
+/// axis, removed at a time or not; a sink), with the energy books on the device
+/// (`crate::run`) and without the headline tracker.
 pub struct GpuScene {
     system: System,
     wall_of_plane: Vec<usize>,
