@@ -465,10 +465,13 @@ where
     /// touching pairs of the chunk without a data-dependent branch, and forget the pairs that
     /// separated. Pass 2 runs the law on the touching ones only, so the unpredictable
     /// touch/apart branch of a mixed list is not taken per pair. With `HOLDS` (adhesive laws)
-    /// a live pair whose contact still holds ([`mdr_contact::normal::NormalLaw::holds`]) counts
-    /// as touching and is evaluated at its negative overlap until its law lets go; without it
-    /// the hold test is compiled away. Not inlined: the loop then keeps its slices and
-    /// counters in registers instead of sharing them with the law's.
+    /// a live pair that no longer overlaps but whose contact still holds
+    /// ([`mdr_contact::normal::NormalLaw::holds`]) counts as touching and is evaluated at its
+    /// negative overlap until its law lets go; the hold test sits in the rare branch of a live
+    /// pair that no longer overlaps (the one that separates pairs), so the other listed pairs
+    /// (most of the longer list that the necks' reach needs) pay nothing for it; without
+    /// `HOLDS` it is compiled away. Not inlined: the loop then keeps its slices and counters in
+    /// registers instead of sharing them with the law's.
     #[inline(never)]
     fn touching<const HOLDS: bool, B: WorkBooks>(
         &self,
@@ -488,19 +491,23 @@ where
             let dist2 = (position[i] - xj).norm_squared();
             let reach = radius[i] + radius[j];
             let touch = !(dist2 >= reach * reach || dist2 == 0.0);
-            let held = HOLDS
-                && chunk.active[k]
-                && dist2 != 0.0
-                && self
-                    .laws(i, j)
-                    .0
-                    .normal
-                    .holds(&chunk.history[k].contact.normal);
             touching.pairs[touching.len] = k as u16;
-            touching.len += usize::from(touch | held);
-            if chunk.active[k] & !(touch | held) {
-                self.separate(chunk, k, ended);
+            let mut live = touch;
+            if chunk.active[k] & !touch {
+                // A live pair that no longer overlaps: it goes on while its contact holds, and
+                // separates otherwise. Only here are the pair's law and history read.
+                live = HOLDS
+                    && dist2 != 0.0
+                    && self
+                        .laws(i, j)
+                        .0
+                        .normal
+                        .holds(&chunk.history[k].contact.normal);
+                if !live {
+                    self.separate(chunk, k, ended);
+                }
             }
+            touching.len += usize::from(live);
         }
         touching
     }
