@@ -4,7 +4,7 @@
 //! out of the run (`removed_j`) and the balance are the CPU run's; checkpoints taken across a
 //! parking continue on either device with the parked spheres parked. Negative controls: the
 //! sink 1 µm higher on the GPU alone, and no sink on the GPU. Then the shipped scenes with a
-//! sink, loaded from disk: the funnel unchanged, the hopper with another damping law. The
+//! sink, loaded from disk and unchanged: the funnel and the hopper. The
 //! device tests need a Vulkan (or Metal/DX12) device with 64-bit floats (on Linux without a
 //! GPU, Mesa's lavapipe).
 
@@ -26,7 +26,7 @@ use mdr_sim::walls::Sink;
 use mdr_sim::{run_scene, RunOptions, Scene};
 use nalgebra::Vector3;
 use scene_end::{CpuEnd, Differences};
-use scenes::{edited_scene, scene_file, HERTZIAN_DAMPING};
+use scenes::scene_file;
 use std::path::{Path, PathBuf};
 
 /// Steps of the sink scene (6 ms).
@@ -460,13 +460,12 @@ fn the_shipped_funnel_runs_unchanged() {
     shipped_scene_follows_the_cpu(&ctx, &scene_file("funnel.toml"), 300, 0.5);
 }
 
-/// `scenes/hopper.toml` from disk, its damping swapped for `hertzian_viscous`: the shipped
-/// `stiffness_viscous` damping has no device kernel on this branch, and the damping law is not
-/// what this compares (the cylinder on the orifice plate, the sink, 20,734 spheres).
+/// `scenes/hopper.toml` unchanged from disk: the cylinder on the orifice plate, the sink and
+/// the stiffness-viscous dashpot, 20,734 spheres.
 #[test]
-fn the_shipped_hopper_with_hertzian_damping_follows_the_cpu_run() {
+fn the_shipped_hopper_follows_the_cpu_run() {
     let ctx = context();
-    let hopper = edited_scene("gpu_sink_scenes", "hopper.toml", &HERTZIAN_DAMPING);
+    let hopper = scene_file("hopper.toml");
     // 8 ms: the lowest spheres, at most 0.2 mm above the plate, land on it.
     let steps = (0.008 / hopper.dt).ceil() as usize;
     shipped_scene_follows_the_cpu(&ctx, &hopper, steps, 0.004);
