@@ -485,9 +485,10 @@ fn the_spring_count_for_a_spacing_is_bounded_at_exactly_ten_to_the_eight() {
 #[test]
 fn a_spring_count_beyond_ten_to_the_eight_is_refused_before_allocation() {
     for n in [SpringBed::MAX_SPRINGS + 1, usize::MAX] {
-        let refused = SpringBed::new(Sphere::new(1.0).unwrap(), E_STAR, Q_C, THETA, 1.0, n)
-            .err()
-            .expect("refused");
+        let Err(refused) = SpringBed::new(Sphere::new(1.0).unwrap(), E_STAR, Q_C, THETA, 1.0, n)
+        else {
+            panic!("{n} springs taken");
+        };
         assert!(
             matches!(
                 refused,

@@ -355,9 +355,18 @@ where
     let table = &stepper.particles().species_table;
     // The stiffness-viscous dashpot's `η` and the pair's reduced mass, as the stepper binds
     // it: `m₁m₂/(m₁ + m₂)` for two spheres, the sphere's mass against a fixed or turning wall.
-    let damping = |c: LawConstants, law: &AnyDampingLaw, mass: f64| match device.stiffness_eta {
-        Some(eta) => add_stiffness_damping(c, law, eta, mass),
-        None => Ok(c),
+    let device_law = |bound, moduli, mass: f64| {
+        let c = bound_constants(
+            bound,
+            moduli,
+            device.friction,
+            device.rolling_friction,
+            &constants,
+        )?;
+        match device.stiffness_eta {
+            Some(eta) => add_stiffness_damping(c, &bound.0.damping, eta, mass),
+            None => Ok(c),
+        }
     };
     let mut sphere = Vec::with_capacity(ns * ns);
     let mut walls = Vec::with_capacity(ns * nw);
@@ -372,17 +381,7 @@ where
                 None => (0.0, 0.0),
             };
             let (ma, mb) = (table[a].mass, table[b].mass);
-            sphere.push(damping(
-                bound_constants(
-                    bound,
-                    m,
-                    device.friction,
-                    device.rolling_friction,
-                    &constants,
-                )?,
-                &bound.0.damping,
-                ma * mb / (ma + mb),
-            )?);
+            sphere.push(device_law(bound, m, ma * mb / (ma + mb))?);
         }
     }
     for (a, species) in table.iter().enumerate() {
@@ -393,17 +392,7 @@ where
                 Some(m) => m.1[a * nw + s],
                 None => (0.0, 0.0),
             };
-            walls.push(damping(
-                bound_constants(
-                    bound,
-                    m,
-                    device.friction,
-                    device.rolling_friction,
-                    &constants,
-                )?,
-                &bound.0.damping,
-                species.mass,
-            )?);
+            walls.push(device_law(bound, m, species.mass)?);
         }
     }
     Ok(SceneLaws {
