@@ -514,7 +514,7 @@ impl MdrLaw {
 impl NormalLaw for MdrLaw {
     type State = MdrState;
 
-    /// The hot path of many-particle runs: [`MdrLaw::touching`].
+    /// The hot path of many-particle runs: `MdrLaw::touching`.
     #[inline]
     fn update(&self, state: &mut MdrState, d: f64) -> NormalResponse {
         self.touching(state, d, TouchingResponse)
