@@ -1,10 +1,17 @@
 //! `mdr-dem sim run --device gpu` from the command line: a sphere dropped onto a plane run on
 //! both devices prints the same headline and writes the same files, checkpoints included; a
 //! CPU checkpoint continues on the GPU with `--resume` (the scene made longer) and a GPU run
-//! writes the checkpoints `checkpoint_interval_s` asks for, none with `--no-checkpoints`; a wall
-//! the GPU lacks and `--no-checkpoints` on the CPU are refused by name (exit 2). Needs a Vulkan
-//! device with 64-bit floats (lavapipe on a machine without a GPU, docs/gpu.md).
+//! writes the checkpoints `checkpoint_interval_s` asks for, none with `--no-checkpoints`; the
+//! shipped hopper, its orifice sweep included, is accepted, and a contact network and
+//! `--no-checkpoints` on the CPU are refused by name (exit 2). A small orifice sweep on the GPU
+//! prints the CPU sweep's table and writes its CSV and run folders; `--resume` of a sweep is
+//! refused on the GPU as on the CPU. Needs a Vulkan device with 64-bit floats (lavapipe on a
+//! machine without a GPU, docs/gpu.md).
 
+#[path = "../crates/mdr-gpu/tests/common/hopper_sweep.rs"]
+mod hopper_sweep;
+
+use hopper_sweep::{write_hopper_sweep, DIAMETERS, NAME};
 use std::path::Path;
 use std::process::{Command, Output};
 
@@ -228,10 +235,10 @@ fn sim_run_on_the_gpu_prints_the_cpu_runs_headline_and_refuses_what_it_lacks() {
     assert_eq!(cpu_flag.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("--no-checkpoints"), "{stderr}");
 
-    // What the GPU run lacks for the hopper, named: its `stiffness_viscous` damping where the
-    // device has no kernel for it, else its orifice sweep.
+    // The shipped hopper, its orifice sweep included, runs on the GPU; a contact network is
+    // refused by its key.
     let hopper = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hopper.toml");
-    let refused = mdr_dem(
+    let checked = mdr_dem(
         &[
             "sim",
             "run",
@@ -243,10 +250,110 @@ fn sim_run_on_the_gpu_prints_the_cpu_runs_headline_and_refuses_what_it_lacks() {
         ],
         path,
     );
+    let stderr = text(&checked.stderr);
+    assert!(checked.status.success(), "{stderr}");
+    assert!(stderr.contains("the GPU path runs this scene"), "{stderr}");
+    std::fs::write(
+        path.join("network.toml"),
+        DROP.replace(
+            "headline = \"drop\"",
+            "headline = \"drop\"\ncontact_network = true",
+        ),
+    )
+    .unwrap();
+    let refused = mdr_dem(
+        &["sim", "run", "network.toml", "--device", "gpu", "--check"],
+        path,
+    );
     let stderr = text(&refused.stderr);
     assert_eq!(refused.status.code(), Some(2), "{stderr}");
-    assert!(
-        stderr.contains("stiffness_viscous") || stderr.contains("orifice_sweep_m"),
-        "{stderr}"
+    assert!(stderr.contains("contact_network"), "{stderr}");
+}
+
+/// The rows of a sweep's `NAME_beverloo.csv`: its header and its numbers.
+fn beverloo_csv(path: &Path) -> (String, Vec<Vec<f64>>) {
+    let csv = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut lines = csv.lines();
+    let header = lines.next().unwrap_or_default().to_owned();
+    let rows = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    (header, rows)
+}
+
+/// A small hopper sweep (three diameters, about 150 spheres) with `--device gpu` prints what the
+/// CPU sweep prints (each run's headline, the sweep's table and fit), writes the same run
+/// folders and the CSV with the CPU's columns and rates: the same bits, as
+/// `crates/mdr-gpu/tests/gpu_sweep.rs` measures (the trajectories differ by 10⁻¹³ diameters,
+/// which moves no sphere across the discharge height at a sample); `--resume` is refused for a
+/// sweep.
+#[test]
+fn an_orifice_sweep_on_the_gpu_prints_the_cpu_sweeps_table_and_writes_its_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path();
+    write_hopper_sweep(path, &DIAMETERS);
+    let cpu = mdr_dem(
+        &["sim", "run", "hopper.toml", "--quiet", "--out", "cpu"],
+        path,
     );
+    assert!(cpu.status.success(), "{}", text(&cpu.stderr));
+    let gpu = mdr_dem(
+        &[
+            "sim",
+            "run",
+            "hopper.toml",
+            "--quiet",
+            "--out",
+            "gpu",
+            "--device",
+            "gpu",
+        ],
+        path,
+    );
+    let (stdout, stderr) = (text(&gpu.stdout), text(&gpu.stderr));
+    assert!(gpu.status.success(), "{stderr}");
+    let cpu_stdout = text(&cpu.stdout);
+    assert!(cpu_stdout.contains("orifice sweep:\n"), "{cpu_stdout}");
+    assert!(cpu_stdout.contains("fitted W = C"), "{cpu_stdout}");
+    assert_eq!(stdout, cpu_stdout);
+    for i in 0..DIAMETERS.len() {
+        let run = format!("{NAME}_D{i}");
+        let cpu_files = files(&path.join("cpu").join(&run));
+        assert!(
+            cpu_files.contains(&format!("{run}_headline.toml")),
+            "{cpu_files:?}"
+        );
+        assert_eq!(files(&path.join("gpu").join(&run)), cpu_files, "{run}");
+    }
+    let csv = format!("{NAME}_beverloo.csv");
+    let (cpu_header, cpu_rows) = beverloo_csv(&path.join("cpu").join(&csv));
+    let (gpu_header, gpu_rows) = beverloo_csv(&path.join("gpu").join(&csv));
+    assert_eq!(
+        cpu_header,
+        "orifice_diameter_m,mass_flow_rate_kg_per_s,beverloo_kg_per_s"
+    );
+    assert_eq!(gpu_header, cpu_header);
+    let diameters: Vec<f64> = cpu_rows.iter().map(|r| r[0]).collect();
+    assert_eq!(diameters, DIAMETERS);
+    assert!(cpu_rows.iter().all(|r| r[1] > 0.0), "{cpu_rows:?}");
+    assert_eq!(gpu_rows, cpu_rows);
+
+    // A sweep is not resumed as a whole, on either device.
+    let refused = mdr_dem(
+        &[
+            "sim",
+            "run",
+            "hopper.toml",
+            "--out",
+            "gpu",
+            "--device",
+            "gpu",
+            "--resume",
+            "hopper.toml",
+        ],
+        path,
+    );
+    let stderr = text(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("--resume continues one run"), "{stderr}");
 }
