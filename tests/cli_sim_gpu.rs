@@ -281,7 +281,7 @@ fn beverloo_csv(path: &Path) -> (String, Vec<Vec<f64>>) {
     (header, rows)
 }
 
-/// A small hopper sweep (three diameters, about 150 spheres) with `--device gpu` prints what the
+/// A small hopper sweep (three diameters, 166 spheres) with `--device gpu` prints what the
 /// CPU sweep prints (each run's headline, the sweep's table and fit), writes the same run
 /// folders and the CSV with the CPU's columns and rates: the same bits, as
 /// `crates/mdr-gpu/tests/gpu_sweep.rs` measures (the trajectories differ by 10⁻¹³ diameters,

@@ -64,8 +64,11 @@ pub fn run(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Result
         return print_sweep(&sweep, |run, n| {
             let next = match &run.checkpoint {
                 Some(checkpoint) => format!(
-                    "a sweep is not resumed: write that run's diameter into orifice_diameter_m, \
-                     remove orifice_sweep_m and resume it (on either device) with --resume {}",
+                    "a sweep is not resumed: write that run's diameter into orifice_diameter_m \
+                     and its name `{}_D{}` into name, remove orifice_sweep_m and resume it (on \
+                     either device) with --resume {}",
+                    scene.name,
+                    n - 1,
                     shell_word(&checkpoint.display().to_string())
                 ),
                 None => "no checkpoint was written (--no-checkpoints): run the sweep again to \

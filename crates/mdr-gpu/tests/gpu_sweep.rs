@@ -155,7 +155,7 @@ fn an_interrupted_gpu_sweep_stops_with_a_checkpoint_that_resumes_its_run_alone()
     let ctx = context();
     let dir = scratch("interrupted");
     let scene = sweep_scene(&dir, &DIAMETERS);
-    let stop = (scene.total_steps() / 2) as u64;
+    let stop = scene.total_steps() / 2;
     let out = dir.join("out");
     let options = GpuRunOptions {
         stop_at_step: Some(stop),

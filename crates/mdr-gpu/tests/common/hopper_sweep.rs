@@ -1,4 +1,4 @@
-//! A small hopper orifice sweep both devices run: about 150 soft spheres (d = 2 mm, Hertz,
+//! A small hopper orifice sweep both devices run: 166 soft spheres (d = 2 mm, Hertz,
 //! Mindlin, the stiffness-viscous dashpot) poured for 0.06 s from a cylinder 12.5 d wide
 //! (`exact_surface`) through an orifice plate (`exact_surface`), once per diameter of
 //! `orifice_sweep_m` (three: 5, 6 and 7 d, above the jamming ratio).
