@@ -5,13 +5,14 @@
 //! shipped hopper, its orifice sweep included, is accepted, and a contact network and
 //! `--no-checkpoints` on the CPU are refused by name (exit 2). A small orifice sweep on the GPU
 //! prints the CPU sweep's table and writes its CSV and run folders; `--resume` of a sweep is
-//! refused on the GPU as on the CPU. Needs a Vulkan device with 64-bit floats (lavapipe on a
+//! refused on the GPU as on the CPU; Ctrl-C stops a GPU sweep in its run with a message whose
+//! instructions resume that run alone. Needs a Vulkan device with 64-bit floats (lavapipe on a
 //! machine without a GPU, docs/gpu.md).
 
 #[path = "../crates/mdr-gpu/tests/common/hopper_sweep.rs"]
 mod hopper_sweep;
 
-use hopper_sweep::{write_hopper_sweep, DIAMETERS, NAME};
+use hopper_sweep::{hopper_sweep_text, write_hopper_sweep, DIAMETERS, NAME};
 use std::path::Path;
 use std::process::{Command, Output};
 
@@ -356,4 +357,119 @@ fn an_orifice_sweep_on_the_gpu_prints_the_cpu_sweeps_table_and_writes_its_csv() 
     let stderr = text(&refused.stderr);
     assert_eq!(refused.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("--resume continues one run"), "{stderr}");
+}
+
+/// Ctrl-C during a GPU sweep's first run (the sweep made 2 s long so the interrupt comes
+/// first): exit status 130 and a message naming the run, the diameter and name to write and
+/// the checkpoint; followed as it says (the scene with that run's diameter and name, without the
+/// sweep, 5 ms past the interrupt), `--resume` continues the run on the GPU from the checkpoint.
+/// The checkpoint refuses the scene without the run's name (its fingerprint holds `run.name`):
+/// a message that left the name out would fail here.
+#[cfg(unix)]
+#[test]
+fn ctrl_c_stops_a_gpu_sweep_with_a_message_that_resumes_its_run() {
+    use std::process::Stdio;
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path();
+    let long = hopper_sweep_text(&DIAMETERS).replace("duration_s = 0.06", "duration_s = 2.0");
+    std::fs::write(path.join("long.toml"), &long).unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_mdr-dem"))
+        .args([
+            "sim",
+            "run",
+            "long.toml",
+            "--quiet",
+            "--out",
+            "gpu",
+            "--device",
+            "gpu",
+        ])
+        .current_dir(path)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The first run is under way once its second frame is written.
+    let second = path.join(format!("gpu/{NAME}_D0/frames/{NAME}_D0_000001.vtp"));
+    let limit = Instant::now() + Duration::from_secs(300);
+    while !second.exists() {
+        if let Some(status) = child.try_wait().unwrap() {
+            let output = child.wait_with_output().unwrap();
+            panic!(
+                "ended before the interrupt ({status}): {}",
+                text(&output.stderr)
+            );
+        }
+        assert!(Instant::now() < limit, "no second frame within 300 s");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let output = child.wait_with_output().unwrap();
+    let stderr = text(&output.stderr);
+    assert_eq!(output.status.code(), Some(130), "{stderr}");
+    let message = stderr
+        .lines()
+        .find(|l| l.starts_with("interrupted at t = "))
+        .unwrap_or_else(|| panic!("{stderr}"));
+    assert!(message.contains("of run 1 of the sweep"), "{message}");
+    assert!(
+        message.contains(&format!("its name `{NAME}_D0` into name")),
+        "{message}"
+    );
+    let time: f64 = message["interrupted at t = ".len()..]
+        .split(' ')
+        .next()
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("{message}"));
+    let checkpoint = message
+        .split("--resume ")
+        .nth(1)
+        .unwrap_or_else(|| panic!("{message}"))
+        .trim();
+    assert!(
+        checkpoint.starts_with(&format!("gpu/{NAME}_D0/checkpoints/")),
+        "{message}"
+    );
+    // As the message says: the run's diameter (the scene's orifice_diameter_m is the first) and
+    // name, the sweep removed.
+    let alone: String = long
+        .replace(
+            "duration_s = 2.0",
+            &format!("duration_s = {:?}", time + 0.005),
+        )
+        .replace(
+            &format!("name = \"{NAME}\""),
+            &format!("name = \"{NAME}_D0\""),
+        )
+        .lines()
+        .filter(|l| !l.starts_with("orifice_sweep_m"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert!(alone.contains(&format!("orifice_diameter_m = {:?}", DIAMETERS[0])));
+    std::fs::write(path.join("alone.toml"), alone).unwrap();
+    let resumed = mdr_dem(
+        &[
+            "sim",
+            "run",
+            "alone.toml",
+            "--quiet",
+            "--device",
+            "gpu",
+            "--resume",
+            checkpoint,
+        ],
+        path,
+    );
+    let (stdout, stderr) = (text(&resumed.stdout), text(&resumed.stderr));
+    assert!(resumed.status.success(), "{stderr}");
+    assert!(stdout.contains("(from step "), "{stdout}");
+    assert!(
+        stdout.contains("hopper discharge: D = 1.0000e-2 m"),
+        "{stdout}"
+    );
 }
