@@ -20,7 +20,7 @@ impl SweepRun for GpuRunSummary {
 
 /// Run a hopper scene once per diameter of its `orifice_sweep_m` on `ctx`'s device, each run in
 /// `options.out_dir/<name>_D<i>` with `options` (no resume: a run of the sweep is resumed alone,
-/// its diameter written into the scene), then fit Beverloo's `C` and `k` and write
+/// its diameter and name written into the scene), then fit Beverloo's `C` and `k` and write
 /// `<name>_beverloo.csv` as the CPU sweep does. The scene is checked ([`gpu_run_support`])
 /// before the first run.
 pub fn run_gpu_orifice_sweep(

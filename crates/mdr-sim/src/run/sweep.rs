@@ -48,8 +48,8 @@ pub struct SweepSummary<R = RunSummary> {
 
 /// Run a hopper scene once per diameter of its `orifice_sweep_m` on the CPU (each run in
 /// `out_dir/<name>_D<i>`): [`orifice_sweep`] with [`run_scene`] and `options` (no resume).
-/// Resuming is per run: resume a run by writing its diameter into the scene and running it
-/// alone.
+/// Resuming is per run: resume a run by writing its diameter and its name `<name>_D<i>` (which
+/// its checkpoints' fingerprint holds) into the scene and running it alone.
 pub fn run_orifice_sweep(scene: &Scene, options: &RunOptions) -> Result<SweepSummary, SimError> {
     orifice_sweep(scene, &options.out_dir, |one, out_dir| {
         let mut opts = options.clone();
