@@ -9,6 +9,7 @@ use super::{Exit, Refused, EXIT_INTERRUPTED};
 use anyhow::Context;
 use clap::Args;
 use mdr_sim::output::energy::BalanceDrift;
+use mdr_sim::run::{SweepRun, SweepSummary};
 use mdr_sim::scene::Problems;
 use mdr_sim::{load_scene, run_scene, RunOptions};
 use std::path::{Path, PathBuf};
@@ -219,32 +220,20 @@ fn run_checked(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Re
         .interrupt(interrupt)
         .estimate(true);
     if scene.source.run.orifice_sweep_m.is_some() {
-        if args.resume.is_some() {
-            return Err(Refused(
-                "--resume continues one run: write its diameter into orifice_diameter_m, remove orifice_sweep_m and resume that scene".to_owned(),
-            )
-            .into());
-        }
+        refuse_sweep_resume(args)?;
         let sweep = mdr_sim::run::run_orifice_sweep(scene, &options)?;
-        for run in &sweep.runs {
-            println!("{}", run.headline.text);
-        }
-        println!("{}", sweep.text);
-        if let Some(run) = sweep.runs.iter().find(|r| r.stopped_early) {
-            eprintln!(
-                "interrupted at t = {:.6e} s (step {}) of run {} of the sweep; a sweep is not resumed: \
+        return print_sweep(&sweep, |run, n| {
+            format!(
+                "interrupted at t = {:.6e} s (step {}) of run {n} of the sweep; a sweep is not resumed: \
                  write that run's diameter into orifice_diameter_m, remove orifice_sweep_m and resume \
                  it with --resume {}",
                 run.time,
                 run.step,
-                sweep.runs.len(),
                 run.checkpoint
                     .as_deref()
                     .map_or("<checkpoint>".to_owned(), |p| shell_word(&p.display().to_string()))
-            );
-            return Err(Exit(EXIT_INTERRUPTED).into());
-        }
-        return Ok(());
+            )
+        });
     }
     let summary = run_scene(scene, &options)?;
     let ran = summary.step - summary.start_step;
@@ -282,6 +271,36 @@ fn run_checked(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Re
         "ParaView: open {}",
         out.join(format!("{}.pvd", scene.name)).display()
     );
+    Ok(())
+}
+
+/// A sweep is not resumed as a whole: `--resume` is refused for a scene with
+/// `orifice_sweep_m`, on either device.
+pub(super) fn refuse_sweep_resume(args: &RunArgs) -> anyhow::Result<()> {
+    if args.resume.is_some() {
+        return Err(Refused(
+            "--resume continues one run: write its diameter into orifice_diameter_m, remove orifice_sweep_m and resume that scene".to_owned(),
+        )
+        .into());
+    }
+    Ok(())
+}
+
+/// A finished sweep, on either device: each run's headline and the sweep's table and fit on
+/// stdout; if a run was interrupted, `interrupted(run, its number in the sweep)` on stderr and
+/// the interrupt's exit status.
+pub(super) fn print_sweep<R: SweepRun>(
+    sweep: &SweepSummary<R>,
+    interrupted: impl FnOnce(&R, usize) -> String,
+) -> anyhow::Result<()> {
+    for run in &sweep.runs {
+        println!("{}", run.headline().text);
+    }
+    println!("{}", sweep.text);
+    if let Some(run) = sweep.runs.iter().find(|r| r.stopped_early()) {
+        eprintln!("{}", interrupted(run, sweep.runs.len()));
+        return Err(Exit(EXIT_INTERRUPTED).into());
+    }
     Ok(())
 }
 

@@ -1,10 +1,12 @@
 //! `mdr-dem sim run SCENE.toml --device gpu`: the scene on the GPU path
 //! ([`mdr_gpu::run_gpu_scene`]) with the CPU run's output folder, frames, headline and progress;
 //! the CPU run's energy books and energy guard; checkpoints in the CPU run's format, and `--resume` from a
-//! checkpoint of either device. What the GPU path lacks is refused by name before anything is
-//! written.
+//! checkpoint of either device; a hopper's orifice sweep as the CPU runs it, each run on the GPU.
+//! What the GPU path lacks is refused by name before anything is written.
 
-use super::sim_run::{prepare_output_folder, shell_word, RunArgs};
+use super::sim_run::{
+    prepare_output_folder, print_sweep, refuse_sweep_resume, shell_word, RunArgs,
+};
 use super::{Exit, Refused, EXIT_INTERRUPTED};
 use anyhow::Context;
 use std::path::Path;
@@ -17,6 +19,10 @@ pub fn run(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Result
     if args.check {
         eprintln!("--device gpu: the GPU path runs this scene");
         return Ok(());
+    }
+    let sweep = scene.source.run.orifice_sweep_m.is_some();
+    if sweep {
+        refuse_sweep_resume(args)?;
     }
     if let Some(checkpoint) = &args.resume {
         if let Err(e) = std::fs::metadata(checkpoint) {
@@ -44,16 +50,38 @@ pub fn run(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Result
         },
         ..mdr_gpu::GpuRunOptions::default()
     };
-    let summary = mdr_gpu::run_gpu_scene(&ctx, scene, &options)?;
     let adapter = format!(
         "on {}{}",
-        summary.adapter,
+        ctx.adapter_name(),
         if ctx.is_cpu_device() {
             " (a CPU device)"
         } else {
             ""
         }
     );
+    if sweep {
+        let sweep = mdr_gpu::run_gpu_orifice_sweep(&ctx, scene, &options)?;
+        return print_sweep(&sweep, |run, n| {
+            let next = match &run.checkpoint {
+                Some(checkpoint) => format!(
+                    "a sweep is not resumed: write that run's diameter into orifice_diameter_m \
+                     and its name `{}_D{}` into name, remove orifice_sweep_m and resume it (on \
+                     either device) with --resume {}",
+                    scene.name,
+                    n - 1,
+                    shell_word(&checkpoint.display().to_string())
+                ),
+                None => "no checkpoint was written (--no-checkpoints): run the sweep again to \
+                         start again"
+                    .to_owned(),
+            };
+            format!(
+                "interrupted at t = {:.6e} s (step {}) of run {n} of the sweep {adapter}; {next}",
+                run.time, run.step
+            )
+        });
+    }
+    let summary = mdr_gpu::run_gpu_scene(&ctx, scene, &options)?;
     if summary.stopped_early {
         let program = shell_word(
             &std::env::args()

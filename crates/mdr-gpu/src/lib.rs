@@ -3,10 +3,10 @@
 //! and force-mode scenes whose walls are planes, boxes and exact surfaces of revolution
 //! (cylinders, cones, orifice plates), fixed, turning about their own axis or removed at a time
 //! ([`GpuScene`]; others are refused by [`gpu_scene_support`]; `sim run --device gpu` is
-//! [`run_gpu_scene`]) with the CPU path's arithmetic: the same law formulas (Hertz, MDR,
-//! Thornton or adhesive MDR normal, Mindlin tangential, Hertzian or stiffness-viscous damping,
-//! optionally rolling resistance) bound per species pair, the same integrator order, the same
-//! list and history semantics ([`GpuLaws`]).
+//! [`run_gpu_scene`], a hopper's orifice sweep [`run_gpu_orifice_sweep`]) with the CPU path's
+//! arithmetic: the same law formulas (Hertz, MDR, Thornton or adhesive MDR normal, Mindlin
+//! tangential, Hertzian or stiffness-viscous damping, optionally rolling resistance) bound per
+//! species pair, the same integrator order, the same list and history semantics ([`GpuLaws`]).
 //! The design, its determinism and its cost are described in `docs/gpu.md`.
 //!
 //! ```no_run
@@ -32,6 +32,7 @@ mod law;
 mod run;
 mod scene;
 mod sink;
+mod sweep;
 mod system;
 mod walls;
 
@@ -50,3 +51,4 @@ pub use run::{
 pub use scene::{
     gpu_scene_support, DeviceSubModels, GpuScene, DEVICE_DAMPING, DEVICE_ROLLING, DEVICE_TANGENTIAL,
 };
+pub use sweep::run_gpu_orifice_sweep;

@@ -251,26 +251,16 @@ pub enum GpuRunError {
     },
 }
 
-/// Whether `sim run --device gpu` runs `scene`: [`gpu_scene_support`], and the outputs the
-/// GPU run cannot write refused by their key: `contact_network`, `orifice_sweep_m`. Needs no
-/// device.
+/// Whether `sim run --device gpu` runs `scene`: [`gpu_scene_support`], and the output the
+/// GPU run cannot write refused by its key: `contact_network`. Needs no device.
 pub fn gpu_run_support(scene: &Scene) -> Result<(), GpuError> {
     gpu_scene_support(scene)?;
-    let refuse = |what: &str| {
-        Err(GpuError::Unsupported(format!(
-            "scene `{}`: {what}",
-            scene.name
-        )))
-    };
-    let run = &scene.source.run;
     if scene.contact_network {
-        return refuse(
-            "`contact_network = true`: the GPU keeps no per-pair forces for the contact-network \
-             frames (run on the CPU path, or leave the key out)",
-        );
-    }
-    if run.orifice_sweep_m.is_some() {
-        return refuse("`[run] orifice_sweep_m`: a sweep runs on the CPU only");
+        return Err(GpuError::Unsupported(format!(
+            "scene `{}`: `contact_network = true`: the GPU keeps no per-pair forces for the \
+             contact-network frames (run on the CPU path, or leave the key out)",
+            scene.name
+        )));
     }
     Ok(())
 }

@@ -30,7 +30,7 @@ pub use records::{
     BodyRecord, CheckpointData, ContactRecord, NeighbourListRecord, NeighbourListRun, RngRecord,
 };
 pub use steps::{ContactCounts, SceneSteps};
-pub use sweep::{run_orifice_sweep, SweepSummary};
+pub use sweep::{orifice_sweep, run_orifice_sweep, SweepRun, SweepSummary};
 
 use crate::checkpoint::{self, CheckpointError};
 use crate::error::{output, SimError};
