@@ -223,12 +223,15 @@ fn run_checked(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Re
         refuse_sweep_resume(args)?;
         let sweep = mdr_sim::run::run_orifice_sweep(scene, &options)?;
         return print_sweep(&sweep, |run, n| {
+            // The checkpoint's fingerprint holds the run's name, so the name is part of the recipe.
             format!(
                 "interrupted at t = {:.6e} s (step {}) of run {n} of the sweep; a sweep is not resumed: \
-                 write that run's diameter into orifice_diameter_m, remove orifice_sweep_m and resume \
-                 it with --resume {}",
+                 write that run's diameter into orifice_diameter_m and its name `{}_D{}` into name, \
+                 remove orifice_sweep_m and resume it with --resume {}",
                 run.time,
                 run.step,
+                scene.name,
+                n - 1,
                 run.checkpoint
                     .as_deref()
                     .map_or("<checkpoint>".to_owned(), |p| shell_word(&p.display().to_string()))
@@ -279,7 +282,7 @@ fn run_checked(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Re
 pub(super) fn refuse_sweep_resume(args: &RunArgs) -> anyhow::Result<()> {
     if args.resume.is_some() {
         return Err(Refused(
-            "--resume continues one run: write its diameter into orifice_diameter_m, remove orifice_sweep_m and resume that scene".to_owned(),
+            "--resume continues one run of a sweep: write its diameter into orifice_diameter_m and its name `<name>_D<i>` (the folder its checkpoint is in) into name, remove orifice_sweep_m and resume that scene".to_owned(),
         )
         .into());
     }
