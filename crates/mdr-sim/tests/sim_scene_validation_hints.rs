@@ -3,6 +3,8 @@
 //! largest speed estimated when `max_speed_m_per_s` is absent, and the Hertz contact time of the
 //! scene's shortest pair, each against its value worked out by hand. Parsing only: no scene is
 //! run.
+//! Each test fails with the mutants of the validation it is written for (docs/verification.md
+//! §5 names them).
 
 mod common;
 

@@ -4,6 +4,8 @@
 //! initial-overlap check of spheres against spheres and walls at its allowance and its limit of
 //! six errors; each with the error (key and text) or the geometry it must give. Parsing only: no
 //! scene is run.
+//! Each test fails with the mutants of the validation it is written for (docs/verification.md
+//! §5 names them).
 
 mod common;
 
