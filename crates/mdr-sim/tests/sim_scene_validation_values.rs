@@ -51,6 +51,13 @@ point_m = [0.0, 0.0, 0.0]
 normal = [0.0, 0.0, 2.0]
 "#;
 
+/// The message of the unknown key `radius_mm` in `[[particles]]`.
+const RADIUS_MM_UNKNOWN: &str = "unknown field `radius_mm`, expected one of `material`, `count`, \
+     `radius_m`, `size_distribution`, `radius_min_m`, `radius_max_m`, `radius_std_m`, \
+     `radius_classes`, `placement`, `region_min_m`, `region_max_m`, `region_radius_m`, \
+     `gap_fraction`, `jitter_fraction`, `file`, `length_scale_m`, `max_initial_overlap_fraction`, \
+     `velocity_m_per_s`; did you mean `radius_m`?";
+
 /// `SCENE` with `from` (which must occur in it) replaced by `to`.
 fn with(from: &str, to: &str) -> String {
     assert!(SCENE.contains(from), "{from}");
@@ -254,16 +261,7 @@ fn every_unknown_key_is_named_with_the_nearest_allowed_one_and_the_values_still_
                 "unknown field `acceleration_m_per_s`, expected `acceleration_m_per_s2`; did you \
                  mean `acceleration_m_per_s2`?"
             ),
-            (
-                27,
-                1,
-                "radius_mm",
-                "unknown field `radius_mm`, expected one of `material`, `count`, `radius_m`, \
-                 `size_distribution`, `radius_min_m`, `radius_max_m`, `radius_std_m`, \
-                 `radius_classes`, `placement`, `region_min_m`, `region_max_m`, \
-                 `region_radius_m`, `gap_fraction`, `jitter_fraction`, `file`, `length_scale_m`, \
-                 `max_initial_overlap_fraction`, `velocity_m_per_s`; did you mean `radius_m`?"
-            ),
+            (27, 1, "radius_mm", RADIUS_MM_UNKNOWN),
         ]
     );
 }
@@ -604,5 +602,24 @@ fn a_periodic_box_is_two_finite_ranges_on_the_neighbour_list_path() {
             "run.periodic_x_m",
             "cannot be combined with delete_below_m (removed spheres are parked outside the box)"
         )
+    );
+}
+
+/// A file written with CRLF line ends (as Windows editors write) is the same scene; an unknown
+/// key is blanked from its line's start, so the line before it keeps its `\r\n` (a lone `\r`
+/// would be a TOML error of its own).
+#[test]
+fn a_scene_with_crlf_line_ends_reads_the_same() {
+    let crlf = SCENE.replace('\n', "\r\n");
+    let scene = ok(&crlf);
+    assert_eq!(scene.duration, 0.01);
+    assert_eq!(scene.particles.len(), 2);
+    let text = crlf.replace(
+        "radius_m = 0.002\r\n",
+        "radius_m = 0.002\r\nradius_mm = 2.0\r\n",
+    );
+    assert_eq!(
+        one_error(&text),
+        error(26, 1, "radius_mm", RADIUS_MM_UNKNOWN)
     );
 }
