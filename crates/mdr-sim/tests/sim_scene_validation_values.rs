@@ -145,9 +145,7 @@ fn a_scene_file_is_loaded_from_its_path() {
     // operating system's reason.
     let missing = dir.join("missing.toml");
     let reason = std::fs::read_to_string(&missing).unwrap_err();
-    let problems = load_scene(&missing)
-        .err()
-        .expect("a missing file was taken");
+    let problems = load_scene(&missing).expect_err("a missing file was taken");
     assert_eq!(
         problems.0,
         vec![Problem {
