@@ -699,7 +699,9 @@ impl Checker<'_, '_> {
             }
         };
         if r.coupling == CouplingMode::Force {
-            let steps = contact_time / dt;
+            // An automatic step resolves the contact with `steps_per_contact` steps by its
+            // construction; the quotient of the two could round below it.
+            let steps = if dt_auto { spc } else { contact_time / dt };
             if steps < MIN_STEPS_HARD {
                 self.error(
                     &run.key("dt_s"),
