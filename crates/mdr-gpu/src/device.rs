@@ -88,19 +88,6 @@ pub enum GpuError {
         /// Its capacity.
         capacity: u32,
     },
-    /// A sphere touched a wall of finite extent (a box's side) outside the face the GPU path
-    /// takes as its plane.
-    #[error(
-        "--device gpu: particle {particle} touches wall plane {wall} outside its face (a box's \
-         side is taken as the plane of its inner face, valid over the face only): the sphere \
-         left the box; run the scene on the CPU path"
-    )]
-    OffFace {
-        /// The particle (0-based).
-        particle: u32,
-        /// The wall plane (0-based, in the system's order).
-        wall: u32,
-    },
     /// A sphere sank deeper than the wall guard allows (`mdr_sim::run::CROSSING_OVERLAP` of its
     /// radius) into a wall plane: it is going through the wall. The first step it happened at,
     /// and the particle and wall plane of that step (the largest slot of those that did).
