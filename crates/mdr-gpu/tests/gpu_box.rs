@@ -32,8 +32,8 @@ const RADIUS: f64 = 0.002;
 /// 6.8e-18 diameters, 1.3e-16 and 2.2e-16 (round-off, grown through the collisions); the
 /// tolerances are a few times these. The y− side 0.1 mm thinner on the GPU alone misses by
 /// 0.040 diameters, 0.090 and 0.12; the floor slab as the half-space of its inner face stops
-/// the GPU run at its first step (the sphere under the floor is 4.5 mm behind that plane, past
-/// the wall guard).
+/// the GPU run at its first step (the centre of the sphere under the floor is 6.5 mm behind
+/// that plane, past the wall guard).
 const TOLERANCE: [f64; 3] = [5e-17, 1e-15, 1e-15];
 
 fn context() -> GpuContext {
@@ -284,10 +284,16 @@ fn spheres_leaving_an_open_box_follow_the_cpu_path() {
     };
     let cpu = scene_end::cpu_run(&scene, STEPS);
     let gpu = scene_end::gpu_run(&ctx, &scene, STEPS);
-    eprintln!("{} spheres outside the box at the end", outside(&cpu.position));
+    eprintln!(
+        "{} spheres outside the box at the end",
+        outside(&cpu.position)
+    );
     assert!(outside(&cpu.position) > 0);
     assert_eq!(outside(&gpu.position), outside(&cpu.position));
-    assert!(same_contacts, "touching pairs or wall contacts differ at a sample");
+    assert!(
+        same_contacts,
+        "touching pairs or wall contacts differ at a sample"
+    );
     assert!(within(&worst), "{worst:?}");
 }
 
