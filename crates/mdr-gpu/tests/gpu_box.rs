@@ -9,9 +9,12 @@
 //! tests need a Vulkan (or Metal/DX12) device with 64-bit floats (on Linux without a GPU,
 //! Mesa's lavapipe).
 
+#[path = "common/box_toml.rs"]
+mod box_toml;
 #[path = "common/scene_end.rs"]
 mod scene_end;
 
+use box_toml::BoxToml;
 use mdr_gpu::{GpuContext, GpuOptions, GpuScene, GpuState};
 use mdr_sim::run::SceneSteps;
 use mdr_sim::scene::load_scene;
@@ -43,48 +46,25 @@ fn context() -> GpuContext {
 /// An open-top box whose inside is `[-8, 8] mm² × [0, 8] mm`, its slabs 4 mm thick (the sides
 /// reach 4 mm above the inside, to the rim's top face at `z = 12` mm; the floor slab's bottom
 /// face is at `z = −4` mm), MDR, Mindlin, Hertzian damping and rolling resistance.
-const SCENE: &str = r#"
-[run]
-name = "open_box"
-duration_s = 0.012
-dt_s = 2.0e-5
-max_speed_m_per_s = 2.0
-output_interval_s = 0.006
-energy_interval_s = 0.001
-
-[gravity]
-acceleration_m_per_s2 = [0.0, 0.0, -9.81]
-
-[[material]]
-name = "grain"
-youngs_pa = 2.0e6
-poisson_ratio = 0.25
-density_kg_per_m3 = 2500.0
-
-[contact]
-normal = "mdr"
-critical_line_load_n_per_m = 20.0
-hardening_ratio = 0.37
-tangential = "mindlin"
-friction = 0.5
-rolling_friction = 0.1
-damping = "hertzian_viscous"
-damping_gamma_n_per_m_s = 1.0e4
-damping_tangential_ratio = 0.5
-
-[[particles]]
-material = "grain"
-placement = "csv"
-file = "particles.csv"
-
-[[walls]]
-kind = "box"
-material = "grain"
-min_m = [-0.008, -0.008, 0.0]
-max_m = [0.008, 0.008, 0.008]
-thickness_m = 0.004
-open_top = true
-"#;
+const SCENE: BoxToml = BoxToml {
+    name: "open_box",
+    duration_s: 0.012,
+    dt_s: 2.0e-5,
+    max_speed_m_per_s: 2.0,
+    output_interval_s: 0.006,
+    run: "energy_interval_s = 0.001",
+    materials: &[("grain", 2.0e6, 0.25, 2500.0, "")],
+    contact: "normal = \"mdr\"\ncritical_line_load_n_per_m = 20.0\nhardening_ratio = 0.37\n\
+              tangential = \"mindlin\"\nfriction = 0.5\nrolling_friction = 0.1\n\
+              damping = \"hertzian_viscous\"\ndamping_gamma_n_per_m_s = 1.0e4\n\
+              damping_tangential_ratio = 0.5",
+    particles: &[("grain", "particles.csv")],
+    wall_material: "grain",
+    min_m: [-0.008, -0.008, 0.0],
+    max_m: [0.008, 0.008, 0.008],
+    thickness_m: 0.004,
+    open_top: true,
+};
 
 /// The spheres (centre and velocity, m and m/s), 20 of radius 2 mm, none touching at the start:
 /// nine inside on a 5 mm lattice 6.5 mm up with the GPU tests' pseudo-random velocities of up
@@ -143,7 +123,7 @@ fn open_box() -> Scene {
     }
     std::fs::write(dir.join("particles.csv"), csv).unwrap();
     let path = dir.join("scene.toml");
-    std::fs::write(&path, SCENE).unwrap();
+    std::fs::write(&path, SCENE.text()).unwrap();
     load_scene(&path).unwrap_or_else(|p| panic!("{p}"))
 }
 

@@ -6,7 +6,10 @@
 //! `plastic_work_j` per law in `gpu_books.rs`). The device tests need a
 //! Vulkan (or Metal/DX12) device with 64-bit floats (on Linux without a GPU, Mesa's lavapipe).
 
+#[path = "common/box_toml.rs"]
+mod box_toml;
 mod common;
+use box_toml::BoxToml;
 use common::box_csv;
 use mdr_gpu::{gpu_run_support, run_gpu_scene, GpuContext, GpuRunOptions, GPU_ENERGY_COLUMNS};
 use mdr_sim::output::run_dir::checkpoint_name;
@@ -91,51 +94,28 @@ fn drop_scene(dir: &Path, q_c: f64) -> Scene {
 /// each with a fixed pseudo-random velocity of up to 0.5 m/s per component: within 300 steps
 /// (6 ms) they collide with each other and the walls, load plastically (MDR), slide (Mindlin),
 /// roll (rolling resistance) and are damped (Hertzian viscous).
-const BOX: &str = r#"
-[run]
-name = "box"
-duration_s = 0.006
-dt_s = 2.0e-5
-max_speed_m_per_s = 1.0
-output_interval_s = 0.002
-energy_interval_s = 0.0005
-
-[gravity]
-acceleration_m_per_s2 = [0.0, 0.0, -9.81]
-
-[[material]]
-name = "grain"
-youngs_pa = 2.0e6
-poisson_ratio = 0.25
-density_kg_per_m3 = 2500.0
-
-[contact]
-normal = "mdr"
-critical_line_load_n_per_m = {Q_C}
-hardening_ratio = 0.37
-tangential = "mindlin"
-friction = {FRICTION}
-rolling_friction = 0.1
-damping = "hertzian_viscous"
-damping_gamma_n_per_m_s = 1.0e4
-damping_tangential_ratio = 0.5
-
-[[particles]]
-material = "grain"
-placement = "csv"
-file = "particles.csv"
-
-[[walls]]
-kind = "box"
-material = "grain"
-min_m = [-0.01, -0.01, 0.0]
-max_m = [0.01, 0.01, 0.02]
-thickness_m = 0.004
-open_top = false
-"#;
+const BOX: BoxToml = BoxToml {
+    name: "box",
+    duration_s: 0.006,
+    dt_s: 2.0e-5,
+    max_speed_m_per_s: 1.0,
+    output_interval_s: 0.002,
+    run: "energy_interval_s = 0.0005",
+    materials: &[("grain", 2.0e6, 0.25, 2500.0, "")],
+    contact: "normal = \"mdr\"\ncritical_line_load_n_per_m = {Q_C}\nhardening_ratio = 0.37\n\
+              tangential = \"mindlin\"\nfriction = {FRICTION}\nrolling_friction = 0.1\n\
+              damping = \"hertzian_viscous\"\ndamping_gamma_n_per_m_s = 1.0e4\n\
+              damping_tangential_ratio = 0.5",
+    particles: &[("grain", "particles.csv")],
+    wall_material: "grain",
+    min_m: [-0.01, -0.01, 0.0],
+    max_m: [0.01, 0.01, 0.02],
+    thickness_m: 0.004,
+    open_top: false,
+};
 
 fn box_scene(dir: &Path, friction: f64) -> Scene {
-    write_scene(dir, BOX, &box_csv(), 20.0, friction)
+    write_scene(dir, &BOX.text(), &box_csv(), 20.0, friction)
 }
 
 fn cpu_run(scene: &Scene, out: &Path) {
