@@ -89,10 +89,10 @@ pub enum GpuError {
         capacity: u32,
     },
     /// A sphere sank deeper than the wall guard allows (`mdr_sim::run::CROSSING_OVERLAP` of its
-    /// radius) into a wall plane: it is going through the wall. The first step it happened at,
-    /// and the particle and wall plane of that step (the largest slot of those that did).
+    /// radius) into a device wall: it is going through the wall. The first step it happened at,
+    /// and the particle and device wall of that step (the largest slot of those that did).
     #[error(
-        "--device gpu: sphere {particle} sank more than {} of its radius into wall plane {wall} \
+        "--device gpu: sphere {particle} sank more than {} of its radius into device wall {wall} \
          at step {step}: it is going through the wall. Lower dt_s or declare a larger \
          max_speed_m_per_s if it is that fast",
         mdr_sim::run::CROSSING_OVERLAP
@@ -100,7 +100,7 @@ pub enum GpuError {
     WallCrossing {
         /// The sphere.
         particle: u32,
-        /// The wall plane (the device's order).
+        /// The device wall (the device's order).
         wall: u32,
         /// The first step with a crossing.
         step: u64,

@@ -1223,7 +1223,7 @@ impl System {
                 .all(|p| p.i < p.j && (p.j as usize) < n && p.image < 9);
         if !sized {
             return Err(GpuError::Unsupported(format!(
-                "the state to load does not fit the system of {n} particles and {} wall planes",
+                "the state to load does not fit the system of {n} particles and {} device walls",
                 self.walls
             )));
         }

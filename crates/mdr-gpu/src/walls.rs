@@ -1,9 +1,9 @@
 //! The walls of a system on the device ([`DeviceWall`]): half-spaces (a plane wall), a box's
-//! slabs (axis-aligned cuboids) and exact surfaces of revolution (a cylinder with its end discs, a cone, an orifice
-//! plate's faces and rim), fixed or turning about their own axis, each acting until the step
-//! its `[[walls]]` entry is removed at. How a scene's walls become device walls
-//! ([`scene_walls`]) or are refused with the part named ([`wall_support`]), and the constants
-//! of `bed.wgsl` they are written into ([`wall_constants`]).
+//! slabs (axis-aligned cuboids) and exact surfaces of revolution (a cylinder with its end
+//! discs, a cone, an orifice plate's faces and rim), fixed or turning about their own axis, each
+//! acting until the step its `[[walls]]` entry is removed at. How a scene's walls become device
+//! walls ([`scene_walls`]) or are refused with the part named ([`wall_support`]), and the
+//! constants of `bed.wgsl` they are written into ([`wall_constants`]).
 //!
 //! A box's slab touches a sphere as the CPU neighbour-list path's cuboid collider does
 //! (`mdr_rapier::geometry::sphere_shape_signed` with parry's projection of the centre on the
