@@ -1513,7 +1513,8 @@ fn wall_contact(k: u32, x: vec3<f64>, r: f64) -> WallContact {
     if WALL_KIND[k] == WALL_REVOLUTION {
         return revolution_contact(k, x, r);
     }
-    if WALL_KIND[k] == WALL_SLAB {
+    // `ANY_SLAB` is a constant: a system without a box (the bed) compiles the branch out.
+    if ANY_SLAB && WALL_KIND[k] == WALL_SLAB {
         return cuboid_contact(k, x, r);
     }
     return plane_contact(k, x, r);

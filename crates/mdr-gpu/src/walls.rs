@@ -355,7 +355,8 @@ pub(crate) fn wgsl_vector(v: &Vector3<f64>) -> String {
 /// centre, a surface of revolution's collider pose; zero for a plane); a slab's half extents
 /// (zero otherwise); a surface of revolution's centre, axis and profile range in `PROFILE`
 /// (zero otherwise); the angular velocity and its pivot; the removal stage (`u32::MAX`: never
-/// removed).
+/// removed); and whether any wall is a slab (`ANY_SLAB`: without one the slab kernel is
+/// compiled out).
 pub(crate) fn wall_constants(walls: &[DeviceWall]) -> String {
     let slots = walls.len().max(1);
     let zero = Vector3::zeros();
@@ -460,6 +461,10 @@ pub(crate) fn wall_constants(walls: &[DeviceWall]) -> String {
             vectors(&|w| w.pivot)
         ),
         format!("const WALL_STAGE = array<u32, {slots}>({});", u32s(stages)),
+        format!(
+            "const ANY_SLAB: bool = {};",
+            walls.iter().any(|w| matches!(w.shape, WallShape::Slab(_)))
+        ),
     ]
     .join("\n")
 }
