@@ -1,9 +1,9 @@
 // The step of the neighbour-list path in f64 (docs/gpu.md): list build by cell binning, pair
 // forces with histories (Hertz, MDR, Thornton or adhesive MDR normal law, Mindlin, Hertzian or
 // stiffness-viscous damping, optionally rolling resistance) bound per species pair, walls
-// (half-spaces and exact surfaces of revolution, fixed, turning about their own axis or removed
-// at a stage set by the host), open space or the x/y periodic box, gravity, and rapier's
-// symplectic Euler integration. The settled bed is the case of one species, one floor plane and the periodic box.
+// (half-spaces, a box's slabs and exact surfaces of revolution, fixed, turning about their own
+// axis or removed at a stage set by the host), open space or the x/y periodic box, gravity, and
+// rapier's symplectic Euler integration. The settled bed is the case of one species, one floor plane and the periodic box.
 // Every formula is the CPU path's,
 // written in the same order (mdr-contact and mdr-rapier's kernel): `normal_law` is
 // `HertzLaw::update` / `MdrLaw::update` / `ThorntonLaw::update` / `AdhesiveMdrLaw::update`,
@@ -75,19 +75,16 @@ const LAW_ADHESIVE_MDR: u32 = 3u;
 const ACTIVE: u32 = 0x80000000u;
 
 // Status words (atomics): rebuild requested, rebuilds done, neighbour overflow (1 + particle),
-// cell overflow (1 + cell), a wall touched outside the face it stands for (1 + particle, then
-// 1 + wall), force passes begun (the step, modulo 2³²), the wall guard: the first step at which
-// a sphere sank deeper than `CROSSING` of its radius into a wall (all ones: none), and the
-// largest such wall slot of that step (1 + particle · walls + wall).
+// cell overflow (1 + cell), force passes begun (the step, modulo 2³²), the wall guard: the first
+// step at which a sphere sank deeper than `CROSSING` of its radius into a wall (all ones: none),
+// and the largest such wall slot of that step (1 + particle · walls + wall).
 const S_REBUILD: u32 = 0u;
 const S_REBUILDS: u32 = 1u;
 const S_NEIGHBOUR_OVERFLOW: u32 = 2u;
 const S_CELL_OVERFLOW: u32 = 3u;
-const S_OFF_FACE: u32 = 4u;
-const S_OFF_FACE_WALL: u32 = 5u;
-const S_PASSES: u32 = 6u;
-const S_CROSSING_STEP: u32 = 7u;
-const S_CROSSING_SLOT: u32 = 8u;
+const S_PASSES: u32 = 4u;
+const S_CROSSING_STEP: u32 = 5u;
+const S_CROSSING_SLOT: u32 = 6u;
 // The wall guard's depth, a fraction of the radius (`mdr_sim::run::CROSSING_OVERLAP`), written
 // in by the host.
 const CROSSING: f64 = __CROSSING__lf;
@@ -95,15 +92,17 @@ const CROSSING: f64 = __CROSSING__lf;
 const SPECIES_WORDS: u32 = 4u;
 // The walls, written in by the host (constants, so that the compiler folds a floor's normal
 // `(0, 0, 1)` into its arithmetic; `crate::walls::wall_constants`), one entry per wall in each
-// array: its kind (`WALL_PLANE` or `WALL_REVOLUTION`); a plane's outward normal, a point of the
-// plane, and the corners of the box the centre of a touching sphere must lie in; a surface of
-// revolution's origin (the CPU collider's pose), its axis point relative to it, its unit axis
-// and its profile points `(radius, axial position)` `PROFILE[WALL_PROFILE_START[k] ..
-// WALL_PROFILE_END[k]]`; the angular velocity and a point of its axis (zero: a fixed wall); the
-// removal stage from which on the wall acts no more (`Params::walls_removed`; all ones: never).
+// array: its kind (`WALL_PLANE`, `WALL_REVOLUTION` or `WALL_SLAB`); a plane's outward normal
+// and a point of the plane; the origin (the CPU collider's pose: a slab's centre, a surface of
+// revolution's origin); a slab's half extents; a surface of revolution's axis point relative to
+// its origin, its unit axis and its profile points `(radius, axial position)`
+// `PROFILE[WALL_PROFILE_START[k] .. WALL_PROFILE_END[k]]`; the angular velocity and a point of
+// its axis (zero: a fixed wall); the removal stage from which on the wall acts no more
+// (`Params::walls_removed`; all ones: never).
 const WALLS: u32 = __WALLS__u;
 const WALL_PLANE: u32 = 0u;
 const WALL_REVOLUTION: u32 = 1u;
+const WALL_SLAB: u32 = 2u;
 __WALL_CONSTANTS__
 
 // The constants of one bound law (a pair of species, or a species and a wall).
@@ -1463,10 +1462,60 @@ fn revolution_contact(k: u32, x: vec3<f64>, r: f64) -> WallContact {
     return WallContact(overlap, normal, surface - normal * (0.5lf * overlap), true);
 }
 
+// parry's `Aabb::do_project_local_point` (non-solid) on the cuboid `[-h, h]` and mdr-rapier's
+// `sphere_shape_signed` (geometry.rs), in their order: the CPU path's contact of a sphere with a
+// box's slab (a cuboid collider at the translation `WALL_ORIGIN`, no rotation, whose transforms
+// are exact). Outside, the centre is clamped onto the cuboid (a face, an edge or a corner);
+// inside, it goes to the nearest face along one axis (the first of x, y, z with the least depth),
+// and the overlap is the radius plus the depth. The axis's sign is `copysign(1, c)` on the CPU,
+// which takes −1 for a coordinate −0.0; here +1 (no f64 sign bit in WGSL): the two differ only
+// for a centre exactly on the slab's mid-plane, `−0.0` against `+0.0`.
+fn cuboid_contact(k: u32, x: vec3<f64>, r: f64) -> WallContact {
+    let zero = vec3<f64>(0.0lf, 0.0lf, 0.0lf);
+    let h = WALL_HALF[k];
+    let local = x - WALL_ORIGIN[k];
+    let shift = max(-h - local, zero) - max(local - h, zero);
+    var inside = false;
+    var projected = local + shift;
+    if all(shift == zero) {
+        inside = true;
+        // The box's centre is `(−h + h) · 0.5 = 0`: `local` is the centred point.
+        let sign = select(vec3<f64>(1.0lf), vec3<f64>(-1.0lf), local < zero);
+        let diff = h - sign * local;
+        var step = zero;
+        if diff.x <= diff.y && diff.x <= diff.z {
+            step.x = diff.x * sign.x;
+        } else if diff.y <= diff.x && diff.y <= diff.z {
+            step.y = diff.y * sign.y;
+        } else {
+            step.z = diff.z * sign.z;
+        }
+        projected = local + step;
+    }
+    let p = projected + WALL_ORIGIN[k];
+    let d = x - p;
+    let dist = sqrt(dot3(d, d));
+    if dist == 0.0lf {
+        return WallContact(r, d, x, false);
+    }
+    var signed = dist;
+    var normal = divide3(d, dist);
+    if inside {
+        signed = -dist;
+        normal = divide3(-d, dist);
+    }
+    let overlap = r - signed;
+    return WallContact(overlap, normal, p - normal * (0.5lf * overlap), true);
+}
+
 // The contact of a sphere (centre `x`, radius `r`) with wall `k`.
 fn wall_contact(k: u32, x: vec3<f64>, r: f64) -> WallContact {
     if WALL_KIND[k] == WALL_REVOLUTION {
         return revolution_contact(k, x, r);
+    }
+    // `ANY_SLAB` is a constant: a system without a box (the bed) compiles the branch out.
+    if ANY_SLAB && WALL_KIND[k] == WALL_SLAB {
+        return cuboid_contact(k, x, r);
     }
     return plane_contact(k, x, r);
 }
@@ -1494,7 +1543,7 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         booked[w] = 0.0lf;
     }
     book_share = 1.0lf;
-    // Each wall (`wall_contact`: a plane, or a surface of revolution); a held adhesive
+    // Each wall (`wall_contact`: a plane, a slab or a surface of revolution); a held adhesive
     // contact goes on at its negative overlap. A removed wall acts no more: its contact ends.
     for (var k = 0u; k < WALLS; k++) {
         let slot = i * p.walls + k;
@@ -1519,13 +1568,6 @@ fn forces(@builtin(global_invocation_id) gid: vec3<u32>) {
                 store_wall(slot, false, default_history());
             }
         } else {
-            // A wall piece of finite extent (a box's side) acts as its plane only while the
-            // centre lies within its face's box: elsewhere the run stops instead of going on
-            // wrongly.
-            if WALL_KIND[k] == WALL_PLANE && (any(xi < WALL_LO[k]) || any(xi > WALL_HI[k])) {
-                atomicMax(&status[S_OFF_FACE], i + 1u);
-                atomicMax(&status[S_OFF_FACE_WALL], k + 1u);
-            }
             // The wall guard, at every step: the first step with a crossing and, of that step,
             // the largest slot (atomics over one pass give the same words in any order).
             if overlap > CROSSING * ri {

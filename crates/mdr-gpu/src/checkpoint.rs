@@ -7,7 +7,7 @@
 //! Each contact's history maps word for word: the normal law's state (Hertz's and MDR's largest
 //! overlap; Thornton's largest overlap, unloading coefficient and residual overlap; the adhesive
 //! MDR law's largest overlap and attached radius), Mindlin's displacement and contact radius,
-//! the rolling spring's torque and stiffness. The wall planes are the CPU path's surfaces in
+//! the rolling spring's torque and stiffness. The device walls are the CPU path's surfaces in
 //! its order (`crate::scene`), and a GPU checkpoint lists every (particle, surface) pair as a
 //! candidate (the device tests every wall at every step). Orientations are kept as they are:
 //! the scenes on the GPU integrate none (a sphere's forces do not depend on it).
@@ -195,7 +195,7 @@ pub(crate) fn lists_record(law: &str, state: &GpuState, skin: f64) -> NeighbourL
     }
 }
 
-/// The device state a checkpoint holds for a system of `walls` wall planes and normal law
+/// The device state a checkpoint holds for a system of `walls` device walls and normal law
 /// `law`, with `skin`: its particles, lists and histories. What does not map is refused with
 /// the reason: a checkpoint of another path (rapier's pipeline, restitution), or of surfaces
 /// the device lacks.
@@ -263,7 +263,7 @@ pub(crate) fn state_of_checkpoint(
         };
         if s as usize >= walls || i as usize >= n {
             return refuse(format!(
-                "particle {i} touches surface {s}; the device has {walls} wall planes"
+                "particle {i} touches surface {s}; the device has {walls} walls"
             ));
         }
         let slot = i as usize * walls + s as usize;

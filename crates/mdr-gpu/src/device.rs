@@ -88,24 +88,11 @@ pub enum GpuError {
         /// Its capacity.
         capacity: u32,
     },
-    /// A sphere touched a wall of finite extent (a box's side) outside the face the GPU path
-    /// takes as its plane.
-    #[error(
-        "--device gpu: particle {particle} touches wall plane {wall} outside its face (a box's \
-         side is taken as the plane of its inner face, valid over the face only): the sphere \
-         left the box; run the scene on the CPU path"
-    )]
-    OffFace {
-        /// The particle (0-based).
-        particle: u32,
-        /// The wall plane (0-based, in the system's order).
-        wall: u32,
-    },
     /// A sphere sank deeper than the wall guard allows (`mdr_sim::run::CROSSING_OVERLAP` of its
-    /// radius) into a wall plane: it is going through the wall. The first step it happened at,
-    /// and the particle and wall plane of that step (the largest slot of those that did).
+    /// radius) into a device wall: it is going through the wall. The first step it happened at,
+    /// and the particle and device wall of that step (the largest slot of those that did).
     #[error(
-        "--device gpu: sphere {particle} sank more than {} of its radius into wall plane {wall} \
+        "--device gpu: sphere {particle} sank more than {} of its radius into device wall {wall} \
          at step {step}: it is going through the wall. Lower dt_s or declare a larger \
          max_speed_m_per_s if it is that fast",
         mdr_sim::run::CROSSING_OVERLAP
@@ -113,7 +100,7 @@ pub enum GpuError {
     WallCrossing {
         /// The sphere.
         particle: u32,
-        /// The wall plane (the device's order).
+        /// The device wall (the device's order).
         wall: u32,
         /// The first step with a crossing.
         step: u64,

@@ -23,7 +23,7 @@ const ACTIVE: u32 = 0x8000_0000;
 /// f64 words of a bound law (`Law` of `bed.wgsl`).
 const LAW_WORDS: u64 = (std::mem::size_of::<LawConstants>() / 8) as u64;
 /// Status words (`S_*` of `bed.wgsl`).
-const STATUS_WORDS: usize = 9;
+const STATUS_WORDS: usize = 7;
 /// `S_CROSSING_STEP` of `bed.wgsl` while no sphere crossed a wall.
 const NO_CROSSING: u32 = u32::MAX;
 
@@ -638,7 +638,7 @@ impl System {
         let identity: Vec<f64> = (0..n).flat_map(|_| [0.0, 0.0, 0.0, 1.0]).collect();
         let mut status = [0u32; STATUS_WORDS];
         status[0] = 1; // the first step builds the lists
-        status[7] = NO_CROSSING;
+        status[5] = NO_CROSSING;
         let buffers = Buffers {
             params: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("params"),
@@ -951,16 +951,10 @@ impl System {
                 capacity: self.cell_capacity,
             });
         }
-        if status[4] != 0 {
-            return Err(GpuError::OffFace {
-                particle: status[4] - 1,
-                wall: status[5] - 1,
-            });
-        }
-        if status[7] != NO_CROSSING && self.walls > 0 {
-            let slot = (status[8] - 1) as usize;
+        if status[5] != NO_CROSSING && self.walls > 0 {
+            let slot = (status[6] - 1) as usize;
             // The step from its low 32 bits: at most one batch ago.
-            let back = (self.steps as u32).wrapping_sub(status[7]);
+            let back = (self.steps as u32).wrapping_sub(status[5]);
             return Err(GpuError::WallCrossing {
                 particle: (slot / self.walls) as u32,
                 wall: (slot % self.walls) as u32,
@@ -1229,7 +1223,7 @@ impl System {
                 .all(|p| p.i < p.j && (p.j as usize) < n && p.image < 9);
         if !sized {
             return Err(GpuError::Unsupported(format!(
-                "the state to load does not fit the system of {n} particles and {} wall planes",
+                "the state to load does not fit the system of {n} particles and {} device walls",
                 self.walls
             )));
         }
@@ -1298,8 +1292,8 @@ impl System {
         status[0] = u32::from(state.rebuild_due);
         status[1] = u32::try_from(state.rebuilds).unwrap_or(u32::MAX);
         // The force passes' count modulo 2³², as the shader keeps it.
-        status[6] = steps as u32;
-        status[7] = NO_CROSSING;
+        status[4] = steps as u32;
+        status[5] = NO_CROSSING;
         let scopes = ErrorScopes::push(&self.device);
         let b = &self.buffers;
         let write = |buffer: &wgpu::Buffer, bytes: &[u8]| {

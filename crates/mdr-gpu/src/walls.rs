@@ -1,9 +1,15 @@
-//! The walls of a system on the device ([`DeviceWall`]): planes (a plane wall, each face of a
-//! box) and exact surfaces of revolution (a cylinder with its end discs, a cone, an orifice
-//! plate's faces and rim), fixed or turning about their own axis, each acting until the step
-//! its `[[walls]]` entry is removed at. How a scene's walls become device walls
-//! ([`scene_walls`]) or are refused with the part named ([`wall_support`]), and the constants
-//! of `bed.wgsl` they are written into ([`wall_constants`]).
+//! The walls of a system on the device ([`DeviceWall`]): half-spaces (a plane wall), a box's
+//! slabs (axis-aligned cuboids) and exact surfaces of revolution (a cylinder with its end
+//! discs, a cone, an orifice plate's faces and rim), fixed or turning about their own axis, each
+//! acting until the step its `[[walls]]` entry is removed at. How a scene's walls become device
+//! walls ([`scene_walls`]) or are refused with the part named ([`wall_support`]), and the
+//! constants of `bed.wgsl` they are written into ([`wall_constants`]).
+//!
+//! A box's slab touches a sphere as the CPU neighbour-list path's cuboid collider does
+//! (`mdr_rapier::geometry::sphere_shape_signed` with parry's projection of the centre on the
+//! cuboid): `cuboid_contact` of `bed.wgsl` is that projection and contact written in the same
+//! order, inside and outside the slab, on its faces, edges and corners; each slab is one
+//! device wall with its own history slot, as each is one surface of the CPU path.
 //!
 //! A surface of revolution touches a sphere as the CPU neighbour-list path's
 //! `mdr_rapier::geometry::SurfaceOfRevolution` does (its doc derives the closed form: the
@@ -16,35 +22,36 @@
 
 use crate::device::GpuError;
 use mdr_rapier::convert::to_glam;
-use mdr_rapier::geometry::SurfaceOfRevolution;
+use mdr_rapier::geometry::{sphere_shape_signed, SurfaceOfRevolution};
 use mdr_sim::scene::schema::WallKind;
 use mdr_sim::walls::{Revolution, Wall, WallPiece, REMOVED_WALL_DROP_M};
 use mdr_sim::Scene;
 use nalgebra::Vector3;
 use rapier3d_f64::math::Pose;
+use rapier3d_f64::parry::shape::Cuboid;
 
 /// A planar wall of a system: the half-space behind the plane through `point` with outward
-/// (towards the spheres) unit `normal`, acting where a sphere's centre lies in `[lo, hi]`
-/// (a box's side is its slab's inner face, valid over the face; elsewhere the step stops with
-/// [`GpuError::OffFace`]).
+/// (towards the spheres) unit `normal`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Plane {
     pub normal: Vector3<f64>,
     pub point: Vector3<f64>,
-    pub lo: Vector3<f64>,
-    pub hi: Vector3<f64>,
 }
 
 impl Plane {
-    /// An infinite plane.
+    /// The half-space behind the plane through `point` with outward unit `normal`.
     pub fn infinite(normal: Vector3<f64>, point: Vector3<f64>) -> Self {
-        Self {
-            normal,
-            point,
-            lo: Vector3::repeat(f64::MIN),
-            hi: Vector3::repeat(f64::MAX),
-        }
+        Self { normal, point }
     }
+}
+
+/// An axis-aligned cuboid (a box's slab) as the CPU path's collider holds it: its pose's
+/// translation `center` (world, m; the wall's origin plus the piece's centre) without rotation,
+/// and its half extents (m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Slab {
+    pub center: Vector3<f64>,
+    pub half_extents: Vector3<f64>,
 }
 
 /// An exact surface of revolution: the `(radius, axial position)` profile turned about the
@@ -87,8 +94,10 @@ impl RevolutionWall {
 /// The shape of a device wall.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) enum WallShape {
-    /// A half-space (over a face, for a box's side).
+    /// A half-space.
     Plane(Plane),
+    /// An axis-aligned cuboid: a box's slab.
+    Slab(Slab),
     /// An exact surface of revolution.
     Revolution(RevolutionWall),
 }
@@ -121,12 +130,12 @@ impl DeviceWall {
     }
 
     /// The half-space that stands for the wall when the laws are bound (they depend on the
-    /// materials, not on the shape): a plane's own, or, for a surface of revolution, one that
-    /// no sphere reaches.
+    /// materials, not on the shape): a plane's own, or, for a slab or a surface of revolution,
+    /// one that no sphere reaches.
     pub fn law_stand_in(&self) -> Plane {
         match &self.shape {
             WallShape::Plane(plane) => *plane,
-            WallShape::Revolution(_) => {
+            WallShape::Slab(_) | WallShape::Revolution(_) => {
                 Plane::infinite(Vector3::z(), Vector3::new(0.0, 0.0, -REMOVED_WALL_DROP_M))
             }
         }
@@ -134,10 +143,17 @@ impl DeviceWall {
 
     /// The overlap of a sphere at `x` with radius `r`, negative while apart (the contact's
     /// signed overlap, as the force pass takes it); `None` where the contact has no normal (a
-    /// centre on a surface of revolution).
+    /// centre on a slab's boundary or on a surface of revolution).
     pub fn signed_overlap(&self, x: &Vector3<f64>, r: f64) -> Option<f64> {
         match &self.shape {
             WallShape::Plane(plane) => Some(r - plane.normal.dot(&(x - plane.point))),
+            WallShape::Slab(slab) => sphere_shape_signed(
+                x,
+                r,
+                &Cuboid::new(to_glam(&slab.half_extents)),
+                &Pose::from_translation(to_glam(&slab.center)),
+            )
+            .map(|c| c.overlap),
             WallShape::Revolution(rev) => rev
                 .surface
                 .sphere_contact_signed(x, r, &Pose::from_translation(to_glam(&rev.origin)))
@@ -262,8 +278,8 @@ fn turning_support(wall: &Wall, omega: &Vector3<f64>) -> Result<(), String> {
 }
 
 /// The device walls of `scene` in the CPU path's surface order: per `[[walls]]` entry, its
-/// exact surface of revolution (one surface), or the plane of each piece (a plane wall's
-/// half-space, a box's slabs as the planes of their inner faces, each valid over its face).
+/// exact surface of revolution (one surface), or each piece (a plane wall's half-space, each
+/// of a box's slabs).
 pub(crate) fn scene_walls(scene: &Scene) -> Result<Vec<DeviceWall>, GpuError> {
     let mut walls = Vec::new();
     for wall in &scene.walls {
@@ -284,50 +300,28 @@ pub(crate) fn scene_walls(scene: &Scene) -> Result<Vec<DeviceWall>, GpuError> {
             continue;
         }
         for piece in &wall.pieces {
-            walls.push(device(WallShape::Plane(piece_plane(wall, piece)?)));
+            walls.push(device(piece_shape(wall, piece)?));
         }
     }
     Ok(walls)
 }
 
-/// The plane a wall piece stands for: a half-space's, or an axis-aligned slab's inner face
-/// (looking towards the box's centre), valid over its face.
-fn piece_plane(wall: &Wall, piece: &WallPiece) -> Result<Plane, GpuError> {
+/// The shape of a wall piece: a half-space, or an axis-aligned slab at the pose the CPU path
+/// gives its collider (the wall body's translation plus the piece's, no rotation).
+fn piece_shape(wall: &Wall, piece: &WallPiece) -> Result<WallShape, GpuError> {
     match piece {
-        WallPiece::HalfSpace { point, normal } => {
-            Ok(Plane::infinite(normal.normalize(), wall.origin + point))
-        }
+        WallPiece::HalfSpace { point, normal } => Ok(WallShape::Plane(Plane::infinite(
+            normal.normalize(),
+            wall.origin + point,
+        ))),
         WallPiece::Cuboid {
             center,
             rotation,
             half_extents,
-        } if *rotation == nalgebra::UnitQuaternion::identity() => {
-            let center = wall.origin + center;
-            // The slab's thin axis; its inner face looks towards the box's centre.
-            let axis = (0..3)
-                .min_by(|&a, &b| half_extents[a].total_cmp(&half_extents[b]))
-                .unwrap_or(2);
-            let box_center = wall.origin + pieces_center(&wall.pieces);
-            let side = if center[axis] > box_center[axis] {
-                1.0
-            } else {
-                -1.0
-            };
-            let mut normal = Vector3::zeros();
-            normal[axis] = -side;
-            let mut point = center;
-            point[axis] -= side * half_extents[axis];
-            let mut lo = center - half_extents;
-            let mut hi = center + half_extents;
-            lo[axis] = f64::MIN;
-            hi[axis] = f64::MAX;
-            Ok(Plane {
-                normal,
-                point,
-                lo,
-                hi,
-            })
-        }
+        } if *rotation == nalgebra::UnitQuaternion::identity() => Ok(WallShape::Slab(Slab {
+            center: wall.origin + center,
+            half_extents: *half_extents,
+        })),
         _ => Err(GpuError::Unsupported(format!(
             "wall {} has a piece that is neither a half-space nor an axis-aligned slab",
             wall.index
@@ -335,22 +329,10 @@ fn piece_plane(wall: &Wall, piece: &WallPiece) -> Result<Plane, GpuError> {
     }
 }
 
-/// The mean of the centres of a box's slabs: inside the box, on the inner side of every slab
-/// (an open top leaves the mean above the bottom slab).
-fn pieces_center(pieces: &[WallPiece]) -> Vector3<f64> {
-    let centers: Vec<_> = pieces
-        .iter()
-        .filter_map(|p| match p {
-            WallPiece::Cuboid { center, .. } => Some(*center),
-            _ => None,
-        })
-        .collect();
-    centers.iter().sum::<Vector3<f64>>() / centers.len().max(1) as f64
-}
-
 /// `WALL_KIND` codes of `bed.wgsl`.
 const KIND_PLANE: u32 = 0;
 const KIND_REVOLUTION: u32 = 1;
+const KIND_SLAB: u32 = 2;
 
 /// WGSL constant list of `values` (one `empty` for none: the arrays of `bed.wgsl` have at least
 /// one entry).
@@ -369,10 +351,12 @@ pub(crate) fn wgsl_vector(v: &Vector3<f64>) -> String {
 }
 
 /// The WGSL constants of `walls` (`__WALL_CONSTANTS__` of `bed.wgsl`), one entry per wall in
-/// each array: the kind; a plane's normal, point and face box (zero for a surface of
-/// revolution); a surface of revolution's origin, centre, axis and profile range in `PROFILE`
-/// (zero for a plane); the angular velocity and its pivot; the removal stage (`u32::MAX`:
-/// never removed).
+/// each array: the kind; a plane's normal and point (zero otherwise); the origin (a slab's
+/// centre, a surface of revolution's collider pose; zero for a plane); a slab's half extents
+/// (zero otherwise); a surface of revolution's centre, axis and profile range in `PROFILE`
+/// (zero otherwise); the angular velocity and its pivot; the removal stage (`u32::MAX`: never
+/// removed); and whether any wall is a slab (`ANY_SLAB`: without one the slab kernel is
+/// compiled out).
 pub(crate) fn wall_constants(walls: &[DeviceWall]) -> String {
     let slots = walls.len().max(1);
     let zero = Vector3::zeros();
@@ -387,10 +371,19 @@ pub(crate) fn wall_constants(walls: &[DeviceWall]) -> String {
     };
     let plane = |w: &DeviceWall, f: &dyn Fn(&Plane) -> Vector3<f64>| match &w.shape {
         WallShape::Plane(p) => f(p),
-        WallShape::Revolution(_) => zero,
+        _ => zero,
+    };
+    let slab = |w: &DeviceWall, f: &dyn Fn(&Slab) -> Vector3<f64>| match &w.shape {
+        WallShape::Slab(b) => f(b),
+        _ => zero,
     };
     let revolution = |w: &DeviceWall, f: &dyn Fn(&RevolutionWall) -> Vector3<f64>| match &w.shape {
         WallShape::Revolution(r) => f(r),
+        _ => zero,
+    };
+    let origin = |w: &DeviceWall| match &w.shape {
+        WallShape::Slab(b) => b.center,
+        WallShape::Revolution(r) => r.origin,
         WallShape::Plane(_) => zero,
     };
     for w in walls {
@@ -407,6 +400,7 @@ pub(crate) fn wall_constants(walls: &[DeviceWall]) -> String {
         .map(|w| match w.shape {
             WallShape::Plane(_) => format!("{KIND_PLANE}u"),
             WallShape::Revolution(_) => format!("{KIND_REVOLUTION}u"),
+            WallShape::Slab(_) => format!("{KIND_SLAB}u"),
         })
         .collect();
     let stages = walls
@@ -431,16 +425,12 @@ pub(crate) fn wall_constants(walls: &[DeviceWall]) -> String {
             vectors(&|w| plane(w, &|p| p.point))
         ),
         format!(
-            "const WALL_LO = array<vec3<f64>, {slots}>({});",
-            vectors(&|w| plane(w, &|p| p.lo))
-        ),
-        format!(
-            "const WALL_HI = array<vec3<f64>, {slots}>({});",
-            vectors(&|w| plane(w, &|p| p.hi))
-        ),
-        format!(
             "const WALL_ORIGIN = array<vec3<f64>, {slots}>({});",
-            vectors(&|w| revolution(w, &|r| r.origin))
+            vectors(&origin)
+        ),
+        format!(
+            "const WALL_HALF = array<vec3<f64>, {slots}>({});",
+            vectors(&|w| slab(w, &|b| b.half_extents))
         ),
         format!(
             "const WALL_CENTER = array<vec3<f64>, {slots}>({});",
@@ -471,6 +461,10 @@ pub(crate) fn wall_constants(walls: &[DeviceWall]) -> String {
             vectors(&|w| w.pivot)
         ),
         format!("const WALL_STAGE = array<u32, {slots}>({});", u32s(stages)),
+        format!(
+            "const ANY_SLAB: bool = {};",
+            walls.iter().any(|w| matches!(w.shape, WallShape::Slab(_)))
+        ),
     ]
     .join("\n")
 }

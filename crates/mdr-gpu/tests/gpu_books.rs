@@ -14,6 +14,8 @@
 
 #[path = "common/box_scene.rs"]
 mod box_scene;
+#[path = "common/box_toml.rs"]
+mod box_toml;
 mod common;
 use box_scene::{write_box_scene, LAWS, STIFFNESS_DAMPING};
 use mdr_gpu::{

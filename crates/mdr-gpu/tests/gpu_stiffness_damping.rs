@@ -10,6 +10,8 @@
 
 #[path = "common/box_scene.rs"]
 mod box_scene;
+#[path = "common/box_toml.rs"]
+mod box_toml;
 mod common;
 #[path = "common/scene_end.rs"]
 mod scene_end;

@@ -3,52 +3,13 @@
 //! closed box `[-1, 1] cm³ × [0, 2] cm`, each with a fixed pseudo-random velocity of up to
 //! 0.5 m/s per component (`box_csv`): within 300 steps (6 ms) they collide with each other and
 //! the walls, load plastically, slide, roll, are damped, separate and (adhesive law) let go.
-//! Used with the test crate's `common` module.
+//! Used with the test crate's `common` and `box_toml` modules.
 
+use crate::box_toml::BoxToml;
 use crate::common::box_csv;
 use mdr_sim::scene::load_scene;
 use mdr_sim::Scene;
 use std::path::Path;
-
-const BOX: &str = r#"
-[run]
-name = "box"
-duration_s = 0.006
-dt_s = 2.0e-5
-max_speed_m_per_s = 1.0
-output_interval_s = 0.003
-energy_interval_s = 0.0005
-{RUN}
-
-[gravity]
-acceleration_m_per_s2 = [0.0, 0.0, -9.81]
-
-[[material]]
-name = "grain"
-youngs_pa = 2.0e6
-poisson_ratio = 0.25
-density_kg_per_m3 = 2500.0
-
-[contact]
-{NORMAL}
-tangential = "mindlin"
-friction = 0.5
-rolling_friction = 0.1
-{DAMPING}
-
-[[particles]]
-material = "grain"
-placement = "csv"
-file = "particles.csv"
-
-[[walls]]
-kind = "box"
-material = "grain"
-min_m = [-0.01, -0.01, 0.0]
-max_m = [0.01, 0.01, 0.02]
-thickness_m = 0.004
-open_top = false
-"#;
 
 /// The `[contact]` keys of each normal law.
 pub const LAWS: [(&str, &str); 4] = [
@@ -77,10 +38,25 @@ pub const STIFFNESS_DAMPING: &str =
 /// extra `[run]` keys `run`, written into `dir` (`scene.toml`, `particles.csv`).
 pub fn write_box_scene(dir: &Path, normal: &str, damping: &str, run: &str) -> Scene {
     std::fs::write(dir.join("particles.csv"), box_csv()).unwrap();
-    let text = BOX
-        .replace("{NORMAL}", normal)
-        .replace("{DAMPING}", damping)
-        .replace("{RUN}", run);
+    let text = BoxToml {
+        name: "box",
+        duration_s: 0.006,
+        dt_s: 2.0e-5,
+        max_speed_m_per_s: 1.0,
+        output_interval_s: 0.003,
+        run: &format!("energy_interval_s = 0.0005\n{run}"),
+        materials: &[("grain", 2.0e6, 0.25, 2500.0, "")],
+        contact: &format!(
+            "{normal}\ntangential = \"mindlin\"\nfriction = 0.5\nrolling_friction = 0.1\n{damping}"
+        ),
+        particles: &[("grain", "particles.csv")],
+        wall_material: "grain",
+        min_m: [-0.01, -0.01, 0.0],
+        max_m: [0.01, 0.01, 0.02],
+        thickness_m: 0.004,
+        open_top: false,
+    }
+    .text();
     let path = dir.join("scene.toml");
     std::fs::write(&path, text).unwrap();
     load_scene(&path).unwrap_or_else(|p| panic!("{p}"))

@@ -21,6 +21,11 @@ pub fn cpu_run(scene: &Scene, steps: usize) -> CpuEnd {
     for _ in 0..steps {
         run.step().unwrap();
     }
+    cpu_state(&run)
+}
+
+/// The CPU neighbour-list path's state now.
+pub fn cpu_state(run: &SceneSteps) -> CpuEnd {
     let contacts = run.contacts();
     let p = run.neighbour_list_particles().unwrap();
     CpuEnd {
