@@ -35,7 +35,10 @@ fn test_scene() -> Scene {
 
 /// The test scene under `name`, with `stiff` and `soft` added to those materials' keys.
 fn box_scene(name: &str, stiff_keys: &str, soft_keys: &str) -> Scene {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(name)
+        // Tests running at once build the same scene: each thread writes and reads its own copy.
+        .join(format!("{:?}", std::thread::current().id()));
     std::fs::create_dir_all(&dir).unwrap();
     let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
     let mut next = || {

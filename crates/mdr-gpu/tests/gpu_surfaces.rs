@@ -40,7 +40,10 @@ fn sequence() -> impl FnMut() -> f64 {
 /// `name.toml`: MDR with Mindlin friction, rolling resistance and Hertzian damping, as the box
 /// scene of `gpu_scene.rs`.
 fn write_scene(name: &str, spheres: &[(Vector3<f64>, Vector3<f64>)], walls: &str) -> Scene {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(name)
+        // Tests running at once build the same scene: each thread writes and reads its own copy.
+        .join(format!("{:?}", std::thread::current().id()));
     std::fs::create_dir_all(&dir).unwrap();
     let mut csv = "x_m,y_m,z_m,radius_m,vx_m_per_s,vy_m_per_s,vz_m_per_s\n".to_owned();
     for (x, v) in spheres {
