@@ -518,15 +518,17 @@ fn a_file_without_count_takes_what_the_scene_has_room_for() {
         let path = common::write(&dir, "scene.toml", &text);
         the_errors(&path, &text)
     };
-    let duration = (
-        "run.duration_s".to_owned(),
-        "= -0.01 is outside the allowed range (0, inf)".to_owned(),
-    );
-    assert_eq!(errors("one.csv", ""), [duration.clone()]);
+    let duration = || {
+        (
+            "run.duration_s".to_owned(),
+            "= -0.01 is outside the allowed range (0, inf)".to_owned(),
+        )
+    };
+    assert_eq!(errors("one.csv", ""), [duration()]);
     assert_eq!(
         errors("two.csv", ""),
         [
-            duration.clone(),
+            duration(),
             (
                 "particles[1].file".to_owned(),
                 "the file holds 2 particles, more than the allowed 1 (whole scene at most 1000000)"
@@ -534,7 +536,7 @@ fn a_file_without_count_takes_what_the_scene_has_room_for() {
             )
         ]
     );
-    assert_eq!(errors("two.csv", "count = 1\n"), [duration]);
+    assert_eq!(errors("two.csv", "count = 1\n"), [duration()]);
 }
 
 /// `radius_classes` leaves equal bounds that are not a radius (zero, infinite) to the size
