@@ -350,3 +350,79 @@ fn materials_are_named_once_and_named_materials_must_exist() {
             .collect();
     assert_eq!(keys, ["material[0].poisson_ratio"]);
 }
+
+/// `exact_surface = true` applies to the neighbour-list path only: refused at the wall's key
+/// with `force_path = "rapier"` or restitution coupling, taken on the neighbour-list path;
+/// `exact_surface = false` is taken on every path.
+#[test]
+fn an_exact_surface_needs_the_neighbour_list_path() {
+    let plate = |run: &str, exact: bool| {
+        column(run)
+            + &format!(
+                "\n[[walls]]\nkind = \"orifice_plate\"\nmaterial = \"grain\"\n\
+                 center_m = [0.0, 0.0, -0.02]\nouter_radius_m = 0.06\norifice_diameter_m = 0.024\n\
+                 thickness_m = 0.003\nsegments = 64\nexact_surface = {exact}\n"
+            )
+    };
+    let refused = "applies to the neighbour-list path only (coupling = \"force\", force_path = \
+                   \"neighbour_list\"): remove it or set it to false";
+    for path in ["", "force_path = \"neighbour_list\""] {
+        let text = plate(path, true);
+        assert!(errors(&text).is_empty(), "{path}: {:?}", errors(&text));
+    }
+    for path in ["force_path = \"rapier\"", "coupling = \"restitution\""] {
+        assert_eq!(
+            errors(&plate(path, true)),
+            [err("walls[1].exact_surface", refused)],
+            "{path}"
+        );
+        let text = plate(path, false);
+        assert!(errors(&text).is_empty(), "{path}: {:?}", errors(&text));
+    }
+}
+
+/// `max_initial_overlap_fraction` lies in `[0, 0.5]`, both ends included.
+#[test]
+fn the_initial_overlap_allowance_lies_in_zero_to_a_half() {
+    let allowed = |f: &str| {
+        column("").replace(
+            "placement = \"lattice\"",
+            &format!("placement = \"lattice\"\nmax_initial_overlap_fraction = {f}"),
+        )
+    };
+    for f in ["0.0", "0.5"] {
+        assert!(
+            errors(&allowed(f)).is_empty(),
+            "{f}: {:?}",
+            errors(&allowed(f))
+        );
+    }
+    for (f, shown) in [("0.6", "0.6"), ("-0.1", "-0.1")] {
+        assert_eq!(
+            errors(&allowed(f)),
+            [err(
+                "particles[0].max_initial_overlap_fraction",
+                &format!("= {shown} is outside the allowed range [0, 0.5]")
+            )],
+            "{f}"
+        );
+    }
+}
+
+/// A radius on a class boundary keeps its class (`radius_classes` rounds down with a margin of
+/// 10⁻⁹ class widths against the quotient's round-off): a normal distribution of deviation
+/// 10⁻¹⁵ m around 1.5 mm, the boundary between the two classes of [1, 2] mm, gives every
+/// sphere 1.5 mm, not the lower class's 1 mm.
+#[test]
+fn a_radius_on_a_class_boundary_keeps_its_class() {
+    let text = column("").replace(
+        "radius_m = 0.002\n",
+        "size_distribution = \"normal\"\nradius_m = 0.0015\nradius_std_m = 1e-15\n\
+         radius_min_m = 0.001\nradius_max_m = 0.002\nradius_classes = 2\n",
+    );
+    let scene = parse_scene(Path::new("scene.toml"), &text).unwrap_or_else(|e| panic!("{e}"));
+    assert!(!scene.particles.is_empty());
+    for p in &scene.particles {
+        assert!((p.radius - 0.0015).abs() < 1e-15, "{}", p.radius);
+    }
+}
