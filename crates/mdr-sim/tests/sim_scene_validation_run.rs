@@ -2,8 +2,10 @@
 //! to hand-written scenes: the run's name, `duration_s`'s upper bound, the output interval
 //! against the run, the energy interval's default, `steps_per_contact`'s lower bound,
 //! restitution coupling's law and what it ignores, `neighbour_skin_m`, `discharge_height_m`
-//! against the headline and `delete_below_m`, `orifice_sweep_m`, and the materials' names;
-//! each with the error or warning (key and text) it must give. Parsing only: no scene is run.
+//! against the headline and `delete_below_m`, `orifice_sweep_m`, the materials' names,
+//! `exact_surface` against the path, `max_initial_overlap_fraction`'s range and a radius on a
+//! class boundary; each with the error, warning (key and text) or radius it must give. Parsing
+//! only: no scene is run.
 
 mod common;
 
