@@ -473,3 +473,87 @@ fn spheres_of_a_metre_or_more_are_warned_about() {
         );
     }
 }
+
+/// Every error of the scene as `(key, message)`, in the order reported.
+fn the_errors(path: &Path, text: &str) -> Vec<(String, String)> {
+    let problems = parse_at(path, text)
+        .err()
+        .unwrap_or_else(|| panic!("taken:\n{text}"));
+    problems
+        .errors()
+        .map(|e| (e.key.clone(), e.message.clone()))
+        .collect()
+}
+
+/// A group read from a file without `count` takes every sphere of it only where the scene has
+/// room for them: the scene's 10⁶ counts the groups before it. After a lattice of 999 999
+/// spheres (100³ sites of spheres of 1 mm at the spacing 2.1 mm in 21 cm, filled but one) a
+/// file of one sphere is taken, one of two refused at its `file`, and one of two with
+/// `count = 1` cut to its first. The run's negative `duration_s` is an error of its own, which
+/// keeps the overlap check of 10⁶ spheres (run only on a scene without errors) out of the test.
+/// A file group that took every sphere up to 10⁶ whatever the groups before it held makes the
+/// two-sphere file a scene of 1 000 001; `len > limit` → `>=` refuses the one-sphere file.
+#[test]
+fn a_file_without_count_takes_what_the_scene_has_room_for() {
+    let dir = common::temp_dir("particles-room");
+    common::write(&dir, "one.csv", "x_m,y_m,z_m,radius_m\n0.5,0.5,0.5,0.001\n");
+    common::write(
+        &dir,
+        "two.csv",
+        "x_m,y_m,z_m,radius_m\n0.5,0.5,0.5,0.001\n0.6,0.5,0.5,0.001\n",
+    );
+    let full = lattice(
+        999_999,
+        0.001,
+        [0.0, 0.0, 0.0],
+        [0.21, 0.21, 0.21],
+        0.05,
+        "",
+    );
+    let errors = |file: &str, count: &str| {
+        let text = with_particles(&format!(
+            "{full}[[particles]]\nmaterial = \"grain\"\n{count}placement = \"csv\"\nfile = \"{file}\"\n"
+        ))
+        .replace("duration_s = 0.01", "duration_s = -0.01");
+        let path = common::write(&dir, "scene.toml", &text);
+        the_errors(&path, &text)
+    };
+    let duration = || {
+        (
+            "run.duration_s".to_owned(),
+            "= -0.01 is outside the allowed range (0, inf)".to_owned(),
+        )
+    };
+    assert_eq!(errors("one.csv", ""), [duration()]);
+    assert_eq!(
+        errors("two.csv", ""),
+        [
+            duration(),
+            (
+                "particles[1].file".to_owned(),
+                "the file holds 2 particles, more than the allowed 1 (whole scene at most 1000000)"
+                    .to_owned()
+            )
+        ]
+    );
+    assert_eq!(errors("two.csv", "count = 1\n"), [duration()]);
+}
+
+/// `radius_classes` leaves equal bounds that are not a radius (zero, infinite) to the size
+/// distribution's own errors at `radius_min_m` and `radius_max_m`: no third error at
+/// `radius_classes` (`lo > 0` → `lo >= 0` gives one at zero).
+#[test]
+fn radius_classes_leave_equal_bounds_that_are_no_radius_to_the_distribution() {
+    for (bound, message) in [
+        (0.0, "= 0 is outside the allowed range (0, inf)"),
+        (f64::INFINITY, "must be a finite number, got inf"),
+    ] {
+        let text = distributed("uniform", 0.0, 0.0, bound, bound, "radius_classes = 4");
+        let errors = the_errors(Path::new("scene.toml"), &text);
+        let want: Vec<(String, String)> = ["radius_min_m", "radius_max_m"]
+            .iter()
+            .map(|k| (format!("particles[0].{k}"), message.to_owned()))
+            .collect();
+        assert_eq!(errors, want, "{bound}");
+    }
+}

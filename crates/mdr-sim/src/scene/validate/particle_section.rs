@@ -31,7 +31,8 @@ impl Checker<'_, '_> {
                 None
             }
             Some(n) => Some(n),
-            None if is_file => Some(MAX_PARTICLES),
+            // A file without `count`: every sphere of it, within what the scene has room for.
+            None if is_file => Some(MAX_PARTICLES.saturating_sub(*total)),
             None => {
                 self.error(
                     table,
@@ -184,7 +185,7 @@ impl Checker<'_, '_> {
                             if g.count.is_none() {
                                 self.error(
                                     &table.key("file"),
-                                    format!("the file holds {} particles, more than the allowed {MAX_PARTICLES}", p.len()),
+                                    format!("the file holds {} particles, more than the allowed {limit} (whole scene at most {MAX_PARTICLES})", p.len()),
                                 );
                                 return None;
                             }
