@@ -699,9 +699,7 @@ impl Checker<'_, '_> {
             }
         };
         if r.coupling == CouplingMode::Force {
-            // An automatic step resolves the contact with `steps_per_contact` steps by its
-            // construction; the quotient of the two could round below it.
-            let steps = if dt_auto { spc } else { contact_time / dt };
+            let steps = if dt_auto { spc } else { contact_time / dt }; // t_c / dt may round below spc
             if steps < MIN_STEPS_HARD {
                 self.error(
                     &run.key("dt_s"),
