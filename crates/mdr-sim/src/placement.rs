@@ -223,8 +223,10 @@ pub fn random_fill(
 /// A sphere read from a file: centre (m), radius (m), optional velocity (m/s).
 pub type ReadSphere = (Vector3<f64>, f64, Option<Vector3<f64>>);
 
-/// Read `x_m,y_m,z_m,radius_m[,vx_m_per_s,vy_m_per_s,vz_m_per_s]` rows (header required).
-pub fn read_csv(path: &Path) -> Result<Vec<ReadSphere>, String> {
+/// Read `x_m,y_m,z_m,radius_m[,vx_m_per_s,vy_m_per_s,vz_m_per_s]` rows (header required). A file
+/// of more than `max_rows` rows is refused when its next row is reached, so no more than
+/// `max_rows` spheres are ever held.
+pub fn read_csv(path: &Path, max_rows: usize) -> Result<Vec<ReadSphere>, String> {
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .comment(Some(b'#'))
@@ -250,6 +252,12 @@ pub fn read_csv(path: &Path) -> Result<Vec<ReadSphere>, String> {
     };
     let mut out = Vec::new();
     for (row, record) in reader.records().enumerate() {
+        if row == max_rows {
+            return Err(format!(
+                "{}: more than {max_rows} particles, the most a scene holds",
+                path.display()
+            ));
+        }
         let record = record.map_err(|e| format!("{}: {e}", path.display()))?;
         let line = record.position().map_or(row + 2, |p| p.line() as usize);
         let num = |i: usize, name: &str| -> Result<f64, String> {
@@ -292,13 +300,24 @@ pub fn read_csv(path: &Path) -> Result<Vec<ReadSphere>, String> {
 
 /// Read the `Atoms # sphere` section of a LAMMPS data file (`id type diameter density x y z
 /// [ix iy iz]`), scaling lengths by `length_scale` (m per LAMMPS length unit). Atoms are sorted by
-/// id so the order does not depend on how LAMMPS wrote them.
-pub fn read_lammps(path: &Path, length_scale: f64) -> Result<Vec<(Vector3<f64>, f64)>, String> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    let mut lines = text.lines().enumerate();
+/// id so the order does not depend on how LAMMPS wrote them. A file that declares more than
+/// `max_atoms` atoms is refused before they are read; the file is read line by line.
+pub fn read_lammps(
+    path: &Path,
+    length_scale: f64,
+    max_atoms: usize,
+) -> Result<Vec<(Vector3<f64>, f64)>, String> {
+    let file =
+        std::fs::File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let mut lines = std::io::BufRead::lines(std::io::BufReader::new(file))
+        .enumerate()
+        .map(|(i, line)| {
+            line.map(|l| (i, l))
+                .map_err(|e| format!("{}:{}: {e}", path.display(), i + 1))
+        });
     let mut declared: Option<usize> = None;
-    for (_, line) in lines.by_ref() {
+    for line in lines.by_ref() {
+        let (_, line) = line?;
         let t = line.trim();
         if let Some(n) = t.strip_suffix("atoms") {
             declared = n.trim().parse().ok();
@@ -319,8 +338,15 @@ pub fn read_lammps(path: &Path, length_scale: f64) -> Result<Vec<(Vector3<f64>, 
             path.display()
         ));
     };
+    if n > max_atoms {
+        return Err(format!(
+            "{}: the header declares {n} atoms, more than {max_atoms}, the most a scene holds",
+            path.display()
+        ));
+    }
     let mut atoms: Vec<(u64, Vector3<f64>, f64)> = Vec::with_capacity(n);
-    for (i, line) in lines {
+    for line in lines {
+        let (i, line) = line?;
         let t = line.split('#').next().unwrap_or("").trim();
         if t.is_empty() {
             if atoms.is_empty() {

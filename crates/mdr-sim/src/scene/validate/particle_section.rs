@@ -165,13 +165,13 @@ impl Checker<'_, '_> {
                         &[("length_scale_m", g.length_scale_m.is_some())],
                         "by placement = \"csv\" (the CSV is in metres)",
                     );
-                    placement::read_csv(&path)
+                    placement::read_csv(&path, MAX_PARTICLES as usize)
                 } else {
                     let scale = match g.length_scale_m {
                         Some(s) => self.positive(&table.key("length_scale_m"), s)?,
                         None => 1.0,
                     };
-                    placement::read_lammps(&path, scale)
+                    placement::read_lammps(&path, scale, MAX_PARTICLES as usize)
                         .map(|v| v.into_iter().map(|(p, r)| (p, r, None)).collect())
                 };
                 match read {
