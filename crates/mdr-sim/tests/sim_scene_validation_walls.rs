@@ -10,7 +10,7 @@
 mod common;
 
 use mdr_sim::scene::validate::parse_scene;
-use mdr_sim::scene::{Problem, Problems, Scene};
+use mdr_sim::scene::{Problem, Problems, Scene, Severity};
 use mdr_sim::walls::WallPiece;
 use nalgebra::{UnitQuaternion, Vector3};
 
@@ -412,6 +412,31 @@ fn two_spheres_may_overlap_by_their_allowance() {
         "initial placement overlaps: particle 0 (group 0) and particle 1 (group 0) overlap by \
          2.200e-4 m, more than 10% of the smaller radius (max_initial_overlap_fraction)"
     );
+}
+
+/// The overlap check runs on every scene without an error, a scene with only a warning included,
+/// and on no scene that already has an error (whose overlaps would only add to its errors).
+#[test]
+fn the_overlap_check_runs_on_the_scenes_without_errors() {
+    let tenth = "max_initial_overlap_fraction = 0.1";
+    let pair = [SPHERE, [0.00378, 0.0, 0.05, 0.002]];
+    let base = scene(tenth, "");
+    assert!(base.contains("duration_s = 0.01\n"), "{base}");
+    // A run shorter than its output interval: a warning, and the overlap still refused.
+    let short = base.replace("duration_s = 0.01\n", "duration_s = 0.001\n");
+    let problems = parse(&pair, &short).unwrap_err();
+    assert!(
+        problems
+            .0
+            .iter()
+            .any(|p| p.severity == Severity::Warning && p.key == "run.output_interval_s"),
+        "{problems}"
+    );
+    let e = the_error(&pair, &short);
+    assert!(e.message.starts_with("initial placement overlaps"), "{e:?}");
+    // A negative duration: that error alone.
+    let negative = base.replace("duration_s = 0.01\n", "duration_s = -1.0\n");
+    assert_eq!(the_error(&pair, &negative).key, "run.duration_s");
 }
 
 /// The overlap check stops at six errors: a row of eight spheres of 2 mm, 3.6 mm apart (seven
