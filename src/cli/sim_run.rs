@@ -223,18 +223,12 @@ fn run_checked(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Re
         refuse_sweep_resume(args)?;
         let sweep = mdr_sim::run::run_orifice_sweep(scene, &options)?;
         return print_sweep(&sweep, |run, n| {
-            // The checkpoint's fingerprint holds the run's name, so the name is part of the recipe.
-            format!(
-                "interrupted at t = {:.6e} s (step {}) of run {n} of the sweep; a sweep is not resumed: \
-                 write that run's diameter into orifice_diameter_m and its name `{}_D{}` into name, \
-                 remove orifice_sweep_m and resume it with --resume {}",
-                run.time,
-                run.step,
-                scene.name,
-                n - 1,
-                run.checkpoint
-                    .as_deref()
-                    .map_or("<checkpoint>".to_owned(), |p| shell_word(&p.display().to_string()))
+            sweep_interrupted(
+                &scene.name,
+                n,
+                (run.time, run.step),
+                run.checkpoint.as_deref(),
+                "",
             )
         });
     }
@@ -287,6 +281,30 @@ pub(super) fn refuse_sweep_resume(args: &RunArgs) -> anyhow::Result<()> {
         .into());
     }
     Ok(())
+}
+
+/// The message of a sweep interrupted in its run `n` (from 1) at `(time, step)`, `device` the
+/// run's device as said after "the sweep" (empty on the CPU): how to resume that run alone. The
+/// checkpoint's fingerprint holds the run's name, so the name is part of the recipe.
+pub(super) fn sweep_interrupted(
+    name: &str,
+    n: usize,
+    (time, step): (f64, u64),
+    checkpoint: Option<&Path>,
+    device: &str,
+) -> String {
+    let next = match checkpoint {
+        Some(checkpoint) => format!(
+            "a sweep is not resumed: write that run's diameter into orifice_diameter_m and its \
+             name `{name}_D{}` into name, remove orifice_sweep_m and resume it (on either device) \
+             with --resume {}",
+            n - 1,
+            shell_word(&checkpoint.display().to_string())
+        ),
+        None => "no checkpoint was written (--no-checkpoints): run the sweep again to start again"
+            .to_owned(),
+    };
+    format!("interrupted at t = {time:.6e} s (step {step}) of run {n} of the sweep{device}; {next}")
 }
 
 /// A finished sweep, on either device: each run's headline and the sweep's table and fit on

@@ -5,7 +5,7 @@
 //! What the GPU path lacks is refused by name before anything is written.
 
 use super::sim_run::{
-    prepare_output_folder, print_sweep, refuse_sweep_resume, shell_word, RunArgs,
+    prepare_output_folder, print_sweep, refuse_sweep_resume, shell_word, sweep_interrupted, RunArgs,
 };
 use super::{Exit, Refused, EXIT_INTERRUPTED};
 use anyhow::Context;
@@ -62,22 +62,12 @@ pub fn run(args: &RunArgs, scene: &mdr_sim::Scene, out: &Path) -> anyhow::Result
     if sweep {
         let sweep = mdr_gpu::run_gpu_orifice_sweep(&ctx, scene, &options)?;
         return print_sweep(&sweep, |run, n| {
-            let next = match &run.checkpoint {
-                Some(checkpoint) => format!(
-                    "a sweep is not resumed: write that run's diameter into orifice_diameter_m \
-                     and its name `{}_D{}` into name, remove orifice_sweep_m and resume it (on \
-                     either device) with --resume {}",
-                    scene.name,
-                    n - 1,
-                    shell_word(&checkpoint.display().to_string())
-                ),
-                None => "no checkpoint was written (--no-checkpoints): run the sweep again to \
-                         start again"
-                    .to_owned(),
-            };
-            format!(
-                "interrupted at t = {:.6e} s (step {}) of run {n} of the sweep {adapter}; {next}",
-                run.time, run.step
+            sweep_interrupted(
+                &scene.name,
+                n,
+                (run.time, run.step),
+                run.checkpoint.as_deref(),
+                &format!(" {adapter}"),
             )
         });
     }
