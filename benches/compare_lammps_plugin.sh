@@ -12,27 +12,14 @@
 # (LAMMPS's Matom-step/s) and the drum's loop times, then the ratios the targets are stated in:
 # the plugin's pair per core against gran/hertz/history, the wall/mdrdem floor's fix time
 # against wall/gran hertz/history's, 2 ranks against 1, and the drum with fix balance against
-# without.
+# without. MDR_LAMMPS_PLUGIN, LAMMPS_LMP and LAMMPS_MPIRUN: a plugin and LAMMPS built elsewhere
+# (benches/lammps/plugin-setup.sh); MDR_DEM: the mdr-dem binary (default: built here).
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 nbench=${1:-10000}
 drum=${2:-yes}
-plugin=$("$repo/crates/mdr-lammps/build-plugin.sh" | tail -1)
-venv=$("$repo/crates/mdr-lammps/install-lammps.sh" | tail -1)
-export LD_LIBRARY_PATH="$venv/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
-export OMP_NUM_THREADS=1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cp "$repo/benches/lammps/in.bench" "$repo/benches/lammps/settled.data" "$work/"
-cd "$work"
-"$repo/benches/lammps/plugin-input.sh" "$plugin" > in.plugin
-# LAMMPS's Performance line gives the rate in Matom-step/s, or in katom-step/s below 1 M (as for
-# the slower granular mdr model): both as M particle-steps/s.
-rate() {
-  grep -A2 "^Loop time" "$1" | tail -1 | awk '{for (i=1;i<=NF;i++) {
-    if ($i=="Matom-step/s") printf "%.4f\n", $(i-1);
-    if ($i=="katom-step/s") printf "%.4f\n", $(i-1) / 1000.0 } }' | tail -1
-}
+# shellcheck source=benches/lammps/plugin-setup.sh
+. "$repo/benches/lammps/plugin-setup.sh"
 # LAMMPS's average time in fixes (Modify row of the task timing breakdown) of the timed run
 modify_time() {
   awk '/^Modify /{t=$5} END{print t}' "$1"
@@ -40,7 +27,7 @@ modify_time() {
 printf '%-28s %6s %14s %14s %12s\n' law ranks "M steps/s" "per core" "Modify s"
 for model in hertzhist mdr plugin pluginwall; do
   for np in 1 2; do
-    "$venv/bin/mpirun" -np $np "$venv/bin/lmp" -in in.plugin -var model $model -var nbench "$nbench" \
+    "$mpirun" -np $np "$lmp" -in in.plugin -var model $model -var nbench "$nbench" \
       -log log.$model.$np -screen none
     r=$(rate log.$model.$np)
     declare "rate_${model}_$np=$r" "modify_${model}_$np=$(modify_time log.$model.$np)"
@@ -49,15 +36,16 @@ for model in hertzhist mdr plugin pluginwall; do
   done
 done
 cd "$repo"
-cargo build -q --release --locked --bin mdr-dem
-json=$(target/release/mdr-dem bench bed --law mdr --data benches/lammps/settled.data --steps "$nbench" --json)
+bin=${MDR_DEM:-${CARGO_TARGET_DIR:-$repo/target}/release/mdr-dem}
+[ -n "${MDR_DEM:-}" ] || cargo build -q --release --locked --bin mdr-dem
+json=$("$bin" bench bed --law mdr --data benches/lammps/settled.data --steps "$nbench" --json)
 r=$(python3 -c "import json,sys; d=json.loads(sys.argv[1]); print(f\"{d['particle_steps_per_s']/1e6:.3f}\")" "$json" 2>/dev/null || echo "?")
 printf '%-28s %6d %14s %14s\n' "mdr-dem bench bed --law mdr" 1 "$r" "$r"
 echo "json: $json"
 if [ "$drum" = yes ]; then
   cd "$work"
   for balance in no yes; do
-    "$venv/bin/mpirun" -np 2 "$venv/bin/lmp" -in "$repo/examples/lammps/in.drum" -var plugin "$plugin" \
+    "$mpirun" -np 2 "$lmp" -in "$repo/examples/lammps/in.drum" -var plugin "$plugin" \
       -var balance $balance -log log.drum.$balance -screen none
     loop=$(awk '/^Loop time/{s+=$4} END{print s}' log.drum.$balance)
     declare "drum_$balance=$loop"

