@@ -4,7 +4,8 @@
 //! `−Σ ½(F_{i−1} + F_i)·Δu_i` of a stick path (the trapezoid rule, exact for a linear force) is
 //! what it stores; after gross slip it holds `½ (μ F_N)²/k_t`, the energy of a spring at the
 //! Coulomb limit. `mindlin_law.rs` checks the energy each update returns; this checks the one
-//! read back from the state alone.
+//! read back from the state alone: the other tests of the law miss all seven mutants of it
+//! (its value `0`, `±1`; `*` → `+`, `/`), which this one catches (docs/verification.md §5).
 
 use mdr_contact::normal::NormalResponse;
 use mdr_contact::prelude::*;
