@@ -7,11 +7,12 @@
 //! series (A12) for `ε ≤ 1/16` and from the two fits (A12a) up to `ε = 2`, each within
 //! `8·10⁻¹⁷` of `y/ε` in double precision (docs/theory.md): the edge to round-off. The laws here
 //! are in round units (`E* = 1 Pa`, `R = 1 m`, `θ = 1/4`, touching radius `1/4 m`), where the
-//! touching radius and `ε` are exact in double precision, and with every length `4⁻⁶` and `4⁶`
-//! times as large, so the edge is held to the root at a few units in the last place: a fit
-//! coefficient with its sign changed moves the edge by at least `1.9·10⁻¹⁴` of it. Beyond
-//! `ε = 2`, for a root beyond the plastic radius and for a neck held by adhesion alone, the edge
-//! is held to the largest root of (A5) on the whole crater (A1).
+//! touching radius and `ε` are exact in double precision, and with every length `4⁻⁶`, `4⁶` and
+//! `4⁻²⁴` times as large, so the edge is held to the root at a few units in the last place: a
+//! fit coefficient with its sign changed moves the edge by at least `1.9·10⁻¹⁴` of it. Beyond
+//! `ε = 2`, for a root beyond the plastic radius and for a neck held by adhesion alone (also just
+//! past its weakest edge), the edge is held to the largest root of (A5) on the whole crater
+//! (A1), found by bisection.
 
 use mdr_contact::prelude::*;
 use std::f64::consts::PI;
