@@ -1,9 +1,12 @@
 //! The profiles of eq. (1) against results written out here: the closed forms of the sphere,
 //! cone, flat punch and power law (heights, MDR images, accessors, the parameter errors a user
 //! sees, word for word); the factor `κ(n) = √π Γ(n/2 + 1)/Γ(n/2 + 1/2)` from tabulated values of
-//! `Γ`; the numerical transform where it is exact up to round-off (an exact slope whose integral
-//! over `φ` is smooth, a fourth-order difference of a quartic, a spline table of a cubic), and
-//! the spline's and the table's errors word for word.
+//! `Γ`; the numerical transform where it is exact up to round-off (exact slopes, smooth or with
+//! an integrable singularity at the axis, a fourth-order difference of a quartic, a spline table
+//! of a cubic), and
+//! the spline's and the table's errors word for word. Tolerances are a few times the round-off
+//! measured; each test fails on mutants of `profile/` and `quadrature.rs` that the older tests
+//! let through (docs/verification.md §5).
 
 use mdr_contact::profile::{
     power_law_factor, Cone, CubicSpline, FlatPunch, NumericalProfile, PowerLaw, Profile, Sphere,
@@ -44,7 +47,12 @@ fn closed_form_profiles_have_their_heights_images_and_parameters() {
     assert_relative(cone.slope(), 0.309_336_249_609_623_3, 1e-15, "tan 0.3");
     assert_eq!(cone.max_radius(), f64::INFINITY);
     for x in [r, -r] {
-        assert_relative(cone.height(x), 3.093_362_496_096_233e-4, 1e-15, "cone r tan β");
+        assert_relative(
+            cone.height(x),
+            3.093_362_496_096_233e-4,
+            1e-15,
+            "cone r tan β",
+        );
         assert_relative(
             cone.mdr_height(x),
             FRAC_PI_2 * 3.093_362_496_096_233e-4,
@@ -136,7 +144,11 @@ fn power_law_factor_matches_tabulated_gamma_values() {
         assert_relative(power_law_factor(n), kappa, 1e-14, &format!("κ({n})"));
     }
     for n in [f64::NAN, 0.0, -1.0, -2.5] {
-        assert!(power_law_factor(n).is_nan(), "κ({n}) = {}", power_law_factor(n));
+        assert!(
+            power_law_factor(n).is_nan(),
+            "κ({n}) = {}",
+            power_law_factor(n)
+        );
     }
 }
 
@@ -145,15 +157,27 @@ fn numerical_transform_is_exact_where_its_integrand_is_smooth() {
     let c = 3.0e3;
     let half_width = 1e-3;
     // f = c r²: f'(x sin φ) = 2c x sin φ, g = 2c x² (the quadrature of sin φ over [0, π/2]).
-    let parabola = NumericalProfile::from_height_and_slope(move |r| c * r * r, move |r| 2.0 * c * r);
+    let parabola =
+        NumericalProfile::from_height_and_slope(move |r| c * r * r, move |r| 2.0 * c * r);
     // f = c r⁴: the fourth-order central difference is exact for a quartic; g = (8/3) c x⁴.
     let quartic = NumericalProfile::from_height(move |r: f64| c * r.powi(4));
     // f = c r^{3/2} with its exact slope: √(sin φ) has an endpoint singularity in its
     // derivative, which the adaptive bisection resolves; g = κ(3/2) c |x|^{3/2}.
     let kappa = 3.0 * PI.sqrt() * GAMMA_THREE_QUARTERS / GAMMA_QUARTER;
-    let root = NumericalProfile::from_height_and_slope(
-        move |r: f64| c * r.powf(1.5),
-        move |r: f64| 1.5 * c * r.sqrt(),
+    let root = |c: f64| {
+        NumericalProfile::from_height_and_slope(
+            move |r: f64| c * r.powf(1.5),
+            move |r: f64| 1.5 * c * r.sqrt(),
+        )
+    };
+    // The tolerance is relative to the integral: a small one (c = 10⁻⁶) is resolved as well.
+    let (root, small_root) = (root(c), root(1e-6));
+    // f = c r^{1/2}: the integrand ∝ 1/√(sin φ) is singular at φ = 0 and takes the bisection
+    // far towards it; g = κ(1/2) c |x|^{1/2} (the error measured: 1.6·10⁻¹³).
+    let kappa_half = PI.sqrt() * 0.25 * GAMMA_QUARTER / GAMMA_THREE_QUARTERS;
+    let sqrt_profile = NumericalProfile::from_height_and_slope(
+        move |r: f64| c * r.sqrt(),
+        move |r: f64| 0.5 * c / r.sqrt(),
     );
     assert_eq!(parabola.max_radius(), f64::INFINITY);
     assert_eq!(parabola.mdr_height(0.0), 0.0);
@@ -163,12 +187,39 @@ fn numerical_transform_is_exact_where_its_integrand_is_smooth() {
             let a = x.abs();
             assert_relative(parabola.mdr_height(x), 2.0 * c * a * a, 1e-15, "2c x²");
             assert_relative(parabola.height(x), c * a * a, 1e-15, "c r²");
-            assert_relative(quartic.mdr_height(x), 8.0 / 3.0 * c * a.powi(4), 1e-13, "(8/3) c x⁴");
-            assert_relative(root.mdr_height(x), kappa * c * a.powf(1.5), 1e-13, "κ c x^1.5");
+            assert_relative(
+                quartic.mdr_height(x),
+                8.0 / 3.0 * c * a.powi(4),
+                1e-13,
+                "(8/3) c x⁴",
+            );
+            assert_relative(
+                root.mdr_height(x),
+                kappa * c * a.powf(1.5),
+                1e-13,
+                "κ c x^1.5",
+            );
+            assert_relative(
+                sqrt_profile.mdr_height(x),
+                kappa_half * c * a.sqrt(),
+                5e-13,
+                "κ(1/2) c x^0.5",
+            );
+            assert_relative(
+                small_root.mdr_height(x),
+                kappa * 1e-6 * a.powf(1.5),
+                1e-13,
+                "κ 10⁻⁶ x^1.5",
+            );
         }
     }
     // The slopes the transform integrates.
-    assert_relative(quartic.slope(0.5), 4.0 * c * 0.125, 3e-13, "4c r³ by differences");
+    assert_relative(
+        quartic.slope(0.5),
+        4.0 * c * 0.125,
+        3e-13,
+        "4c r³ by differences",
+    );
     assert_relative(parabola.slope(0.5), c, 1e-15, "2c r given");
 }
 
@@ -202,7 +253,10 @@ fn a_table_of_a_cubic_is_transformed_exactly_up_to_its_last_radius() {
         "NumericalProfile(function, slope by finite differences)"
     );
     assert_eq!(
-        format!("{:?}", NumericalProfile::from_height_and_slope(|r| r, |_| 1.0)),
+        format!(
+            "{:?}",
+            NumericalProfile::from_height_and_slope(|r| r, |_| 1.0)
+        ),
         "NumericalProfile(function with exact slope)"
     );
 }
