@@ -7,6 +7,10 @@
 //! by adhesion alone below the residual depth, and the weakest edge lies on either branch or
 //! at the plastic radius.
 
+#[path = "common/crater.rs"]
+mod crater;
+
+use crater::Crater;
 use mdr_contact::prelude::*;
 use std::f64::consts::PI;
 
@@ -33,105 +37,17 @@ fn scaled_law(c: f64, scale: f64) -> AdhesiveMdrLaw {
     )
 }
 
-/// The crater of the history `d_max` (eq. A1), written out.
-#[derive(Clone, Copy)]
-struct Crater {
-    /// `R`.
-    radius: f64,
-    /// `s = (d_max − u_c)₊`.
-    s: f64,
-}
-
-impl Crater {
-    /// The crater of the law with every length times `scale` (`R`, `u_c`; `c` by `√scale`).
-    fn scaled(max_overlap: f64, scale: f64) -> Self {
-        Self {
-            radius: RADIUS * scale,
-            s: (max_overlap - YIELD * scale).max(0.0),
-        }
-    }
-
-    /// `b = √(R s)`.
-    fn plastic_radius(&self) -> f64 {
-        (self.radius * self.s).sqrt()
-    }
-
-    fn h(&self, x: f64) -> f64 {
-        if x < self.plastic_radius() {
-            THETA * x * x / self.radius + (1.0 - THETA) * self.s
-        } else {
-            x * x / self.radius
-        }
-    }
-
-    /// `∫₀^a f(x) dx` for `f` polynomial of degree ≤ 5 on each branch: three-point
-    /// Gauss–Legendre on `[0, min(a, b)]` and `[b, a]`.
-    fn integrate(&self, a: f64, f: impl Fn(f64) -> f64) -> f64 {
-        let gauss = |lo: f64, hi: f64| {
-            let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
-            let node = (0.6f64).sqrt() * half;
-            half * (5.0 / 9.0 * (f(mid - node) + f(mid + node)) + 8.0 / 9.0 * f(mid))
-        };
-        let b = self.plastic_radius().min(a);
-        gauss(0.0, b) + if a > b { gauss(b, a) } else { 0.0 }
-    }
-
-    /// (A3): `2E* (a d − ∫₀^a h dx)`.
-    fn force(&self, d: f64, a: f64) -> f64 {
-        2.0 * MODULUS * (a * d - self.integrate(a, |x| self.h(x)))
-    }
-
-    /// (A6): `(E*/2) ∫_{−a}^{a} (d − h)² dx`.
-    fn energy(&self, d: f64, a: f64) -> f64 {
-        MODULUS * self.integrate(a, |x| (d - self.h(x)).powi(2))
-    }
-
-    /// (A4): the overlap at which the edge at `a` sits at its limit, `h(a) − c√a`.
-    fn edge_overlap(&self, c: f64, a: f64) -> f64 {
-        self.h(a) - c * a.sqrt()
-    }
-
-    /// (A7) by search: `(a*, δ(a*))` minimising `δ` over `0 < a' ≤ a`, from a grid of 20 000
-    /// points in `√a'` refined by golden section on each side of the best point (δ is convex
-    /// in `√a'` on each branch, with a kink at `b`).
-    fn weakest_edge(&self, c: f64, a: f64) -> (f64, f64) {
-        let delta = |t: f64| self.edge_overlap(c, t * t);
-        let n = 20_000;
-        let top = a.sqrt();
-        let grid = |i: usize| top * i as f64 / n as f64;
-        let best = (1..=n)
-            .min_by(|&i, &j| delta(grid(i)).total_cmp(&delta(grid(j))))
-            .unwrap();
-        let mut found = (grid(best), delta(grid(best)));
-        let golden = 0.5 * (5f64.sqrt() - 1.0);
-        let b = self.plastic_radius().sqrt();
-        for (mut lo, mut hi) in [
-            (grid(best - 1), grid(best)),
-            (grid(best), grid((best + 1).min(n))),
-        ] {
-            // Keep each bracket on one branch.
-            if lo < b && b < hi {
-                if delta(b) < found.1 {
-                    found = (b, delta(b));
-                }
-                continue;
-            }
-            for _ in 0..200 {
-                let x1 = hi - golden * (hi - lo);
-                let x2 = lo + golden * (hi - lo);
-                if delta(x1) < delta(x2) {
-                    hi = x2;
-                } else {
-                    lo = x1;
-                }
-            }
-            let t = 0.5 * (lo + hi);
-            if delta(t) < found.1 {
-                found = (t, delta(t));
-            }
-        }
-        (found.0 * found.0, found.1)
-    }
+/// The crater of the law with every length times `scale` after loading to `max_overlap`:
+/// `R`, `u_c`, and the let-go coefficient `c` (already scaled, m^½).
+fn crater_of(max_overlap: f64, c: f64, scale: f64) -> Crater {
+    Crater::new(
+        MODULUS,
+        RADIUS * scale,
+        YIELD * scale,
+        THETA,
+        c,
+        max_overlap,
+    )
 }
 
 /// Walks `law` quasi-statically through the turning points `turns` in steps of at most
@@ -170,7 +86,7 @@ fn walk_scaled(
             let previous_force = force;
             force = response.force;
             d = next;
-            let crater = Crater::scaled(state.max_overlap, scale);
+            let crater = crater_of(state.max_overlap, c, scale);
             assert_eq!(state.max_overlap, before.max_overlap.max(d));
             let a = state.contact_radius;
             assert_eq!(response.contact_radius, a);
@@ -221,7 +137,7 @@ fn walk_scaled(
             if a == 0.0 && before.contact_radius > 0.0 {
                 // Let go: below the weakest edge of the disc that was attached, which the
                 // previous overlap was not, with the energy (A6) the springs held.
-                let (weakest, weakest_overlap) = crater.weakest_edge(c, before.contact_radius);
+                let (weakest, weakest_overlap) = crater.weakest_edge(before.contact_radius);
                 assert!(d < weakest_overlap + 1e-12 * state.max_overlap, "d={d}");
                 assert!(previous_overlap >= weakest_overlap - 1e-12 * state.max_overlap);
                 let held = PI * gamma_for(c) * (before.contact_radius.powi(2) - weakest * weakest)
@@ -239,7 +155,7 @@ fn walk_scaled(
             // The let-go overlap (A7) of the disc as it stands: at every turn and every 1009th
             // step.
             if state.contact_radius > 0.0 && (i == n || i % 1009 == 0) {
-                let expected = crater.weakest_edge(c, state.contact_radius).1;
+                let expected = crater.weakest_edge(state.contact_radius).1;
                 let got = law.detachment_overlap(&state);
                 assert!(
                     (got - expected).abs() < 1e-13 * state.max_overlap,
@@ -385,8 +301,8 @@ fn detachment_after_loading_scaled(c: f64, max_overlap: f64, scale: f64) -> f64 
     let law = scaled_law(c, scale);
     let mut state = AdhesiveMdrState::default();
     law.update(&mut state, max_overlap * scale);
-    let crater = Crater::scaled(max_overlap * scale, scale);
-    let (weakest, expected) = crater.weakest_edge(c * scale.sqrt(), state.contact_radius);
+    let crater = crater_of(max_overlap * scale, c * scale.sqrt(), scale);
+    let (weakest, expected) = crater.weakest_edge(state.contact_radius);
     let got = law.detachment_overlap(&state);
     assert!(
         (got - expected).abs() < 1e-13 * max_overlap * scale,

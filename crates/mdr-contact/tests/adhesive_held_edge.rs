@@ -10,6 +10,10 @@
 //! Tolerances are a few times the round-off measured: the edge within `5·10⁻¹⁶` of the root,
 //! the force within `10⁻¹⁶` of `2E* a d_max`, the works to the last bit.
 
+#[path = "common/crater.rs"]
+mod crater;
+
+use crater::Crater;
 use mdr_contact::prelude::*;
 use std::f64::consts::PI;
 
@@ -35,89 +39,15 @@ fn law(scale: f64) -> AdhesiveMdrLaw {
 
 /// The crater of the history `d_max` (eq. A1), written out, for the law with every length
 /// times `scale`.
-struct Crater {
-    /// `R`.
-    radius: f64,
-    /// `s = (d_max − u_c)₊`.
-    s: f64,
-    /// `c = √(2πΔγ/E*)`.
-    c: f64,
-}
-
-impl Crater {
-    fn new(max_overlap: f64, scale: f64) -> Self {
-        Self {
-            radius: RADIUS * scale,
-            s: (max_overlap - YIELD * scale).max(0.0),
-            c: C * scale.sqrt(),
-        }
-    }
-
-    /// `b = √(R s)`.
-    fn plastic_radius(&self) -> f64 {
-        (self.radius * self.s).sqrt()
-    }
-
-    /// The residual depth `h(0) = (1 − θ) s`.
-    fn depth(&self) -> f64 {
-        (1.0 - THETA) * self.s
-    }
-
-    fn h(&self, x: f64) -> f64 {
-        if x < self.plastic_radius() {
-            THETA * x * x / self.radius + self.depth()
-        } else {
-            x * x / self.radius
-        }
-    }
-
-    /// `∫₀^a f dx` by three-point Gauss–Legendre on `[0, min(a, b)]` and `[b, a]`: exact for
-    /// polynomials of degree ≤ 5 on each branch.
-    fn integrate(&self, a: f64, f: impl Fn(f64) -> f64) -> f64 {
-        let gauss = |lo: f64, hi: f64| {
-            let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
-            let node = 0.6f64.sqrt() * half;
-            half * (5.0 / 9.0 * (f(mid - node) + f(mid + node)) + 8.0 / 9.0 * f(mid))
-        };
-        let b = self.plastic_radius().min(a);
-        gauss(0.0, b) + if a > b { gauss(b, a) } else { 0.0 }
-    }
-
-    /// (A3): `2E* (a d − ∫₀^a h dx)`.
-    fn force(&self, d: f64, a: f64) -> f64 {
-        2.0 * MODULUS * (a * d - self.integrate(a, |x| self.h(x)))
-    }
-
-    /// (A4): `δ(a) = h(a) − c√a`, the overlap at which the edge at `a` is at its limit.
-    fn edge_overlap(&self, a: f64) -> f64 {
-        self.h(a) - self.c * a.sqrt()
-    }
-
-    /// The edge (A5) that an edge at `previous`, past its limit at `d` (`δ(previous) > d`),
-    /// retreats to: the largest root of `δ(a) = d`, by bisection in `√a` between the smallest
-    /// `δ` on a grid of 20 000 points (δ is convex in `√a`, so rising right of it) and
-    /// `√previous`.
-    fn retreated_edge(&self, previous: f64, d: f64) -> f64 {
-        let delta = |t: f64| self.edge_overlap(t * t);
-        let n = 20_000;
-        let top = previous.sqrt();
-        let lowest = (1..=n)
-            .map(|i| top * i as f64 / n as f64)
-            .min_by(|x, y| delta(*x).total_cmp(&delta(*y)))
-            .unwrap();
-        assert!(delta(lowest) < d && d < delta(top), "no retreat at d = {d}");
-        let (mut lo, mut hi) = (lowest, top);
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if delta(mid) > d {
-                hi = mid;
-            } else {
-                lo = mid;
-            }
-        }
-        let t = 0.5 * (lo + hi);
-        t * t
-    }
+fn crater_of(max_overlap: f64, scale: f64) -> Crater {
+    Crater::new(
+        MODULUS,
+        RADIUS * scale,
+        YIELD * scale,
+        THETA,
+        C * scale.sqrt(),
+        max_overlap,
+    )
 }
 
 /// One update from an attached edge at `previous` after loading to `max_overlap`.
@@ -155,7 +85,7 @@ fn an_edge_placed_by_the_iteration_has_the_stiffness_of_its_springs() {
     // 43.6 mm retreats to about 41 mm, beyond b. The sphere's branch: no crater, d = 0.1 mm,
     // touching out to 10 mm, ε = 4.
     let neck = {
-        let crater = Crater::new(1.9e-3, 1.0);
+        let crater = crater_of(1.9e-3, 1.0);
         let lowest = (1..=20_000)
             .map(|i| crater.edge_overlap((0.036f64.sqrt() * i as f64 / 2e4).powi(2)))
             .fold(f64::INFINITY, f64::min);
@@ -169,7 +99,7 @@ fn an_edge_placed_by_the_iteration_has_the_stiffness_of_its_springs() {
         ("sphere", (8e-4, 8e-4f64.sqrt(), 1e-4)),
     ];
     for (what, (max_overlap, previous, d)) in cases {
-        let crater = Crater::new(max_overlap, 1.0);
+        let crater = crater_of(max_overlap, 1.0);
         let (response, state) = unload(&law, max_overlap, previous, d);
         let a = state.contact_radius;
         let root = crater.retreated_edge(previous, d);
@@ -219,7 +149,7 @@ fn a_neck_holds_to_its_limit_in_any_unit() {
     for scale in [1e-4, 1.0, 1e4] {
         let law = law(scale);
         let max_overlap = 1.9e-3 * scale;
-        let crater = Crater::new(max_overlap, scale);
+        let crater = crater_of(max_overlap, scale);
         // Beyond b = 30 mm (scaled), its limit overlap below the residual depth.
         let previous = 0.036 * scale;
         let limit = crater.c * previous.sqrt();
@@ -260,7 +190,7 @@ fn a_neck_holds_to_its_limit_in_any_unit() {
 fn a_contact_pulled_far_apart_in_one_step_lets_go_with_what_its_springs_held() {
     let law = law(1.0);
     let max_overlap = 8e-4;
-    let crater = Crater::new(max_overlap, 1.0);
+    let crater = crater_of(max_overlap, 1.0);
     let previous = (RADIUS * max_overlap).sqrt();
     let weakest = (C * RADIUS / 4.0).powf(2.0 / 3.0);
     assert!(weakest < previous);
