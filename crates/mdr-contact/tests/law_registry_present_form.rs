@@ -2,9 +2,11 @@
 //! Thornton's history as the three parts a history kept outside the crate stores (`δ*`, the
 //! unloading coefficient `(4/3) E* √R_p` of his eqs. 24–26 and `δ_p`), given back and rebuilt;
 //! what a law without adhesion says through the normal law's defaults (it never holds and lets go
-//! where its force vanishes, at its residual overlap); the frictionless law's free sliding. Each
-//! test catches mutants of `normal/mod.rs`, `tangential/mod.rs`, `normal/thornton.rs` (and the
-//! other law files named in docs/verification.md §5) that the crate's other tests miss.
+//! where its force vanishes, at its residual overlap); the frictionless law's free sliding; which
+//! rolling models resist rolling; the parameter-free laws built by name from no values. Each test
+//! catches mutants of `normal/hertz.rs`, `normal/mod.rs`, `tangential/mod.rs`, `damping.rs`,
+//! `rolling.rs` or `normal/thornton.rs` that the crate's other tests miss (docs/verification.md
+//! §5).
 
 use mdr_contact::nalgebra::Vector3;
 use mdr_contact::normal::{NormalLaw, NormalResponse};
