@@ -502,3 +502,36 @@ fn a_spring_count_beyond_ten_to_the_eight_is_refused_before_allocation() {
         );
     }
 }
+
+/// A profile whose transformed height is NaN everywhere: a bed of it is refused at
+/// `profile height g(x)`, after its springs are laid out.
+#[derive(Debug)]
+struct NanProfile;
+
+impl Profile for NanProfile {
+    fn height(&self, _r: f64) -> f64 {
+        f64::NAN
+    }
+
+    fn mdr_height(&self, _x: f64) -> f64 {
+        f64::NAN
+    }
+
+    fn max_radius(&self) -> f64 {
+        1.0
+    }
+}
+
+/// Exactly [`SpringBed::MAX_SPRINGS`] springs are taken: the count passes its bound, the
+/// springs are laid out (5·10⁷ stored, about 1.2 GB for a moment) and the bed is refused only
+/// for the profile's NaN height, not for the count.
+#[test]
+fn exactly_ten_to_the_eight_springs_pass_the_bound() {
+    let refused = SpringBed::new(NanProfile, E_STAR, Q_C, THETA, 1.0, SpringBed::MAX_SPRINGS)
+        .err()
+        .expect("a NaN profile is refused");
+    assert!(
+        refused.to_string().contains("profile height g(x)"),
+        "{refused}"
+    );
+}
