@@ -527,9 +527,10 @@ impl Profile for NanProfile {
 /// for the profile's NaN height, not for the count.
 #[test]
 fn exactly_ten_to_the_eight_springs_pass_the_bound() {
-    let refused = SpringBed::new(NanProfile, E_STAR, Q_C, THETA, 1.0, SpringBed::MAX_SPRINGS)
-        .err()
-        .expect("a NaN profile is refused");
+    let Err(refused) = SpringBed::new(NanProfile, E_STAR, Q_C, THETA, 1.0, SpringBed::MAX_SPRINGS)
+    else {
+        panic!("a bed of a NaN profile taken");
+    };
     assert!(
         refused.to_string().contains("profile height g(x)"),
         "{refused}"
